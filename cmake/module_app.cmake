@@ -1,0 +1,1 @@
+# module app: filled in by its owner

@@ -1,0 +1,1 @@
+# module bsdf: filled in by its owner

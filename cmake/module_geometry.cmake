@@ -1,0 +1,1 @@
+# module geometry: filled in by its owner

@@ -1,0 +1,1 @@
+# module integrators: filled in by its owner

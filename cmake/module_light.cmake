@@ -1,0 +1,1 @@
+# module light: filled in by its owner

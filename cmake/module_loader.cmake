@@ -1,0 +1,1 @@
+# module loader: filled in by its owner

@@ -1,0 +1,1 @@
+# module props: filled in by its owner

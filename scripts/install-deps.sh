@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs snell's build and test dependencies from Debian 12 packages.
+# Idempotent and non-interactive: packages already present are skipped, so
+# `make demo` / `make test` can call this on every run at almost no cost.
+set -euo pipefail
+
+PACKAGES=(
+  g++ cmake ninja-build make pkg-config
+  libembree-dev        # BVH and ray/triangle intersection (Embree 3)
+  libopenexr-dev       # EXR images (film output, environment maps)
+  libtbb-dev           # oneTBB: tile scheduling
+  libpugixml-dev       # Mitsuba-style XML scenes
+  libtinyobjloader-dev # OBJ meshes
+  libcli11-dev         # command line
+  libstb-dev           # PNG output
+  nlohmann-json3-dev   # stats JSON
+  libgtest-dev         # tests
+  libbenchmark-dev     # make bench
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

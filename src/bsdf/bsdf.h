@@ -1,0 +1,63 @@
+#pragma once
+// BSDF interface. Conventions (as in pbrt/Mitsuba):
+//  - directions are in the local shading frame (n = +z), both point *away* from the surface:
+//    wo towards the previous path vertex (camera side), wi towards the next (light side);
+//  - eval returns f_r(wo, wi) without the cosine factor;
+//  - pdf is in solid angle of wi; deltas have eval = pdf = 0 and are only sampled;
+//  - one wavelength per path, so values are plain doubles at ctx.lambda.
+#include <cstdint>
+#include <optional>
+
+#include "core/object.h"
+#include "core/spectrum.h"
+#include "core/vector.h"
+
+namespace snell {
+
+enum class TransportMode { Radiance, Importance };
+
+/// Lobe classification flags (bitwise).
+enum BSDFFlags : uint32_t {
+    kReflection = 1u << 0,
+    kTransmission = 1u << 1,
+    kDiffuse = 1u << 2,
+    kGlossy = 1u << 3,
+    kSpecular = 1u << 4,
+};
+
+struct BSDFContext {
+    double lambda = 550.0;  ///< nm
+    TransportMode mode = TransportMode::Radiance;
+};
+
+struct BSDFSample {
+    Vec3 wi;             ///< sampled direction (local)
+    double weight = 0;   ///< f * |cos theta_i| / pdf (for deltas: the discrete weight)
+    double pdf = 0;      ///< solid angle density; for deltas the discrete lobe probability
+    double eta = 1;      ///< relative IOR across the sampled transmission (1 for reflection)
+    uint32_t lobe = 0;   ///< BSDFFlags of the sampled lobe
+    bool is_delta() const { return (lobe & kSpecular) != 0; }
+};
+
+class BSDF : public Object {
+public:
+    virtual double eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const = 0;
+    virtual double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const = 0;
+    /// `uc` picks a lobe, `u` samples it.
+    virtual std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc,
+                                             const Vec2& u) const = 0;
+    /// Union of the lobes' flags.
+    virtual uint32_t flags() const = 0;
+
+    bool has_delta() const { return (flags() & kSpecular) != 0; }
+    bool is_transmissive() const { return (flags() & kTransmission) != 0; }
+    /// Non-delta lobes exist (light sampling is worthwhile).
+    bool is_smooth_sampled() const { return (flags() & (kDiffuse | kGlossy)) != 0; }
+
+    /// Interior over exterior IOR at lambda (1 for non-dielectrics). Used by MNEE's constraints.
+    virtual double eta(double /*lambda*/) const { return 1.0; }
+    /// Beer-Lambert absorption coefficient of the enclosed medium (1/scene unit), or nullptr.
+    virtual const Spectrum* interior_absorption() const { return nullptr; }
+};
+
+}  // namespace snell

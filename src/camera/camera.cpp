@@ -1,0 +1,46 @@
+#include "camera/camera.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace snell {
+
+PerspectiveCamera::PerspectiveCamera(const Transform& to_world, double fov_deg,
+                                     const std::string& fov_axis, const FilmSpec& film,
+                                     double near_clip, double far_clip)
+    : m_to_world(to_world), m_film(film), m_near(near_clip), m_far(far_clip) {
+    const double aspect = double(film.width) / double(film.height);
+    const double t = std::tan(0.5 * fov_deg * kPi / 180.0);
+    std::string axis = fov_axis;
+    if (axis == "smaller") axis = aspect >= 1 ? "y" : "x";
+    if (axis == "larger") axis = aspect >= 1 ? "x" : "y";
+    if (axis == "x") {
+        m_tx = t;
+        m_ty = t / aspect;
+    } else if (axis == "y") {
+        m_ty = t;
+        m_tx = t * aspect;
+    } else if (axis == "diagonal") {
+        const double d = std::sqrt(aspect * aspect + 1.0);
+        m_tx = t * aspect / d;
+        m_ty = t / d;
+    } else {
+        throw std::invalid_argument("unknown fov_axis '" + fov_axis + "' (x, y, smaller, larger, diagonal)");
+    }
+}
+
+Ray PerspectiveCamera::generate_ray(const Vec2& raster) const {
+    // Camera space: +z forward, +x left, +y up (Mitsuba); raster x grows to the right.
+    const double sx = 1.0 - 2.0 * raster.x / m_film.width;   // +1 at the left edge
+    const double sy = 1.0 - 2.0 * raster.y / m_film.height;  // +1 at the top edge
+    const Vec3 d_cam = normalize(Vec3(sx * m_tx, sy * m_ty, 1.0));
+    Ray r;
+    r.o = m_to_world.point(Vec3(0, 0, 0));
+    r.d = normalize(m_to_world.vector(d_cam));
+    // Clip planes are distances along the optical axis.
+    r.tmin = m_near / d_cam.z;
+    r.tmax = m_far / d_cam.z;
+    return r;
+}
+
+}  // namespace snell

@@ -1,0 +1,37 @@
+#pragma once
+#include "core/object.h"
+#include "core/transform.h"
+#include "core/vector.h"
+
+namespace snell {
+
+/// Film settings (Mitsuba's hdrfilm): size and optional crop window, in pixels.
+struct FilmSpec {
+    int width = 768, height = 576;
+    int crop_x = 0, crop_y = 0, crop_w = 0, crop_h = 0;  ///< crop_w == 0: whole image
+    int out_width() const { return crop_w ? crop_w : width; }
+    int out_height() const { return crop_h ? crop_h : height; }
+};
+
+/// Mitsuba's `perspective` sensor: pinhole camera looking down +z in camera space,
+/// +x to the left, +y up; `fov` along `fov_axis` (x, y, smaller, larger, diagonal).
+class PerspectiveCamera : public Object {
+public:
+    PerspectiveCamera(const Transform& to_world, double fov_deg, const std::string& fov_axis,
+                      const FilmSpec& film, double near_clip = 1e-2, double far_clip = 1e4);
+    /// Primary ray through continuous full-film raster position (x right, y down, pixels).
+    Ray generate_ray(const Vec2& raster) const;
+    const FilmSpec& film() const { return m_film; }
+    const Transform& to_world() const { return m_to_world; }
+    Vec3 position() const { return m_to_world.point(Vec3(0, 0, 0)); }
+    /// Tangent of half the horizontal / vertical field of view.
+    double tan_half_x() const { return m_tx; }
+    double tan_half_y() const { return m_ty; }
+
+private:
+    Transform m_to_world;
+    FilmSpec m_film;
+    double m_tx, m_ty, m_near, m_far;
+};
+
+}  // namespace snell

@@ -1,0 +1,76 @@
+#pragma once
+#include <embree3/rtcore.h>
+
+#include <memory>
+#include <vector>
+
+#include "camera/camera.h"
+#include "geometry/interaction.h"
+#include "geometry/shape.h"
+#include "light/light.h"
+#include "light/light_sampler.h"
+
+namespace snell {
+
+class Integrator;
+
+/// The scene: shapes in an Embree BVH, lights and their sampler, the camera.
+/// Tolerances (ray offsets, projection radii) are relative to the scene's size
+/// (project promise 5): a scene scaled by 1000 behaves identically.
+class Scene {
+public:
+    Scene();
+    ~Scene();
+    Scene(const Scene&) = delete;
+    Scene& operator=(const Scene&) = delete;
+
+    void add_shape(std::shared_ptr<Shape> shape);
+    void add_light(std::shared_ptr<Light> light);
+    void set_camera(std::shared_ptr<PerspectiveCamera> cam) { m_camera = std::move(cam); }
+    void set_integrator(std::shared_ptr<Integrator> integ) { m_integrator = std::move(integ); }
+    /// Builds the BVH, preprocesses lights, builds the light sampler. Call once after adding.
+    void build();
+
+    /// Closest hit along the ray within (tmin, tmax); fills full differential geometry.
+    bool intersect(const Ray& ray, SurfaceInteraction* si) const;
+    /// Any hit within (tmin, tmax).
+    bool occluded(const Ray& ray) const;
+    /// Closest point on `shape` to p within `radius` (manifold walk projection, Sec. 3.4).
+    bool closest_point(const Shape& shape, const Vec3& p, double radius, SurfaceInteraction* si) const {
+        return shape.closest_point(p, radius, si);
+    }
+
+    /// Ray leaving `si` in direction d, offset to the side of the geometric normal d points to.
+    Ray spawn_ray(const SurfaceInteraction& si, const Vec3& d) const;
+    /// Shadow ray from `si` to point `target`, shortened at both ends by the scene epsilon.
+    Ray spawn_ray_to(const SurfaceInteraction& si, const Vec3& target) const;
+    /// Offset distance for ray origins: a small multiple of the scene's extent.
+    double ray_epsilon() const { return m_eps; }
+    /// Radius of the bounding sphere of all shapes.
+    double scene_radius() const { return m_radius; }
+    const Bounds3& bounds() const { return m_bounds; }
+
+    const std::vector<std::shared_ptr<Shape>>& shapes() const { return m_shapes; }
+    const std::vector<std::shared_ptr<Light>>& lights() const { return m_lights; }
+    /// Lights with a direction-only domain (envmap, constant, directional) reached by escaping rays.
+    const std::vector<const Light*>& infinite_lights() const { return m_infinite; }
+    const LightSampler& light_sampler() const { return m_light_sampler; }
+    const PerspectiveCamera* camera() const { return m_camera.get(); }
+    const std::shared_ptr<Integrator>& integrator() const { return m_integrator; }
+    RTCDevice device() const { return m_device; }
+
+private:
+    RTCDevice m_device = nullptr;
+    RTCScene m_scene = nullptr;
+    std::vector<std::shared_ptr<Shape>> m_shapes;
+    std::vector<const Shape*> m_by_geom_id;
+    std::vector<std::shared_ptr<Light>> m_lights;
+    std::vector<const Light*> m_infinite;
+    LightSampler m_light_sampler;
+    std::shared_ptr<PerspectiveCamera> m_camera;
+    std::shared_ptr<Integrator> m_integrator;
+    Bounds3 m_bounds;
+    double m_radius = 1, m_eps = 1e-5;
+};
+
+}  // namespace snell

@@ -1,0 +1,66 @@
+#pragma once
+#include <embree3/rtcore.h>
+
+#include <memory>
+#include <optional>
+
+#include "core/object.h"
+#include "core/vector.h"
+#include "geometry/interaction.h"
+
+namespace snell {
+
+class BSDF;
+class Light;
+
+/// A point sampled on a shape, with its density.
+struct ShapeSample {
+    Vec3 p;
+    Vec3 n;           ///< unit (shading-side) normal at p
+    double pdf = 0;   ///< area measure for sample_area; solid angle for sample_from
+};
+
+/// Interface of a geometric primitive (sphere, triangle mesh). Shapes own their BSDF and,
+/// if emissive, their area light.
+class Shape : public Object {
+public:
+    /// Registers the primitive with the Embree scene, returns its geometry id.
+    virtual unsigned attach(RTCDevice device, RTCScene scene) = 0;
+    virtual Bounds3 bounds() const = 0;
+    virtual double area() const = 0;
+
+    /// Fills `si` from an Embree hit on primitive `prim` at barycentrics/parameters `uv`
+    /// (as Embree reports them) at ray distance t. Full differential geometry, ng and n
+    /// pointing to the shape's outside (flipped when `flip_normals` is set).
+    virtual void compute_interaction(const Ray& ray, double t, uint32_t prim, const Vec2& uv,
+                                     SurfaceInteraction* si) const = 0;
+
+    /// Closest point on *this* shape to p (the manifold walk's projection, paper Sec. 3.4),
+    /// with full differential geometry. Spheres are exact; meshes use an Embree point query
+    /// restricted to this shape. Returns false if none is found within `radius`.
+    virtual bool closest_point(const Vec3& p, double radius, SurfaceInteraction* si) const = 0;
+
+    /// Uniform sample in area measure (pdf = 1/area).
+    virtual ShapeSample sample_area(const Vec2& u) const = 0;
+    /// Sample as seen from `ref`; pdf in solid angle at ref. Default: area sampling converted;
+    /// spheres sample the visible cone.
+    virtual std::optional<ShapeSample> sample_from(const Vec3& ref, const Vec2& u) const;
+    /// Solid-angle density of sample_from producing point p (normal n) seen from ref.
+    virtual double pdf_from(const Vec3& ref, const Vec3& p, const Vec3& n) const;
+
+    const BSDF* bsdf() const { return m_bsdf.get(); }
+    const Light* emitter() const { return m_emitter; }
+    void set_bsdf(std::shared_ptr<BSDF> b) { m_bsdf = std::move(b); }
+    void set_emitter(const Light* l) { m_emitter = l; }
+    unsigned geom_id() const { return m_geom_id; }
+
+protected:
+    std::shared_ptr<BSDF> m_bsdf;
+    const Light* m_emitter = nullptr;
+    unsigned m_geom_id = RTC_INVALID_GEOMETRY_ID;
+};
+
+inline const BSDF* SurfaceInteraction::bsdf() const { return shape ? shape->bsdf() : nullptr; }
+inline const Light* SurfaceInteraction::emitter() const { return shape ? shape->emitter() : nullptr; }
+
+}  // namespace snell

@@ -1,0 +1,61 @@
+#pragma once
+// Emitter interface. Radiance/intensity values are at the path's wavelength.
+#include <optional>
+
+#include "core/object.h"
+#include "core/vector.h"
+
+namespace snell {
+
+class Shape;
+
+enum class LightKind { Area, Point, Spot, Directional, Infinite };
+
+/// Reference point for light sampling: position and (optional, zero if none) shading normal.
+struct LightSampleContext {
+    Vec3 p;
+    Vec3 n;  ///< zero vector when unknown/irrelevant
+};
+
+struct LightSample {
+    Vec3 p;                  ///< point on the light (for directional/infinite: far away along wi)
+    Vec3 n;                  ///< light normal at p (zero for point/spot/directional/infinite)
+    Vec3 wi;                 ///< unit direction from the reference point towards the light
+    double dist = kInfinity; ///< distance to p (infinite for directional/infinite lights)
+    double Le = 0;           ///< emitted radiance (area, infinite) or intensity/irradiance (delta)
+    double pdf = 0;          ///< solid-angle density at the reference point (1 for delta lights)
+    double pdf_area = 0;     ///< area density of p on the light (area lights; 0 otherwise)
+    bool delta = false;      ///< position or direction is a Dirac delta (no MIS with BSDF sampling)
+};
+
+class Light : public Object {
+public:
+    virtual LightKind kind() const = 0;
+    bool is_delta() const {
+        const LightKind k = kind();
+        return k == LightKind::Point || k == LightKind::Spot || k == LightKind::Directional;
+    }
+    bool is_infinite() const { return kind() == LightKind::Infinite || kind() == LightKind::Directional; }
+
+    /// Samples incident illumination at ref. Returns nullopt when nothing can be sampled.
+    virtual std::optional<LightSample> sample_li(const LightSampleContext& ref, const Vec2& u,
+                                                 double lambda) const = 0;
+    /// Solid-angle density that sample_li(ref) returns the point p (normal n) in direction wi.
+    /// For infinite lights p and n are ignored. 0 for delta lights.
+    virtual double pdf_li(const LightSampleContext& ref, const Vec3& p, const Vec3& n,
+                          const Vec3& wi) const = 0;
+
+    /// Area lights: radiance leaving point p (normal n) in unit direction w (away from the light).
+    virtual double le(const Vec3& /*p*/, const Vec3& /*n*/, const Vec3& /*w*/, double /*lambda*/) const { return 0; }
+    /// Infinite lights: radiance arriving along a ray escaping the scene in unit direction d.
+    virtual double le_escaped(const Vec3& /*d*/, double /*lambda*/) const { return 0; }
+
+    /// Emitted power, averaged over the visible range (for light selection; need not be exact).
+    virtual double power() const = 0;
+    /// Called once the scene bounds are known (infinite and directional lights need them).
+    virtual void preprocess(const Bounds3& /*scene_bounds*/) {}
+    /// The shape of an area light, else nullptr.
+    virtual const Shape* shape() const { return nullptr; }
+};
+
+}  // namespace snell
