@@ -125,6 +125,8 @@ private:
     SourceLoc m_loc;
     std::map<std::string, Entry> m_entries;
     std::vector<Child> m_children;
+    // Every name a plugin asked for (present or not), so check_unused can list the known ones.
+    mutable std::vector<std::string> m_queried;
 };
 
 }  // namespace snell

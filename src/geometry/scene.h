@@ -58,6 +58,8 @@ public:
     const PerspectiveCamera* camera() const { return m_camera.get(); }
     const std::shared_ptr<Integrator>& integrator() const { return m_integrator; }
     RTCDevice device() const { return m_device; }
+    /// The committed Embree scene (for benchmarks that measure Embree's raw rate).
+    RTCScene rtc_scene() const { return m_scene; }
 
 private:
     RTCDevice m_device = nullptr;

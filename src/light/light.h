@@ -22,7 +22,9 @@ struct LightSample {
     Vec3 n;                  ///< light normal at p (zero for point/spot/directional/infinite)
     Vec3 wi;                 ///< unit direction from the reference point towards the light
     double dist = kInfinity; ///< distance to p (infinite for directional/infinite lights)
-    double Le = 0;           ///< emitted radiance (area, infinite) or intensity/irradiance (delta)
+    /// Incident radiance for area and infinite lights. For delta lights the factor that makes
+    /// the estimate f |cos| Le / pdf correct: point/spot intensity / dist^2, directional irradiance.
+    double Le = 0;
     double pdf = 0;          ///< solid-angle density at the reference point (1 for delta lights)
     double pdf_area = 0;     ///< area density of p on the light (area lights; 0 otherwise)
     bool delta = false;      ///< position or direction is a Dirac delta (no MIS with BSDF sampling)

@@ -1,0 +1,40 @@
+#pragma once
+// Mitsuba's `dielectric`: smooth interface between two dielectrics (exact Fresnel), with
+// snell's extensions `abbe` (dispersion, folded into int_ior by the factory) and `sigma_a`
+// (Beer-Lambert absorption of the enclosed medium, applied by the integrator).
+#include <optional>
+
+#include "bsdf/bsdf.h"
+
+namespace snell {
+
+class DielectricBSDF final : public BSDF {
+public:
+    /// `int_ior`/`ext_ior`: IOR inside (below, -z) and outside (+z) as functions of
+    /// wavelength; `specular_*`: Mitsuba's non-physical scale factors; `sigma_a`: absorption
+    /// coefficient of the interior in 1/scene unit (none when empty).
+    DielectricBSDF(Spectrum int_ior, Spectrum ext_ior,
+                   Spectrum specular_reflectance = Spectrum::constant(1.0),
+                   Spectrum specular_transmittance = Spectrum::constant(1.0),
+                   std::optional<Spectrum> sigma_a = std::nullopt);
+
+    /// Deltas only: eval and pdf are 0.
+    double eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
+    double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
+    /// Chooses reflection with probability F (so the weight carries no F), else refraction;
+    /// in Radiance mode refraction scales by 1/eta_it^2 (non-symmetric transmission).
+    std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc,
+                                     const Vec2& u) const override;
+    uint32_t flags() const override { return kReflection | kTransmission | kSpecular; }
+
+    double eta(double lambda) const override { return m_int_ior(lambda) / m_ext_ior(lambda); }
+    const Spectrum* interior_absorption() const override {
+        return m_sigma_a ? &*m_sigma_a : nullptr;
+    }
+
+private:
+    Spectrum m_int_ior, m_ext_ior, m_specular_reflectance, m_specular_transmittance;
+    std::optional<Spectrum> m_sigma_a;
+};
+
+}  // namespace snell

@@ -1,0 +1,79 @@
+#pragma once
+#include <vector>
+
+#include "core/distribution.h"
+#include "geometry/mesh_data.h"
+#include "geometry/shape.h"
+
+namespace snell {
+
+/// Triangle mesh. Positions are stored once in float (shared with Embree, so the surface
+/// we shade is exactly the one Embree intersects); all derived quantities are double.
+///
+/// Orientation: ng = normalize((p1 - p0) x (p2 - p0)) (counter-clockwise winding is the
+/// outside); with vertex normals ng is turned to the side of the interpolated normal; with
+/// `flip_normals` both are negated afterwards.
+///
+/// Parametrisation for (u, v) and the derivatives: the texture coordinates when the mesh has
+/// them and the triangle's uv map is not degenerate, otherwise the barycentrics (b1, b2) of
+/// Embree's convention p = (1 - b1 - b2) p0 + b1 p1 + b2 p2. `si.uv` always reports the
+/// coordinates the derivatives refer to.
+///
+/// Smooth shading: n = N/|N| with N the barycentric blend of vertex normals, and
+/// dn/du = (dN/du - n (n . dN/du)) / |N| (derivative of the normalised normal). With
+/// `face_normals` (or no vertex normals) n = ng and dn/du = dn/dv = 0.
+class TriangleMesh final : public Shape {
+public:
+    /// Takes world-space data (see transform_mesh). Throws std::runtime_error("<name>: ...")
+    /// on invalid data.
+    TriangleMesh(MeshData data, bool face_normals = false, bool flip_normals = false,
+                 const std::string& name = "mesh");
+    ~TriangleMesh() override;
+
+    /// Attaches to `scene` and, once, builds a private Embree scene holding only this mesh
+    /// for closest-point queries.
+    unsigned attach(RTCDevice device, RTCScene scene) override;
+    Bounds3 bounds() const override { return m_bounds; }
+    double area() const override { return m_area; }
+    void compute_interaction(const Ray& ray, double t, uint32_t prim, const Vec2& uv,
+                             SurfaceInteraction* si) const override;
+    /// Exact closest point (double-precision point-triangle distance) within `radius`, found
+    /// with an Embree point query on this mesh's private scene; before attach() it falls back
+    /// to visiting every triangle.
+    bool closest_point(const Vec3& p, double radius, SurfaceInteraction* si) const override;
+    /// Triangle chosen proportionally to area, then uniform on it; pdf = 1/area. The normal is
+    /// the geometric normal (on the shading side).
+    ShapeSample sample_area(const Vec2& u) const override;
+
+    /// Fills `si` at barycentrics b = (b1, b2) (Embree convention) of triangle `prim`
+    /// (t = 0, wo unset).
+    void interaction_at(uint32_t prim, const Vec2& b, SurfaceInteraction* si) const;
+
+    size_t triangle_count() const { return m_tris.size(); }
+    size_t vertex_count() const { return m_pos.size() - 1; }  // minus Embree's padding
+    Vec3 vertex(uint32_t i) const { return m_pos[i].to_double(); }
+    const std::array<uint32_t, 3>& triangle(uint32_t i) const { return m_tris[i]; }
+    bool has_vertex_normals() const { return !m_normals.empty(); }
+    bool has_uvs() const { return !m_uvs.empty(); }
+
+private:
+    RTCGeometry make_geometry(RTCDevice device) const;
+
+    std::vector<Vec3f> m_pos;  ///< one extra padding element: Embree reads 16 bytes per vertex
+    std::vector<std::array<uint32_t, 3>> m_tris;
+    std::vector<Vec3> m_normals;
+    std::vector<Vec2> m_uvs;
+    bool m_flip;
+    std::string m_name;
+    Bounds3 m_bounds;
+    double m_area = 0;
+    Distribution1D m_tri_dist;
+    RTCScene m_query_scene = nullptr;
+};
+
+/// Closest point on triangle (a, b, c) to p, in double (Voronoi-region walk, Ericson,
+/// "Real-Time Collision Detection" 5.1.5). Returns the barycentrics (b1, b2) of the point,
+/// which is a + b1 (b - a) + b2 (c - a).
+Vec2 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+}  // namespace snell

@@ -1,0 +1,32 @@
+#pragma once
+// Plain triangle-mesh arrays, as produced by the OBJ/PLY readers and the shape builders and
+// consumed by TriangleMesh. Kept separate from TriangleMesh so the readers need no Embree.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/transform.h"
+#include "core/vector.h"
+
+namespace snell {
+
+/// Indexed triangle list. `normals` and `uvs` are either empty or one per position.
+/// Winding: counter-clockwise seen from the outside (the side the face normal points to).
+struct MeshData {
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;  ///< per-vertex shading normals (need not be unit length)
+    std::vector<Vec2> uvs;      ///< per-vertex texture coordinates
+    std::vector<std::array<uint32_t, 3>> triangles;
+};
+
+/// Applies `xf` to positions (point) and normals (inverse transpose). A transform that flips
+/// handedness (det < 0) also reverses the winding, so that the winding-derived face normal
+/// stays on the side it was on before (pbrt and Mitsuba keep orientation the same way).
+void transform_mesh(MeshData& mesh, const Transform& xf);
+
+/// Checks index ranges, attribute counts and finiteness; throws std::runtime_error
+/// "<what>: <problem>" (what = file name or builder name).
+void validate_mesh(const MeshData& mesh, const std::string& what);
+
+}  // namespace snell

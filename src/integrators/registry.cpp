@@ -1,0 +1,37 @@
+#include <functional>
+#include <map>
+
+#include "core/props.h"
+#include "integrators/integrator.h"
+#include "integrators/path/path_tracer.h"
+
+namespace snell {
+
+namespace {
+using Factory = std::function<std::shared_ptr<Integrator>(const Props&)>;
+
+// One entry per technique; the key is the scene-file `type` and the name used on the command
+// line (`snell compare --integrators ...`).
+const std::map<std::string, Factory>& registry() {
+    static const std::map<std::string, Factory> r = {
+        {"path", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), false); }},
+        {"nee", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), true); }},
+    };
+    return r;
+}
+}  // namespace
+
+std::shared_ptr<Integrator> create_integrator(const Props& props) {
+    const auto& r = registry();
+    auto it = r.find(props.type());
+    if (it == r.end()) {
+        std::string known;
+        for (auto& [k, v] : r) known += (known.empty() ? "" : ", ") + k;
+        props.raise("unknown integrator type '" + props.type() + "' (known: " + known + ")");
+    }
+    auto integ = it->second(props);
+    props.check_unused();
+    return integ;
+}
+
+}  // namespace snell

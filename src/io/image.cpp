@@ -1,0 +1,116 @@
+#include "io/image.h"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <stb/stb_image_write.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <stdexcept>
+
+namespace snell {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& what, const std::string& path, const std::string& reason) {
+    throw std::runtime_error(what + " '" + path + "': " + reason);
+}
+
+void check_image(const std::string& what, const std::string& path, const Image& img) {
+    if (img.width <= 0 || img.height <= 0)
+        fail(what, path, "image has non-positive size " + std::to_string(img.width) + "x" + std::to_string(img.height));
+    if (img.rgb.size() != size_t(img.width) * img.height * 3)
+        fail(what, path, "pixel buffer holds " + std::to_string(img.rgb.size()) + " floats, expected 3*width*height");
+}
+
+// IEC 61966-2-1 sRGB transfer function (linear -> encoded), input clamped to [0,1].
+double srgb_oetf(double v) {
+    v = std::clamp(v, 0.0, 1.0);
+    return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+}
+
+}  // namespace
+
+void write_exr(const std::string& path, const Image& img) {
+    check_image("cannot write EXR", path, img);
+    try {
+        // FLOAT, not HALF: reference images are compared bit-for-bit and half would round.
+        Imf::Header header(img.width, img.height);
+        header.compression() = Imf::ZIP_COMPRESSION;
+        const char* names[3] = {"R", "G", "B"};
+        for (const char* n : names) header.channels().insert(n, Imf::Channel(Imf::FLOAT));
+        Imf::FrameBuffer fb;
+        // The interleaved buffer is described with strides; OpenEXR does not write through it.
+        char* base = reinterpret_cast<char*>(const_cast<float*>(img.rgb.data()));
+        const size_t xs = 3 * sizeof(float), ys = xs * size_t(img.width);
+        for (int c = 0; c < 3; ++c)
+            fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
+        Imf::OutputFile file(path.c_str(), header);
+        file.setFrameBuffer(fb);
+        file.writePixels(img.height);
+    } catch (const std::exception& e) {
+        fail("cannot write EXR", path, e.what());
+    }
+}
+
+Image read_exr(const std::string& path) {
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i dw = file.header().dataWindow();
+        const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+        if (w <= 0 || h <= 0) fail("cannot read EXR", path, "empty data window");
+        Image img;
+        img.width = w;
+        img.height = h;
+        img.rgb.assign(size_t(w) * h * 3, 0.0f);
+        const Imf::ChannelList& channels = file.header().channels();
+        const bool has_rgb = channels.findChannel("R") || channels.findChannel("G") || channels.findChannel("B");
+        const bool has_y = channels.findChannel("Y") != nullptr;
+        if (!has_rgb && !has_y) fail("cannot read EXR", path, "no R, G, B or Y channel");
+        // Slice::Make maps data-window pixel (min.x, min.y) to the buffer start, so files with
+        // a non-zero data-window origin read into a 0-based image.
+        const size_t xs = 3 * sizeof(float), ys = xs * size_t(w);
+        char* base = reinterpret_cast<char*>(img.rgb.data());
+        Imf::FrameBuffer fb;
+        if (has_rgb) {
+            // Missing colour channels are filled with 0 (the Slice fill value); A is ignored.
+            const char* names[3] = {"R", "G", "B"};
+            for (int c = 0; c < 3; ++c)
+                fb.insert(names[c], Imf::Slice::Make(Imf::FLOAT, base + c * sizeof(float), dw, xs, ys, 1, 1, 0.0));
+        } else {
+            // Luminance-only: read Y into R, copy to G and B afterwards.
+            fb.insert("Y", Imf::Slice::Make(Imf::FLOAT, base, dw, xs, ys, 1, 1, 0.0));
+        }
+        file.setFrameBuffer(fb);
+        file.readPixels(dw.min.y, dw.max.y);
+        if (!has_rgb)
+            for (size_t i = 0; i < img.rgb.size(); i += 3) img.rgb[i + 1] = img.rgb[i + 2] = img.rgb[i];
+        return img;
+    } catch (const std::runtime_error& e) {
+        const std::string msg = e.what();
+        if (msg.find(path) != std::string::npos) throw;  // already ours
+        fail("cannot read EXR", path, msg);
+    } catch (const std::exception& e) {
+        fail("cannot read EXR", path, e.what());
+    }
+}
+
+void write_png(const std::string& path, const Image& img, double exposure) {
+    check_image("cannot write PNG", path, img);
+    const double scale = std::exp2(exposure);
+    std::vector<uint8_t> bytes(img.rgb.size());
+    for (size_t i = 0; i < img.rgb.size(); ++i) {
+        const double v = double(img.rgb[i]) * scale;
+        // NaN maps to black rather than to an undefined cast.
+        bytes[i] = std::isnan(v) ? 0 : uint8_t(std::lround(255.0 * srgb_oetf(v)));
+    }
+    if (!stbi_write_png(path.c_str(), img.width, img.height, 3, bytes.data(), img.width * 3))
+        fail("cannot write PNG", path, "stb_image_write failed (unwritable path or out of memory)");
+}
+
+}  // namespace snell

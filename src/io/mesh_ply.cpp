@@ -1,0 +1,245 @@
+#include "io/mesh_ply.h"
+
+#include <bit>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace snell {
+namespace {
+
+enum class PlyType { I8, U8, I16, U16, I32, U32, F32, F64, Invalid };
+
+PlyType parse_type(const std::string& s) {
+    if (s == "char" || s == "int8") return PlyType::I8;
+    if (s == "uchar" || s == "uint8") return PlyType::U8;
+    if (s == "short" || s == "int16") return PlyType::I16;
+    if (s == "ushort" || s == "uint16") return PlyType::U16;
+    if (s == "int" || s == "int32") return PlyType::I32;
+    if (s == "uint" || s == "uint32") return PlyType::U32;
+    if (s == "float" || s == "float32") return PlyType::F32;
+    if (s == "double" || s == "float64") return PlyType::F64;
+    return PlyType::Invalid;
+}
+
+size_t type_size(PlyType t) {
+    switch (t) {
+        case PlyType::I8: case PlyType::U8: return 1;
+        case PlyType::I16: case PlyType::U16: return 2;
+        case PlyType::I32: case PlyType::U32: case PlyType::F32: return 4;
+        case PlyType::F64: return 8;
+        default: return 0;
+    }
+}
+
+struct PlyProperty {
+    std::string name;
+    PlyType type = PlyType::Invalid;
+    bool is_list = false;
+    PlyType count_type = PlyType::Invalid;
+};
+
+struct PlyElement {
+    std::string name;
+    size_t count = 0;
+    std::vector<PlyProperty> props;
+};
+
+enum class PlyFormat { Ascii, BinaryLE, BinaryBE };
+
+/// Reads scalar values of the body in any of the three encodings, as doubles (exact for
+/// every PLY integer type and float).
+class PlyBody {
+public:
+    PlyBody(std::istream& in, PlyFormat fmt, const std::string& path) : m_in(in), m_fmt(fmt), m_path(path) {}
+
+    double read(PlyType t, const std::string& where) {
+        if (m_fmt == PlyFormat::Ascii) {
+            double v;
+            if (!(m_in >> v)) fail(where);
+            return v;
+        }
+        unsigned char b[8];
+        const size_t n = type_size(t);
+        if (!m_in.read(reinterpret_cast<char*>(b), std::streamsize(n))) fail(where);
+        const bool file_le = m_fmt == PlyFormat::BinaryLE;
+        if (file_le != (std::endian::native == std::endian::little))
+            for (size_t i = 0; i < n / 2; ++i) std::swap(b[i], b[n - 1 - i]);
+        switch (t) {
+            case PlyType::I8: { int8_t v; std::memcpy(&v, b, 1); return v; }
+            case PlyType::U8: return b[0];
+            case PlyType::I16: { int16_t v; std::memcpy(&v, b, 2); return v; }
+            case PlyType::U16: { uint16_t v; std::memcpy(&v, b, 2); return v; }
+            case PlyType::I32: { int32_t v; std::memcpy(&v, b, 4); return v; }
+            case PlyType::U32: { uint32_t v; std::memcpy(&v, b, 4); return v; }
+            case PlyType::F32: { float v; std::memcpy(&v, b, 4); return v; }
+            case PlyType::F64: { double v; std::memcpy(&v, b, 8); return v; }
+            default: fail(where);
+        }
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& where) const {
+        throw std::runtime_error(m_path + ": unexpected end of file or bad value in PLY element '" + where + "'");
+    }
+    std::istream& m_in;
+    PlyFormat m_fmt;
+    const std::string& m_path;
+};
+
+}  // namespace
+
+MeshData load_ply(const std::string& path) {
+    if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path + ": mesh file not found");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error(path + ": cannot open mesh file");
+    auto fail = [&](const std::string& msg) -> void { throw std::runtime_error(path + ": " + msg); };
+
+    // ---- header
+    std::string line;
+    auto next_line = [&]() {
+        if (!std::getline(in, line)) fail("PLY header ends before 'end_header'");
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+    };
+    next_line();
+    if (line != "ply") fail("not a PLY file (missing 'ply' magic)");
+    PlyFormat fmt = PlyFormat::Ascii;
+    bool have_format = false;
+    std::vector<PlyElement> elements;
+    for (;;) {
+        next_line();
+        std::istringstream ls(line);
+        std::string kw;
+        ls >> kw;
+        if (kw.empty() || kw == "comment" || kw == "obj_info") continue;
+        if (kw == "end_header") break;
+        if (kw == "format") {
+            std::string f, version;
+            ls >> f >> version;
+            if (f == "ascii") fmt = PlyFormat::Ascii;
+            else if (f == "binary_little_endian") fmt = PlyFormat::BinaryLE;
+            else if (f == "binary_big_endian") fmt = PlyFormat::BinaryBE;
+            else fail("unknown PLY format '" + f + "'");
+            have_format = true;
+        } else if (kw == "element") {
+            PlyElement e;
+            long long count = -1;
+            ls >> e.name >> count;
+            if (e.name.empty() || count < 0) fail("malformed PLY element line '" + line + "'");
+            e.count = size_t(count);
+            elements.push_back(e);
+        } else if (kw == "property") {
+            if (elements.empty()) fail("PLY property before any element");
+            PlyProperty p;
+            std::string t;
+            ls >> t;
+            if (t == "list") {
+                std::string ct, it;
+                ls >> ct >> it >> p.name;
+                p.is_list = true;
+                p.count_type = parse_type(ct);
+                p.type = parse_type(it);
+                if (p.count_type == PlyType::Invalid || p.type == PlyType::Invalid)
+                    fail("unknown PLY list type in '" + line + "'");
+            } else {
+                p.type = parse_type(t);
+                ls >> p.name;
+                if (p.type == PlyType::Invalid) fail("unknown PLY property type '" + t + "'");
+            }
+            if (p.name.empty()) fail("malformed PLY property line '" + line + "'");
+            elements.back().props.push_back(p);
+        } else {
+            fail("unexpected PLY header line '" + line + "'");
+        }
+    }
+    if (!have_format) fail("PLY header has no 'format' line");
+
+    // ---- body
+    MeshData m;
+    PlyBody body(in, fmt, path);
+    bool saw_vertex = false, saw_face = false;
+    for (const PlyElement& e : elements) {
+        if (e.name == "vertex") {
+            saw_vertex = true;
+            // Slots: 0-2 position, 3-5 normal, 6-7 uv; -1 = ignored property.
+            std::vector<int> slot(e.props.size(), -1);
+            bool has[8] = {};
+            for (size_t i = 0; i < e.props.size(); ++i) {
+                const std::string& n = e.props[i].name;
+                int s = -1;
+                if (n == "x") s = 0; else if (n == "y") s = 1; else if (n == "z") s = 2;
+                else if (n == "nx") s = 3; else if (n == "ny") s = 4; else if (n == "nz") s = 5;
+                else if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s") s = 6;
+                else if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t") s = 7;
+                if (s >= 0 && !e.props[i].is_list) {
+                    slot[i] = s;
+                    has[s] = true;
+                }
+            }
+            if (!(has[0] && has[1] && has[2])) fail("PLY vertex element lacks x, y or z");
+            const bool with_n = has[3] && has[4] && has[5], with_uv = has[6] && has[7];
+            m.positions.reserve(e.count);
+            for (size_t k = 0; k < e.count; ++k) {
+                double v[8] = {};
+                for (size_t i = 0; i < e.props.size(); ++i) {
+                    const PlyProperty& p = e.props[i];
+                    if (p.is_list) {
+                        const size_t c = size_t(body.read(p.count_type, e.name));
+                        for (size_t j = 0; j < c; ++j) body.read(p.type, e.name);
+                        continue;
+                    }
+                    const double x = body.read(p.type, e.name);
+                    if (slot[i] >= 0) v[slot[i]] = x;
+                }
+                m.positions.emplace_back(v[0], v[1], v[2]);
+                if (with_n) m.normals.emplace_back(v[3], v[4], v[5]);
+                if (with_uv) m.uvs.emplace_back(v[6], v[7]);
+            }
+        } else if (e.name == "face") {
+            saw_face = true;
+            bool found = false;
+            for (const PlyProperty& p : e.props)
+                found = found || (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index"));
+            if (!found) fail("PLY face element lacks a 'vertex_indices' list");
+            std::vector<uint32_t> poly;
+            for (size_t k = 0; k < e.count; ++k) {
+                for (const PlyProperty& p : e.props) {
+                    if (!p.is_list) {
+                        body.read(p.type, e.name);
+                        continue;
+                    }
+                    const double c = body.read(p.count_type, e.name);
+                    if (c < 0 || c > 1e6) fail("bad PLY face vertex count");
+                    poly.clear();
+                    for (size_t j = 0; j < size_t(c); ++j) {
+                        const double idx = body.read(p.type, e.name);
+                        if (idx < 0) fail("negative PLY face index");
+                        poly.push_back(uint32_t(idx));
+                    }
+                    if (p.name != "vertex_indices" && p.name != "vertex_index") continue;
+                    if (poly.size() < 3) fail("PLY face " + std::to_string(k) + " has fewer than 3 vertices");
+                    for (size_t j = 1; j + 1 < poly.size(); ++j) m.triangles.push_back({poly[0], poly[j], poly[j + 1]});
+                }
+            }
+        } else {
+            // Unknown element (edges, materials...): read and drop.
+            for (size_t k = 0; k < e.count; ++k)
+                for (const PlyProperty& p : e.props) {
+                    if (p.is_list) {
+                        const size_t c = size_t(body.read(p.count_type, e.name));
+                        for (size_t j = 0; j < c; ++j) body.read(p.type, e.name);
+                    } else {
+                        body.read(p.type, e.name);
+                    }
+                }
+        }
+    }
+    if (!saw_vertex) fail("PLY file has no vertex element");
+    if (!saw_face) fail("PLY file has no face element");
+    validate_mesh(m, path);
+    return m;
+}
+
+}  // namespace snell

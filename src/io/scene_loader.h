@@ -1,0 +1,29 @@
+#pragma once
+#include <map>
+#include <memory>
+#include <string>
+
+#include "camera/camera.h"
+#include "core/props.h"
+#include "geometry/scene.h"
+
+namespace snell {
+
+/// Everything a render needs from a scene file.
+struct LoadedScene {
+    std::unique_ptr<Scene> scene;  ///< built (BVH committed), camera and integrator set
+    FilmSpec film;
+    int spp = 16;                  ///< sampler sample_count
+    std::string path;              ///< file it came from ("builtin:<name>" for built-ins)
+};
+
+/// Parameter overrides (-D name=value), applied like Mitsuba's <default> substitution.
+using Defines = std::map<std::string, std::string>;
+
+/// Loads a Mitsuba 2/3-style XML scene. Errors are SceneError "file:line: <element>: what".
+LoadedScene load_scene_file(const std::string& path, const Defines& defines = {});
+/// Loads from a string; relative paths resolve against `base_dir`; `name` labels errors.
+LoadedScene load_scene_string(const std::string& xml, const std::string& name,
+                              const std::string& base_dir, const Defines& defines = {});
+
+}  // namespace snell

@@ -1,0 +1,76 @@
+#include "io/stats_json.h"
+
+#include <fstream>
+#include <stdexcept>
+
+namespace snell {
+
+void RenderReport::set_counters(const Counters& c) {
+    paths = c.paths;
+    rays = c.rays;
+    shadow_rays = c.shadow_rays;
+    discarded_nan = c.discarded_nan;
+    discarded_inf = c.discarded_inf;
+    discarded_negative = c.discarded_negative;
+}
+
+double RenderReport::paths_per_second() const { return seconds > 0 ? double(paths) / seconds : 0.0; }
+
+double RenderReport::rays_per_second() const {
+    return seconds > 0 ? double(rays + shadow_rays) / seconds : 0.0;
+}
+
+void to_json(nlohmann::json& j, const RenderReport& r) {
+    j = nlohmann::json{
+        {"scene", r.scene},
+        {"integrator", r.integrator},
+        {"width", r.width},
+        {"height", r.height},
+        {"spp_requested", r.spp_requested},
+        {"spp_reached", r.spp_reached},
+        {"seconds", r.seconds},
+        {"threads", r.threads},
+        {"seed", r.seed},
+        {"paths", r.paths},
+        {"rays", r.rays},
+        {"shadow_rays", r.shadow_rays},
+        {"paths_per_second", r.paths_per_second()},
+        {"rays_per_second", r.rays_per_second()},
+        {"discarded", {{"nan", r.discarded_nan}, {"inf", r.discarded_inf}, {"negative", r.discarded_negative}}},
+        {"extra", r.extra},
+    };
+}
+
+void from_json(const nlohmann::json& j, RenderReport& r) {
+    auto get = [&](const char* key, auto& field) {
+        if (auto it = j.find(key); it != j.end()) it->get_to(field);
+    };
+    get("scene", r.scene);
+    get("integrator", r.integrator);
+    get("width", r.width);
+    get("height", r.height);
+    get("spp_requested", r.spp_requested);
+    get("spp_reached", r.spp_reached);
+    get("seconds", r.seconds);
+    get("threads", r.threads);
+    get("seed", r.seed);
+    get("paths", r.paths);
+    get("rays", r.rays);
+    get("shadow_rays", r.shadow_rays);
+    if (auto d = j.find("discarded"); d != j.end()) {
+        if (auto it = d->find("nan"); it != d->end()) it->get_to(r.discarded_nan);
+        if (auto it = d->find("inf"); it != d->end()) it->get_to(r.discarded_inf);
+        if (auto it = d->find("negative"); it != d->end()) it->get_to(r.discarded_negative);
+    }
+    if (auto it = j.find("extra"); it != j.end()) r.extra = *it;
+}
+
+void write_stats_json(const std::string& path, const RenderReport& report) {
+    std::ofstream out(path);
+    if (!out) throw std::runtime_error("cannot write stats JSON '" + path + "': cannot open file for writing");
+    out << nlohmann::json(report).dump(2) << '\n';
+    out.flush();
+    if (!out) throw std::runtime_error("cannot write stats JSON '" + path + "': write failed");
+}
+
+}  // namespace snell

@@ -1,0 +1,49 @@
+#pragma once
+// Machine-readable summary of one render, written beside the image so that experiments can
+// be tabulated (time, sample counts, throughput, discarded samples, technique statistics).
+#include <cstdint>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/stats.h"
+
+namespace snell {
+
+/// What a render did. Times are wall-clock seconds; counts are totals over all threads.
+struct RenderReport {
+    std::string scene;       ///< scene file path as given on the command line
+    std::string integrator;  ///< integrator name, e.g. "path", "mnee"
+    int width = 0, height = 0;
+    uint64_t spp_requested = 0;  ///< samples per pixel asked for (0: time-limited render)
+    uint64_t spp_reached = 0;    ///< samples per pixel every pixel actually received
+    double seconds = 0;          ///< wall-clock render time, scene loading excluded
+    int threads = 0;
+    uint64_t seed = 0;
+    uint64_t paths = 0;               ///< camera paths traced
+    uint64_t rays = 0;                ///< closest-hit queries
+    uint64_t shadow_rays = 0;         ///< any-hit (visibility) queries
+    uint64_t discarded_nan = 0;       ///< samples dropped as NaN
+    uint64_t discarded_inf = 0;       ///< samples dropped as infinite
+    uint64_t discarded_negative = 0;  ///< samples dropped as negative
+    /// Free-form technique statistics (e.g. MNEE walk outcomes); written under "extra".
+    nlohmann::json extra = nlohmann::json::object();
+
+    /// Copies the ray/path/discard counts from summed per-thread counters.
+    void set_counters(const Counters& c);
+    /// Camera paths per wall-clock second (0 when no time was measured).
+    double paths_per_second() const;
+    /// All ray queries (closest-hit plus shadow) per wall-clock second (0 when no time).
+    double rays_per_second() const;
+};
+
+/// JSON object with every field above plus the derived "paths_per_second" and
+/// "rays_per_second" (found by nlohmann via ADL: `nlohmann::json j = report;`).
+void to_json(nlohmann::json& j, const RenderReport& r);
+/// Inverse of to_json; derived rates are ignored, missing keys keep their defaults.
+void from_json(const nlohmann::json& j, RenderReport& r);
+
+/// Writes the report as indented JSON; throws std::runtime_error naming the path on failure.
+void write_stats_json(const std::string& path, const RenderReport& report);
+
+}  // namespace snell

@@ -1,0 +1,54 @@
+// Area emitter (:monosp:`area`), Mitsuba 3 semantics.
+//
+// | parameter | type     | meaning                                                    |
+// |-----------|----------|------------------------------------------------------------|
+// | radiance  | spectrum | emitted radiance, upsampled as an illuminant (default 1)   |
+//
+//   <shape type="sphere">
+//       <emitter type="area"> <rgb name="radiance" value="10, 10, 10"/> </emitter>
+//   </shape>
+//
+// Emission is one-sided: only towards the side the shape's normal points to.
+#include "light/area.h"
+
+namespace snell {
+
+AreaLight::AreaLight(const Spectrum& radiance, std::shared_ptr<Shape> shape)
+    : m_radiance(radiance), m_shape(std::move(shape)) {}
+
+std::optional<LightSample> AreaLight::sample_li(const LightSampleContext& ref, const Vec2& u,
+                                                double lambda) const {
+    const std::optional<ShapeSample> ss = m_shape->sample_from(ref.p, u);
+    if (!ss || !(ss->pdf > 0)) return std::nullopt;
+    Vec3 d = ss->p - ref.p;
+    const double dist2 = length_squared(d);
+    if (!(dist2 > 0)) return std::nullopt;
+    const double dist = std::sqrt(dist2);
+    d /= dist;
+    // One-sided emission: the light must face the reference point.
+    const double cos_light = -dot(ss->n, d);
+    if (!(cos_light > 0)) return std::nullopt;
+    LightSample ls;
+    ls.p = ss->p;
+    ls.n = ss->n;
+    ls.wi = d;
+    ls.dist = dist;
+    ls.Le = m_radiance.eval(lambda);
+    ls.pdf = ss->pdf;
+    // Solid angle -> area: d(omega) = |cos_light| dA / dist^2.
+    ls.pdf_area = ss->pdf * cos_light / dist2;
+    ls.delta = false;
+    return ls;
+}
+
+double AreaLight::pdf_li(const LightSampleContext& ref, const Vec3& p, const Vec3& n, const Vec3& /*wi*/) const {
+    return m_shape->pdf_from(ref.p, p, n);
+}
+
+double AreaLight::le(const Vec3& /*p*/, const Vec3& n, const Vec3& w, double lambda) const {
+    return dot(n, w) > 0 ? m_radiance.eval(lambda) : 0.0;
+}
+
+double AreaLight::power() const { return m_radiance.average() * m_shape->area() * kPi; }
+
+}  // namespace snell

@@ -1,0 +1,38 @@
+#pragma once
+#include "core/spectrum.h"
+#include "core/transform.h"
+#include "light/light.h"
+
+namespace snell {
+
+/// Mitsuba's `spot` emitter: a point source at the origin of `to_world` shining along local
+/// +z with intensity I * falloff(theta). Mitsuba 3's profile: 1 inside the beam width, a linear
+/// ramp in angle (cutoff - theta) / (cutoff - beam_width) between beam width and cutoff, and 0
+/// beyond the cutoff.
+class SpotLight final : public Light {
+public:
+    /// Angles in degrees, 0 < beam_width <= cutoff_angle <= 90 (validated by the factory).
+    SpotLight(const Spectrum& intensity, const Transform& to_world, double cutoff_angle_deg,
+              double beam_width_deg);
+
+    LightKind kind() const override { return LightKind::Spot; }
+    /// Delta sample: Le = I falloff / dist^2, pdf = 1; nullopt outside the cone.
+    std::optional<LightSample> sample_li(const LightSampleContext& ref, const Vec2& u,
+                                         double lambda) const override;
+    double pdf_li(const LightSampleContext&, const Vec3&, const Vec3&, const Vec3&) const override { return 0; }
+    /// Integral of the falloff over the sphere times the average intensity (exact).
+    double power() const override;
+
+    /// Falloff factor in [0, 1] for the unit emission direction `w_world` (away from the light).
+    double falloff(const Vec3& w_world) const;
+    const Vec3& position() const { return m_position; }
+
+private:
+    Spectrum m_intensity;
+    Transform m_to_world, m_to_local;
+    Vec3 m_position;
+    double m_cutoff, m_beam;          // radians
+    double m_cos_cutoff, m_cos_beam;
+};
+
+}  // namespace snell

@@ -1,0 +1,39 @@
+#pragma once
+#include <atomic>
+#include <cstdint>
+
+#include "camera/camera.h"
+#include "camera/film.h"
+#include "core/stats.h"
+
+namespace snell {
+
+class Scene;
+class Integrator;
+
+struct RenderOptions {
+    int spp = 16;              ///< samples per pixel (spp mode)
+    double time_limit = 0;     ///< > 0: render until this many seconds have passed (equal-time mode)
+    int threads = 0;           ///< 0: all hardware threads
+    uint64_t seed = 0;         ///< sampler seed; the image is a pure function of (scene, seed, spp)
+    bool progress = true;      ///< progress bar on a terminal
+    int tile_size = 16;
+};
+
+struct RenderResult {
+    Film film{1, 1};
+    double seconds = 0;
+    uint64_t spp_completed = 0;   ///< samples every pixel received (complete passes)
+    double spp_mean = 0;          ///< mean samples per pixel, partial passes included
+    bool interrupted = false;     ///< cancelled (Ctrl-C) before the requested spp
+    Counters counters;
+};
+
+/// Renders in progressive passes over tiles with TBB. Every pixel sample draws from its own
+/// random stream (seed, pixel, index) and pixel sums are accumulated in a fixed order, so the
+/// result does not depend on the thread count. Samples that are NaN, infinite or negative are
+/// counted and replaced by zero so that nothing invalid reaches the film.
+RenderResult render(const Scene& scene, const Integrator& integrator, const FilmSpec& film,
+                    const RenderOptions& options, const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace snell

@@ -1,0 +1,92 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "camera/film.h"
+#include "core/rng.h"
+#include "core/spectrum.h"
+
+using namespace snell;
+
+namespace {
+Vec3 pixel(const std::vector<float>& rgb, int w, int x, int y) {
+    const size_t i = (size_t(y) * w + x) * 3;
+    return {rgb[i], rgb[i + 1], rgb[i + 2]};
+}
+}  // namespace
+
+TEST(Film, ConstantSpectrumIsEqualEnergyWhite) {
+    // Constant spectrum 1 has Y = 1 by normalisation; its x and z equal y up to the accuracy of
+    // the analytic CMF fit (the tabulated CIE integrals of x̄, ȳ, z̄ agree to ~0.1%; the Wyman fit
+    // to ~1%). Illuminant E in linear sRGB is M * (1,1,1) = row sums of the XYZ->sRGB matrix.
+    Film film(3, 2);
+    const Vec3 xyz = spectrum_to_xyz(Spectrum::constant(1.0));
+    EXPECT_NEAR(xyz.y, 1.0, 1e-6);
+    EXPECT_NEAR(xyz.x, 1.0, 0.02);
+    EXPECT_NEAR(xyz.z, 1.0, 0.02);
+    film.add(2, 1, xyz * 0.5);
+    film.add(2, 1, xyz * 1.5);  // mean is xyz
+    const std::vector<float> rgb = film.to_linear_srgb();
+    ASSERT_EQ(rgb.size(), size_t(3 * 2 * 3));
+    const Vec3 expect_e(3.2404542 - 1.5371385 - 0.4985314, -0.9692660 + 1.8760108 + 0.0415560,
+                        0.0556434 - 0.2040259 + 1.0572252);
+    const Vec3 c = pixel(rgb, 3, 2, 1);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], expect_e[k], 0.03) << k;
+    // Exact agreement with the colour pipeline (float rounding only).
+    const Vec3 exact = xyz_to_linear_srgb(xyz);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], exact[k], 1e-6 * std::abs(exact[k])) << k;
+}
+
+TEST(Film, WhiteIlluminantMapsToOne) {
+    Film film(1, 1);
+    film.add(0, 0, spectrum_to_xyz(Spectrum::from_rgb_illuminant(RGB(1, 1, 1)).scaled(0.25)));
+    const Vec3 c = pixel(film.to_linear_srgb(), 1, 0, 0);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], 0.25, 1e-4) << k;
+}
+
+TEST(Film, LayoutAndEmptyPixels) {
+    // Row-major, 3 floats per pixel, x fastest; unsampled pixels are exactly zero.
+    Film film(4, 3);
+    film.add_sum(3, 0, linear_srgb_to_xyz(Vec3(3, 6, 9)), 3);  // mean (1,2,3)
+    film.add(0, 2, linear_srgb_to_xyz(Vec3(0.5, 0.25, 0.125)));
+    const std::vector<float> rgb = film.to_linear_srgb();
+    ASSERT_EQ(rgb.size(), size_t(4 * 3 * 3));
+    const Vec3 a = pixel(rgb, 4, 3, 0), b = pixel(rgb, 4, 0, 2);
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(a[k], double(k + 1), 1e-5 * (k + 1));
+        EXPECT_NEAR(b[k], 0.5 / (1 << k), 1e-6);
+    }
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 4; ++x) {
+            if ((x == 3 && y == 0) || (x == 0 && y == 2)) continue;
+            const Vec3 z = pixel(rgb, 4, x, y);
+            EXPECT_EQ(z, Vec3()) << x << "," << y;
+        }
+}
+
+TEST(Film, SampledWavelengthsConvergeToSpectrumXyz) {
+    // Monte Carlo over wavelength, as the integrators do: one wavelength per sample, weighted by
+    // radiance_to_xyz. The pixel mean must agree with the deterministic spectrum_to_xyz within
+    // 4 standard errors (per channel; 3 channels, so a false alarm has probability < 2e-4).
+    const Spectrum s = Spectrum::from_rgb_illuminant(RGB(0.9, 0.4, 0.2));
+    const int n = 200000;
+    Film film(1, 1);
+    PCG32 rng(12345, 7);
+    Vec3 sum, sum2;
+    for (int i = 0; i < n; ++i) {
+        const double lambda = sample_visible_wavelength(rng.next_double());
+        const Vec3 xyz = radiance_to_xyz(s.eval(lambda), lambda, visible_wavelength_pdf(lambda));
+        film.add(0, 0, xyz);
+        const Vec3 rgb = xyz_to_linear_srgb(xyz);  // per-sample sRGB for the standard error
+        sum += rgb;
+        sum2 += rgb * rgb;
+    }
+    const Vec3 mean = pixel(film.to_linear_srgb(), 1, 0, 0);
+    const Vec3 expect = xyz_to_linear_srgb(spectrum_to_xyz(s));
+    for (int k = 0; k < 3; ++k) {
+        const double m = sum[k] / n;
+        const double se = std::sqrt((sum2[k] / n - m * m) / (n - 1));
+        EXPECT_NEAR(mean[k], m, 1e-5 * std::abs(m) + 1e-7) << k;  // film mean == sample mean
+        EXPECT_NEAR(mean[k], expect[k], 4.0 * se) << "channel " << k << " se " << se;
+    }
+}

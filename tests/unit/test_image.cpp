@@ -1,0 +1,250 @@
+#include <gtest/gtest.h>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+#include <stb/stb_image.h>
+
+#include <cmath>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include "io/image.h"
+
+using namespace snell;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A per-test scratch directory under the system temp dir, removed afterwards.
+class ImageIO : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        m_dir = fs::temp_directory_path() / (std::string("snell_test_image_") + info->name() + "_" +
+                                             std::to_string(::getpid()));
+        fs::create_directories(m_dir);
+    }
+    void TearDown() override { fs::remove_all(m_dir); }
+    std::string path(const std::string& name) const { return (m_dir / name).string(); }
+    fs::path m_dir;
+};
+
+Image make_image(int w, int h) {
+    Image img;
+    img.width = w;
+    img.height = h;
+    img.rgb.resize(size_t(w) * h * 3);
+    return img;
+}
+
+// Writes a single-part scanline EXR with the given FLOAT channels, each channel c filled with
+// value(x, y, c); `origin` shifts the data window.
+template <class F>
+void write_raw_exr(const std::string& path, int w, int h, const std::vector<std::string>& names, F value,
+                   Imath::V2i origin = {0, 0}) {
+    const Imath::Box2i dw(origin, origin + Imath::V2i(w - 1, h - 1));
+    Imf::Header header(dw, dw);
+    std::vector<std::vector<float>> planes(names.size(), std::vector<float>(size_t(w) * h));
+    Imf::FrameBuffer fb;
+    for (size_t c = 0; c < names.size(); ++c) {
+        header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) planes[c][size_t(y) * w + x] = value(x, y, int(c));
+        fb.insert(names[c], Imf::Slice::Make(Imf::FLOAT, planes[c].data(), dw));
+    }
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(fb);
+    file.writePixels(h);
+}
+
+}  // namespace
+
+TEST_F(ImageIO, ExrFloatRoundTripIsExact) {
+    Image img = make_image(7, 5);  // non-square, odd sizes catch stride/transposition errors
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            for (int c = 0; c < 3; ++c) img.at(x, y, c) = float((x + 1) * 0.37 - y * 1.9 + c * 0.013);
+    // Values half floats cannot hold: negative, huge, tiny, and a non-dyadic fraction.
+    img.at(0, 0, 0) = -123.456f;
+    img.at(1, 0, 1) = 3.0e7f;
+    img.at(2, 0, 2) = 1.0e-20f;
+    img.at(3, 1, 0) = 0.1f;
+    img.at(6, 4, 2) = std::numeric_limits<float>::max();
+    const std::string p = path("rt.exr");
+    write_exr(p, img);
+    const Image back = read_exr(p);
+    ASSERT_EQ(back.width, img.width);
+    ASSERT_EQ(back.height, img.height);
+    ASSERT_EQ(back.rgb.size(), img.rgb.size());
+    for (size_t i = 0; i < img.rgb.size(); ++i) EXPECT_EQ(back.rgb[i], img.rgb[i]) << "index " << i;
+}
+
+TEST_F(ImageIO, ExrReadsRgbaAndIgnoresAlpha) {
+    const std::string p = path("rgba.exr");
+    write_raw_exr(p, 4, 3, {"R", "G", "B", "A"}, [](int x, int y, int c) { return c == 3 ? 0.5f : float(10 * y + x + 0.25 * c); });
+    const Image img = read_exr(p);
+    ASSERT_EQ(img.width, 4);
+    ASSERT_EQ(img.height, 3);
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 4; ++x)
+            for (int c = 0; c < 3; ++c) EXPECT_EQ(img.at(x, y, c), float(10 * y + x + 0.25 * c));
+}
+
+TEST_F(ImageIO, ExrMissingChannelsAreZero) {
+    const std::string p = path("rg.exr");
+    write_raw_exr(p, 3, 2, {"R", "G"}, [](int x, int y, int c) { return float(1 + x + y + c); });
+    const Image img = read_exr(p);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 3; ++x) {
+            EXPECT_EQ(img.at(x, y, 0), float(1 + x + y));
+            EXPECT_EQ(img.at(x, y, 1), float(2 + x + y));
+            EXPECT_EQ(img.at(x, y, 2), 0.0f);
+        }
+}
+
+TEST_F(ImageIO, ExrLuminanceOnlyBecomesGrey) {
+    const std::string p = path("y.exr");
+    write_raw_exr(p, 3, 2, {"Y"}, [](int x, int y, int) { return float(x - 2.5 * y); });
+    const Image img = read_exr(p);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 3; ++x)
+            for (int c = 0; c < 3; ++c) EXPECT_EQ(img.at(x, y, c), float(x - 2.5 * y));
+}
+
+TEST_F(ImageIO, ExrNonZeroDataWindowReadsFromOrigin) {
+    const std::string p = path("window.exr");
+    write_raw_exr(p, 4, 3, {"R", "G", "B"}, [](int x, int y, int c) { return float(100 * c + 10 * y + x); },
+                  Imath::V2i(-5, 17));
+    const Image img = read_exr(p);
+    ASSERT_EQ(img.width, 4);
+    ASSERT_EQ(img.height, 3);
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 4; ++x)
+            for (int c = 0; c < 3; ++c) EXPECT_EQ(img.at(x, y, c), float(100 * c + 10 * y + x));
+}
+
+TEST_F(ImageIO, ExrMissingFileThrowsWithPath) {
+    const std::string p = path("does_not_exist.exr");
+    try {
+        read_exr(p);
+        FAIL() << "expected an exception";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(ImageIO, ExrCorruptFileThrowsWithPath) {
+    // Not an EXR at all.
+    const std::string garbage = path("garbage.exr");
+    std::ofstream(garbage) << "this is not an OpenEXR file\n";
+    // A real EXR cut short: valid header, missing pixel data.
+    Image img = make_image(16, 16);
+    for (size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = float(i) * 0.001f;
+    const std::string full = path("full.exr"), truncated = path("truncated.exr");
+    write_exr(full, img);
+    const auto size = fs::file_size(full);
+    fs::copy_file(full, truncated);
+    fs::resize_file(truncated, size * 2 / 3);
+    for (const std::string& p : {garbage, truncated}) {
+        try {
+            read_exr(p);
+            ADD_FAILURE() << "expected an exception for " << p;
+        } catch (const std::runtime_error& e) {
+            EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
+        }
+    }
+}
+
+TEST_F(ImageIO, ExrWriteToBadPathThrowsWithPath) {
+    const std::string p = path("no_such_dir/out.exr");
+    Image img = make_image(2, 2);
+    try {
+        write_exr(p, img);
+        FAIL() << "expected an exception";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(ImageIO, WriteRejectsInconsistentBuffer) {
+    Image img = make_image(3, 3);
+    img.rgb.pop_back();
+    EXPECT_THROW(write_exr(path("bad.exr"), img), std::runtime_error);
+    EXPECT_THROW(write_png(path("bad.png"), img), std::runtime_error);
+}
+
+namespace {
+struct Decoded {
+    int w = 0, h = 0, n = 0;
+    std::vector<unsigned char> px;
+};
+Decoded decode_png(const std::string& p) {
+    Decoded d;
+    unsigned char* data = stbi_load(p.c_str(), &d.w, &d.h, &d.n, 3);
+    if (!data) throw std::runtime_error("stbi_load failed: " + p);
+    d.px.assign(data, data + size_t(d.w) * d.h * 3);
+    stbi_image_free(data);
+    return d;
+}
+}  // namespace
+
+TEST_F(ImageIO, PngSrgbEncoding) {
+    // Row 0: 0, 0.5, 1, 2 (clamped), -1 (clamped), 0.001 (linear segment of the OETF).
+    Image img = make_image(6, 2);
+    const float v[6] = {0.0f, 0.5f, 1.0f, 2.0f, -1.0f, 0.001f};
+    for (int x = 0; x < 6; ++x)
+        for (int c = 0; c < 3; ++c) {
+            img.at(x, 0, c) = v[x];
+            img.at(x, 1, c) = c == 0 ? 0.5f : 0.0f;  // row 1: channel order check
+        }
+    const std::string p = path("srgb.png");
+    write_png(p, img);
+    const Decoded d = decode_png(p);
+    ASSERT_EQ(d.w, 6);
+    ASSERT_EQ(d.h, 2);
+    ASSERT_EQ(d.n, 3);
+    // 0.5 -> 1.055 * 0.5^(1/2.4) - 0.055 = 0.73536 -> 187.5 -> 188.
+    const int expect[6] = {0, 188, 255, 255, 0, 3};  // 0.001 * 12.92 * 255 = 3.29
+    for (int x = 0; x < 6; ++x)
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(int(d.px[size_t(x) * 3 + c]), expect[x]) << "x=" << x << " c=" << c;
+    const unsigned char* row1 = d.px.data() + 6 * 3;
+    EXPECT_EQ(int(row1[0]), 188);
+    EXPECT_EQ(int(row1[1]), 0);
+    EXPECT_EQ(int(row1[2]), 0);
+}
+
+TEST_F(ImageIO, PngExposurePlusOneDoubles) {
+    // Encoding v at exposure +1 must equal encoding 2v at exposure 0, bit for bit.
+    Image a = make_image(64, 1), b = make_image(64, 1);
+    for (int x = 0; x < 64; ++x)
+        for (int c = 0; c < 3; ++c) {
+            const float v = float(x) / 100.0f + 0.001f * c;  // spans below and above 0.5 (clamp)
+            a.at(x, 0, c) = v;
+            b.at(x, 0, c) = 2.0f * v;
+        }
+    write_png(path("a.png"), a, 1.0);
+    write_png(path("b.png"), b, 0.0);
+    const Decoded da = decode_png(path("a.png")), db = decode_png(path("b.png"));
+    EXPECT_EQ(da.px, db.px);
+    // And exposure -1 undoes it: 0.5 at exposure 1 -> encoded 1.0; 1.0 at exposure -1 -> 188.
+    Image c = make_image(1, 1);
+    c.rgb = {1.0f, 1.0f, 1.0f};
+    write_png(path("c.png"), c, -1.0);
+    EXPECT_EQ(int(decode_png(path("c.png")).px[0]), 188);
+}
+
+TEST_F(ImageIO, PngBadPathThrowsWithPath) {
+    const std::string p = path("no_such_dir/out.png");
+    Image img = make_image(2, 2);
+    try {
+        write_png(p, img);
+        FAIL() << "expected an exception";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
+    }
+}
