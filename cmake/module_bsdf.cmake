@@ -1,1 +1,31 @@
-# module bsdf: filled in by its owner
+# BSDFs: one file per model, microfacet distributions, Fresnel (owner: bsdf).
+snell_library(snell_bsdf
+  src/bsdf/fresnel.cpp
+  src/bsdf/microfacet.cpp
+  src/bsdf/conductor_data.cpp
+  src/bsdf/diffuse.cpp
+  src/bsdf/dielectric.cpp
+  src/bsdf/thindielectric.cpp
+  src/bsdf/roughdielectric.cpp
+  src/bsdf/conductor.cpp
+  src/bsdf/roughconductor.cpp
+  src/bsdf/plastic.cpp
+  src/bsdf/twosided.cpp
+  src/bsdf/factory.cpp
+)
+target_link_libraries(snell_bsdf PUBLIC snell_spectral snell_props)
+
+snell_test(test_bsdf_chi2
+  SOURCES tests/stat/test_bsdf_chi2.cpp
+  LIBS snell_bsdf)
+target_include_directories(test_bsdf_chi2 PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+
+snell_test(test_bsdf_furnace
+  SOURCES tests/stat/test_bsdf_furnace.cpp
+  LIBS snell_bsdf)
+target_include_directories(test_bsdf_furnace PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+
+snell_test(test_bsdf_unit
+  SOURCES tests/unit/test_bsdf_unit.cpp
+  LIBS snell_bsdf)
+target_include_directories(test_bsdf_unit PRIVATE ${PROJECT_SOURCE_DIR}/tests)

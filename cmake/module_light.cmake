@@ -1,1 +1,24 @@
-# module light: filled in by its owner
+# Emitters (one file per Mitsuba emitter type), the environment-map sampling distribution, the
+# RGB emission upsampling lattice and the emitter factory (owner: light).
+snell_library(snell_light
+  src/light/area.cpp
+  src/light/point.cpp
+  src/light/spot.cpp
+  src/light/directional.cpp
+  src/light/constant.cpp
+  src/light/envmap.cpp
+  src/light/rgb_illuminant_table.cpp
+  src/light/factory.cpp
+)
+# read_exr lives in snell_spectral (src/io/image.cpp); area lights use the Shape interface.
+target_link_libraries(snell_light PUBLIC snell_spectral snell_props snell_geometry OpenEXR::OpenEXR TBB::tbb)
+
+snell_test(test_light
+  SOURCES tests/unit/test_light.cpp
+  LIBS snell_light)
+target_include_directories(test_light PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+
+snell_test(test_light_stat
+  SOURCES tests/stat/test_light_stat.cpp
+  LIBS snell_light)
+target_include_directories(test_light_stat PRIVATE ${PROJECT_SOURCE_DIR}/tests)

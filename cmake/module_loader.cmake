@@ -1,1 +1,25 @@
-# module loader: filled in by its owner
+# Mitsuba 2/3 XML scene loading (owner: loader). Stage 1 (snell_xml) parses the document into an
+# intermediate tree and needs no plugin; stage 2 (snell_loader) instantiates it via the factories.
+snell_library(snell_xml
+  src/io/xml_scene.cpp
+)
+target_link_libraries(snell_xml PUBLIC snell_props PRIVATE pugixml::pugixml)
+
+snell_library(snell_loader
+  src/io/scene_loader.cpp
+)
+target_link_libraries(snell_loader PUBLIC snell_xml)
+foreach(dep snell_bsdf snell_geometry snell_light snell_integrators)
+  if(TARGET ${dep})
+    target_link_libraries(snell_loader PUBLIC ${dep})
+  endif()
+endforeach()
+
+snell_test(test_scene_parser
+  SOURCES tests/unit/test_scene_parser.cpp
+  LIBS snell_xml)
+
+# Full instantiation through every factory (needs all plugin libraries).
+snell_test(test_scene_loader_full
+  SOURCES tests/unit/test_scene_loader_full.cpp
+  LIBS snell_loader snell_integrators)

@@ -79,7 +79,7 @@ inline Vec3 refract(const Vec3& w, const Vec3& m, double cos_t, double eta_ti) {
 
 /// Hemispherical average of the dielectric Fresnel reflectance for light arriving from the
 /// side with IOR ratio `eta` (other side over this side), cosine weighted:
-/// 2 * integral_0^1 R(mu) mu dmu. Numerical (Gauss-Legendre on panels), accurate to ~1e-10.
+/// 2 * integral_0^1 R(mu) mu dmu. Numerical (Gauss-Legendre on panels), accurate to ~1e-9.
 double fresnel_diffuse_reflectance(double eta);
 
 }  // namespace snell

@@ -33,7 +33,7 @@ void Props::add_child(const std::string& name, std::shared_ptr<Object> obj, cons
     m_children.push_back(Child{name, std::move(obj), loc, false});
 }
 
-bool Props::has(const std::string& name) const { return m_entries.count(name) != 0; }
+bool Props::has(const std::string& name) const { return find(name) != nullptr; }
 
 const Props::Entry* Props::find(const std::string& name) const {
     if (std::find(m_queried.begin(), m_queried.end(), name) == m_queried.end()) m_queried.push_back(name);
@@ -168,8 +168,8 @@ RGB Props::get_rgb(const std::string& name, const RGB& def) const {
 }
 
 bool Props::is_string(const std::string& name) const {
-    auto it = m_entries.find(name);
-    return it != m_entries.end() && std::holds_alternative<std::string>(it->second.value);
+    const Entry* e = find(name);
+    return e && std::holds_alternative<std::string>(e->value);
 }
 
 // --- unused reporting -----------------------------------------------------------------------
@@ -188,7 +188,8 @@ void Props::check_unused() const {
         if (!c.used && (!first_child || c.loc.line < first_child->loc.line)) first_child = &c;
 
     std::string known;
-    for (const auto& q : m_queried) known += (known.empty() ? "" : ", ") + q;
+    for (const auto& q : m_queried)  // "__" names are internal (e.g. the loader's __base_dir)
+        if (q.rfind("__", 0) != 0) known += (known.empty() ? "" : ", ") + q;
     const std::string suffix = known.empty() ? std::string(" (it takes no parameters)")
                                              : " (known parameters: " + known + ")";
     if (first && (!first_child || first->loc.line <= first_child->loc.line))

@@ -216,7 +216,9 @@ Vec3 spectrum_to_xyz(const Spectrum& s) {
 // pbrt-v4's visible-wavelength density, proportional to 1/cosh^2(0.0072 (lambda - 538))
 // on [360, 830] nm: concentrates samples where the eye is sensitive.
 double sample_visible_wavelength(double u) {
-    return 538.0 - 138.888889 * std::atanh(0.85691062 - 1.82750197 * u);
+    // The rounded constants can overshoot the range by ~1e-5 nm for u near 1; clamp so the
+    // pdf below never evaluates to zero for a sampled wavelength.
+    return clamp(538.0 - 138.888889 * std::atanh(0.85691062 - 1.82750197 * u), kLambdaMin, kLambdaMax);
 }
 double visible_wavelength_pdf(double lambda) {
     if (lambda < kLambdaMin || lambda > kLambdaMax) return 0;
@@ -350,6 +352,9 @@ double Spectrum::max_value() const {
     if (m_kind == Kind::Constant) return m_c[0];
     double m = 0;
     for (int i = 0; i < kGrid; ++i) m = std::max(m, eval(grid_lambda(i)));
+    // Piecewise linear data peaks at its own knots, which need not lie on the grid.
+    if (m_kind == Kind::Tabulated)
+        for (double v : *m_values) m = std::max(m, v * m_scale);
     return m;
 }
 

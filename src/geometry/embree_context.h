@@ -10,7 +10,7 @@
 namespace snell {
 
 struct RayContext {
-    RTCIntersectContext ctx;  ///< must stay the first member
+    RTCIntersectContext ctx;   ///< must stay the first member
     const Ray* ray = nullptr;  ///< the query in double precision
     /// Exact ray distance of the last user-geometry hit accepted, and its geometry id; the
     /// float tfar Embree keeps is only used to order hits.
@@ -18,7 +18,9 @@ struct RayContext {
     unsigned geom_exact = RTC_INVALID_GEOMETRY_ID;
 
     explicit RayContext(const Ray& r) : ray(&r) { rtcInitIntersectContext(&ctx); }
-    static const RayContext* from(const RTCIntersectContext* c) { return reinterpret_cast<const RayContext*>(c); }
+    static const RayContext* from(const RTCIntersectContext* c) {
+        return reinterpret_cast<const RayContext*>(c);
+    }
     static RayContext* from(RTCIntersectContext* c) { return reinterpret_cast<RayContext*>(c); }
 };
 

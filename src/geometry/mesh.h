@@ -23,7 +23,7 @@ namespace snell {
 /// dn/du = (dN/du - n (n . dN/du)) / |N| (derivative of the normalised normal). With
 /// `face_normals` (or no vertex normals) n = ng and dn/du = dn/dv = 0.
 class TriangleMesh final : public Shape {
-public:
+  public:
     /// Takes world-space data (see transform_mesh). Throws std::runtime_error("<name>: ...")
     /// on invalid data.
     TriangleMesh(MeshData data, bool face_normals = false, bool flip_normals = false,
@@ -56,7 +56,7 @@ public:
     bool has_vertex_normals() const { return !m_normals.empty(); }
     bool has_uvs() const { return !m_uvs.empty(); }
 
-private:
+  private:
     RTCGeometry make_geometry(RTCDevice device) const;
 
     std::vector<Vec3f> m_pos;  ///< one extra padding element: Embree reads 16 bytes per vertex

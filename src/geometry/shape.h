@@ -48,6 +48,19 @@ public:
     /// Solid-angle density of sample_from producing point p (normal n) seen from ref.
     virtual double pdf_from(const Vec3& ref, const Vec3& p, const Vec3& n) const;
 
+    /// Derivative of the unit shading normal along a unit tangent direction at `si` (the
+    /// shape operator applied to `tangent`). Default: from dn/du, dn/dv by expressing the
+    /// tangent in the (dp/du, dp/dv) basis; shapes with degenerate parametrisations (sphere
+    /// poles) override it with an exact form.
+    virtual Vec3 normal_derivative(const SurfaceInteraction& si, const Vec3& tangent) const {
+        const double g11 = dot(si.dpdu, si.dpdu), g12 = dot(si.dpdu, si.dpdv), g22 = dot(si.dpdv, si.dpdv);
+        const double det = g11 * g22 - g12 * g12;
+        if (!(std::abs(det) > 1e-30 * (g11 * g22 + 1e-300))) return Vec3();
+        const double r1 = dot(si.dpdu, tangent), r2 = dot(si.dpdv, tangent);
+        const double a = (g22 * r1 - g12 * r2) / det, b = (g11 * r2 - g12 * r1) / det;
+        return si.dndu * a + si.dndv * b;
+    }
+
     const BSDF* bsdf() const { return m_bsdf.get(); }
     const Light* emitter() const { return m_emitter; }
     void set_bsdf(std::shared_ptr<BSDF> b) { m_bsdf = std::move(b); }

@@ -10,7 +10,7 @@ namespace snell {
 /// dp/dv = pi (..), n = (p-c)/r and dn/du = dp/du / r, dn/dv = dp/dv / r (all negated when
 /// `flip_normals`: the normal then points inwards). At the poles dp/du vanishes.
 class Sphere final : public Shape {
-public:
+  public:
     /// `radius` > 0 in world units; `flip_normals` makes n point towards the centre.
     Sphere(const Vec3& center, double radius, bool flip_normals = false);
 
@@ -26,6 +26,8 @@ public:
     /// points are produced); inside: area sampling converted to solid angle.
     std::optional<ShapeSample> sample_from(const Vec3& ref, const Vec2& u) const override;
     double pdf_from(const Vec3& ref, const Vec3& p, const Vec3& n) const override;
+    /// Exact shape operator, valid at the poles too: dn = +-(tangent part of `tangent`) / r.
+    Vec3 normal_derivative(const SurfaceInteraction& si, const Vec3& tangent) const override;
 
     const Vec3& center() const { return m_center; }
     double radius() const { return m_radius; }
@@ -38,7 +40,7 @@ public:
     /// Fills `si` (t = 0, wo unset) for a point assumed to lie on the sphere.
     void fill_interaction(const Vec3& p, SurfaceInteraction* si) const;
 
-private:
+  private:
     Vec3 m_center;
     double m_radius;
     bool m_flip;

@@ -26,11 +26,20 @@ PlyType parse_type(const std::string& s) {
 
 size_t type_size(PlyType t) {
     switch (t) {
-        case PlyType::I8: case PlyType::U8: return 1;
-        case PlyType::I16: case PlyType::U16: return 2;
-        case PlyType::I32: case PlyType::U32: case PlyType::F32: return 4;
-        case PlyType::F64: return 8;
-        default: return 0;
+        case PlyType::I8:
+        case PlyType::U8:
+            return 1;
+        case PlyType::I16:
+        case PlyType::U16:
+            return 2;
+        case PlyType::I32:
+        case PlyType::U32:
+        case PlyType::F32:
+            return 4;
+        case PlyType::F64:
+            return 8;
+        default:
+            return 0;
     }
 }
 
@@ -52,8 +61,9 @@ enum class PlyFormat { Ascii, BinaryLE, BinaryBE };
 /// Reads scalar values of the body in any of the three encodings, as doubles (exact for
 /// every PLY integer type and float).
 class PlyBody {
-public:
-    PlyBody(std::istream& in, PlyFormat fmt, const std::string& path) : m_in(in), m_fmt(fmt), m_path(path) {}
+  public:
+    PlyBody(std::istream& in, PlyFormat fmt, const std::string& path)
+        : m_in(in), m_fmt(fmt), m_path(path) {}
 
     double read(PlyType t, const std::string& where) {
         if (m_fmt == PlyFormat::Ascii) {
@@ -68,21 +78,52 @@ public:
         if (file_le != (std::endian::native == std::endian::little))
             for (size_t i = 0; i < n / 2; ++i) std::swap(b[i], b[n - 1 - i]);
         switch (t) {
-            case PlyType::I8: { int8_t v; std::memcpy(&v, b, 1); return v; }
-            case PlyType::U8: return b[0];
-            case PlyType::I16: { int16_t v; std::memcpy(&v, b, 2); return v; }
-            case PlyType::U16: { uint16_t v; std::memcpy(&v, b, 2); return v; }
-            case PlyType::I32: { int32_t v; std::memcpy(&v, b, 4); return v; }
-            case PlyType::U32: { uint32_t v; std::memcpy(&v, b, 4); return v; }
-            case PlyType::F32: { float v; std::memcpy(&v, b, 4); return v; }
-            case PlyType::F64: { double v; std::memcpy(&v, b, 8); return v; }
-            default: fail(where);
+            case PlyType::I8: {
+                int8_t v;
+                std::memcpy(&v, b, 1);
+                return v;
+            }
+            case PlyType::U8:
+                return b[0];
+            case PlyType::I16: {
+                int16_t v;
+                std::memcpy(&v, b, 2);
+                return v;
+            }
+            case PlyType::U16: {
+                uint16_t v;
+                std::memcpy(&v, b, 2);
+                return v;
+            }
+            case PlyType::I32: {
+                int32_t v;
+                std::memcpy(&v, b, 4);
+                return v;
+            }
+            case PlyType::U32: {
+                uint32_t v;
+                std::memcpy(&v, b, 4);
+                return v;
+            }
+            case PlyType::F32: {
+                float v;
+                std::memcpy(&v, b, 4);
+                return v;
+            }
+            case PlyType::F64: {
+                double v;
+                std::memcpy(&v, b, 8);
+                return v;
+            }
+            default:
+                fail(where);
         }
     }
 
-private:
+  private:
     [[noreturn]] void fail(const std::string& where) const {
-        throw std::runtime_error(m_path + ": unexpected end of file or bad value in PLY element '" + where + "'");
+        throw std::runtime_error(m_path + ": unexpected end of file or bad value in PLY element '" +
+                                 where + "'");
     }
     std::istream& m_in;
     PlyFormat m_fmt;
@@ -92,10 +133,13 @@ private:
 }  // namespace
 
 MeshData load_ply(const std::string& path) {
-    if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path + ": mesh file not found");
+    if (!std::filesystem::is_regular_file(path))
+        throw std::runtime_error(path + ": mesh file not found");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::runtime_error(path + ": cannot open mesh file");
-    auto fail = [&](const std::string& msg) -> void { throw std::runtime_error(path + ": " + msg); };
+    auto fail = [&](const std::string& msg) -> void {
+        throw std::runtime_error(path + ": " + msg);
+    };
 
     // ---- header
     std::string line;
@@ -118,10 +162,14 @@ MeshData load_ply(const std::string& path) {
         if (kw == "format") {
             std::string f, version;
             ls >> f >> version;
-            if (f == "ascii") fmt = PlyFormat::Ascii;
-            else if (f == "binary_little_endian") fmt = PlyFormat::BinaryLE;
-            else if (f == "binary_big_endian") fmt = PlyFormat::BinaryBE;
-            else fail("unknown PLY format '" + f + "'");
+            if (f == "ascii")
+                fmt = PlyFormat::Ascii;
+            else if (f == "binary_little_endian")
+                fmt = PlyFormat::BinaryLE;
+            else if (f == "binary_big_endian")
+                fmt = PlyFormat::BinaryBE;
+            else
+                fail("unknown PLY format '" + f + "'");
             have_format = true;
         } else if (kw == "element") {
             PlyElement e;
@@ -169,10 +217,22 @@ MeshData load_ply(const std::string& path) {
             for (size_t i = 0; i < e.props.size(); ++i) {
                 const std::string& n = e.props[i].name;
                 int s = -1;
-                if (n == "x") s = 0; else if (n == "y") s = 1; else if (n == "z") s = 2;
-                else if (n == "nx") s = 3; else if (n == "ny") s = 4; else if (n == "nz") s = 5;
-                else if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s") s = 6;
-                else if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t") s = 7;
+                if (n == "x")
+                    s = 0;
+                else if (n == "y")
+                    s = 1;
+                else if (n == "z")
+                    s = 2;
+                else if (n == "nx")
+                    s = 3;
+                else if (n == "ny")
+                    s = 4;
+                else if (n == "nz")
+                    s = 5;
+                else if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s")
+                    s = 6;
+                else if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t")
+                    s = 7;
                 if (s >= 0 && !e.props[i].is_list) {
                     slot[i] = s;
                     has[s] = true;
@@ -201,7 +261,8 @@ MeshData load_ply(const std::string& path) {
             saw_face = true;
             bool found = false;
             for (const PlyProperty& p : e.props)
-                found = found || (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index"));
+                found = found ||
+                        (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index"));
             if (!found) fail("PLY face element lacks a 'vertex_indices' list");
             std::vector<uint32_t> poly;
             for (size_t k = 0; k < e.count; ++k) {
@@ -219,8 +280,10 @@ MeshData load_ply(const std::string& path) {
                         poly.push_back(uint32_t(idx));
                     }
                     if (p.name != "vertex_indices" && p.name != "vertex_index") continue;
-                    if (poly.size() < 3) fail("PLY face " + std::to_string(k) + " has fewer than 3 vertices");
-                    for (size_t j = 1; j + 1 < poly.size(); ++j) m.triangles.push_back({poly[0], poly[j], poly[j + 1]});
+                    if (poly.size() < 3)
+                        fail("PLY face " + std::to_string(k) + " has fewer than 3 vertices");
+                    for (size_t j = 1; j + 1 < poly.size(); ++j)
+                        m.triangles.push_back({poly[0], poly[j], poly[j + 1]});
                 }
             }
         } else {

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -14,6 +15,7 @@ struct LoadedScene {
     std::unique_ptr<Scene> scene;  ///< built (BVH committed), camera and integrator set
     FilmSpec film;
     int spp = 16;                  ///< sampler sample_count
+    uint64_t seed = 0;             ///< sampler seed (offsets every random stream of the render)
     std::string path;              ///< file it came from ("builtin:<name>" for built-ins)
 };
 

@@ -28,7 +28,10 @@ void to_json(nlohmann::json& j, const RenderReport& r) {
         {"height", r.height},
         {"spp_requested", r.spp_requested},
         {"spp_reached", r.spp_reached},
+        {"spp_mean", r.spp_mean},
         {"seconds", r.seconds},
+        {"time_limit", r.time_limit},
+        {"interrupted", r.interrupted},
         {"threads", r.threads},
         {"seed", r.seed},
         {"paths", r.paths},
@@ -52,6 +55,9 @@ void from_json(const nlohmann::json& j, RenderReport& r) {
     get("spp_requested", r.spp_requested);
     get("spp_reached", r.spp_reached);
     get("seconds", r.seconds);
+    get("spp_mean", r.spp_mean);
+    get("time_limit", r.time_limit);
+    get("interrupted", r.interrupted);
     get("threads", r.threads);
     get("seed", r.seed);
     get("paths", r.paths);

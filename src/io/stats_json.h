@@ -17,7 +17,10 @@ struct RenderReport {
     int width = 0, height = 0;
     uint64_t spp_requested = 0;  ///< samples per pixel asked for (0: time-limited render)
     uint64_t spp_reached = 0;    ///< samples per pixel every pixel actually received
+    double spp_mean = 0;         ///< mean samples per pixel, partial passes included
     double seconds = 0;          ///< wall-clock render time, scene loading excluded
+    double time_limit = 0;       ///< --time budget in seconds (0: spp mode)
+    bool interrupted = false;    ///< stopped by Ctrl-C before completion
     int threads = 0;
     uint64_t seed = 0;
     uint64_t paths = 0;               ///< camera paths traced

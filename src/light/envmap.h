@@ -2,6 +2,7 @@
 #include <string>
 #include <vector>
 
+#include "core/spectrum.h"
 #include "core/transform.h"
 #include "io/image.h"
 #include "light/distribution2d.h"
@@ -36,6 +37,10 @@ public:
     /// Importance-sampled direction; dist = inf, p = ref + wi * far distance.
     std::optional<LightSample> sample_li(const LightSampleContext& ref, const Vec2& u,
                                          double lambda) const override;
+    /// The direction sampling inside sample_li, without radiance: a unit world direction and
+    /// its solid-angle density `pdf` (0 when no direction could be produced). Optionally
+    /// returns the map coordinates of the sample.
+    Vec3 sample_direction(const Vec2& u, double* pdf, Vec2* uv_out = nullptr) const;
     /// Solid-angle density of sample_li producing direction wi (p, n ignored).
     double pdf_li(const LightSampleContext& ref, const Vec3& p, const Vec3& n, const Vec3& wi) const override;
     /// Radiance arriving along a ray that escapes in world direction d.

@@ -75,8 +75,8 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Film
 
     std::unique_ptr<ProgressBar> bar;
     if (opt.progress)
-        bar = timed ? ProgressBar::for_time("render", opt.time_limit)
-                    : std::make_unique<ProgressBar>("render", uint64_t(opt.spp) * uint64_t(w) * uint64_t(h));
+        bar.reset(timed ? new ProgressBar(ProgressBar::for_time("render", opt.time_limit))
+                        : new ProgressBar("render", uint64_t(opt.spp) * uint64_t(w) * uint64_t(h)));
 
     const auto stop_requested = [&] {
         return (cancel && cancel->load(std::memory_order_relaxed)) || (timed && elapsed() >= opt.time_limit);
@@ -121,12 +121,12 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Film
                         result.film.add_sum(x, y, sum, s1 - s0);
                     }
                 }
-                if (bar && !timed) bar->add((s1 - s0) * uint64_t(t.x1 - t.x0) * uint64_t(t.y1 - t.y0));
+                if (bar) bar->add(timed ? 0 : (s1 - s0) * uint64_t(t.x1 - t.x0) * uint64_t(t.y1 - t.y0));
             });
         });
         if (!pass_complete) break;
         done_spp = s1;
-        if (bar && timed) bar->add(0);
+        if (bar && timed) bar->update();
     }
     if (bar) bar->finish();
 

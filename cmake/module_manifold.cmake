@@ -1,0 +1,15 @@
+# The manifold solver (paper Sec. 3): vertices, half-vector constraints, the block-tridiagonal
+# solve, the walk and the chain Jacobians. Independent of every integrator.
+snell_library(snell_manifold
+  src/manifold/manifold_vertex.cpp
+  src/manifold/constraints.cpp
+  src/manifold/block_tridiagonal.cpp
+  src/manifold/manifold_walk.cpp
+  src/manifold/generalized_geometry.cpp
+)
+target_link_libraries(snell_manifold PUBLIC snell_geometry)
+
+snell_test(test_manifold
+  SOURCES tests/manifold/test_constraints.cpp tests/manifold/test_walk.cpp
+  LIBS snell_manifold)
+target_include_directories(test_manifold PRIVATE ${PROJECT_SOURCE_DIR}/tests)

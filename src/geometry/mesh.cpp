@@ -1,0 +1,275 @@
+#include "geometry/mesh.h"
+
+#include <cfloat>
+#include <stdexcept>
+
+#include "core/warp.h"
+
+namespace snell {
+
+Vec2 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    // Walk the Voronoi regions of the vertices, then the edges, then the face interior.
+    auto ratio = [](double num, double den) { return den != 0 ? num / den : 0.0; };
+    const Vec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0) return {0, 0};  // vertex a
+    const Vec3 bp = p - b;
+    const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) return {1, 0};  // vertex b
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return {ratio(d1, d1 - d3), 0};  // edge ab
+    const Vec3 cp = p - c;
+    const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) return {0, 1};  // vertex c
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return {0, ratio(d2, d2 - d6)};  // edge ac
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {  // edge bc
+        const double w = ratio(d4 - d3, (d4 - d3) + (d5 - d6));
+        return {1 - w, w};
+    }
+    const double inv = ratio(1.0, va + vb + vc);  // interior: barycentrics from sub-areas
+    return {vb * inv, vc * inv};
+}
+
+TriangleMesh::TriangleMesh(MeshData data, bool face_normals, bool flip_normals,
+                           const std::string& name)
+    : m_flip(flip_normals), m_name(name) {
+    validate_mesh(data, name);
+    m_pos.reserve(data.positions.size() + 1);
+    for (const Vec3& p : data.positions) {
+        m_pos.emplace_back(p);
+        m_bounds.expand(m_pos.back().to_double());
+    }
+    m_pos.emplace_back(0.f, 0.f, 0.f);  // padding read by Embree's vector loads
+    m_tris = std::move(data.triangles);
+    m_uvs = std::move(data.uvs);
+    if (!face_normals && !data.normals.empty()) {
+        m_normals = std::move(data.normals);
+        for (Vec3& n : m_normals) {
+            const double l = length(n);
+            // A zero or broken normal cannot be interpolated; shade the mesh flat instead.
+            if (!(l > 0) || !std::isfinite(l)) {
+                m_normals.clear();
+                break;
+            }
+            n /= l;
+        }
+    }
+    std::vector<double> areas(m_tris.size());
+    for (size_t i = 0; i < m_tris.size(); ++i) {
+        const auto& t = m_tris[i];
+        const Vec3 p0 = vertex(t[0]), p1 = vertex(t[1]), p2 = vertex(t[2]);
+        areas[i] = 0.5 * length(cross(p1 - p0, p2 - p0));
+        m_area += areas[i];
+    }
+    if (!(m_area > 0)) throw std::runtime_error(name + ": mesh has zero surface area");
+    m_tri_dist = Distribution1D(std::move(areas));
+}
+
+TriangleMesh::~TriangleMesh() {
+    if (m_query_scene) rtcReleaseScene(m_query_scene);
+}
+
+RTCGeometry TriangleMesh::make_geometry(RTCDevice device) const {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m_pos.data(), 0,
+                               sizeof(Vec3f), vertex_count());
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m_tris.data(), 0,
+                               sizeof(std::array<uint32_t, 3>), m_tris.size());
+    rtcCommitGeometry(g);
+    return g;
+}
+
+unsigned TriangleMesh::attach(RTCDevice device, RTCScene scene) {
+    RTCGeometry g = make_geometry(device);
+    m_geom_id = rtcAttachGeometry(scene, g);
+    rtcReleaseGeometry(g);
+    // Closest-point queries get their own BVH over this mesh only: Shape::closest_point has
+    // no scene at hand, and a query in the shared BVH would also descend into every other
+    // shape's nodes without ever shrinking its radius on them.
+    if (!m_query_scene) {
+        m_query_scene = rtcNewScene(device);
+        rtcSetSceneFlags(m_query_scene, RTC_SCENE_FLAG_ROBUST);
+        RTCGeometry q = make_geometry(device);
+        rtcAttachGeometry(m_query_scene, q);
+        rtcReleaseGeometry(q);
+        rtcCommitScene(m_query_scene);
+    }
+    return m_geom_id;
+}
+
+void TriangleMesh::interaction_at(uint32_t prim, const Vec2& b, SurfaceInteraction* si) const {
+    const auto& tri = m_tris[prim];
+    const Vec3 p0 = vertex(tri[0]), p1 = vertex(tri[1]), p2 = vertex(tri[2]);
+    const double b1 = b.x, b2 = b.y, b0 = 1 - b1 - b2;
+    const Vec3 e1 = p1 - p0, e2 = p2 - p0;
+    Vec3 ng = cross(e1, e2);
+    const double ng_len = length(ng);
+    ng = ng_len > 0 ? ng / ng_len : Vec3(0, 0, 1);
+
+    // Parametrisation: barycentric unless the texture map is usable.
+    Vec3 dpdu = e1, dpdv = e2;
+    Vec3 dNdu, dNdv;  // derivatives of the unnormalised blended normal
+    const bool smooth = !m_normals.empty();
+    Vec3 n0, n1, n2;
+    if (smooth) {
+        n0 = m_normals[tri[0]];
+        n1 = m_normals[tri[1]];
+        n2 = m_normals[tri[2]];
+        dNdu = n1 - n0;
+        dNdv = n2 - n0;
+    }
+    Vec2 uv = b;
+    if (!m_uvs.empty()) {
+        const Vec2 t0 = m_uvs[tri[0]], t1 = m_uvs[tri[1]], t2 = m_uvs[tri[2]];
+        const Vec2 d1 = t1 - t0, d2 = t2 - t0;
+        const double det = d1.x * d2.y - d1.y * d2.x;
+        // Relative test (sine of the angle between the uv edges): a collapsed uv triangle
+        // cannot parametrise the surface, so keep the barycentric derivatives for it.
+        if (std::abs(det) > 1e-9 * length(d1) * length(d2) && std::isfinite(1 / det)) {
+            const double inv = 1 / det;
+            // [e1 e2] = [dp/du dp/dv] [d1 d2]  =>  [dp/du dp/dv] = [e1 e2] [d1 d2]^-1
+            dpdu = (e1 * d2.y - e2 * d1.y) * inv;
+            dpdv = (e2 * d1.x - e1 * d2.x) * inv;
+            if (smooth) {
+                const Vec3 a = dNdu, c = dNdv;
+                dNdu = (a * d2.y - c * d1.y) * inv;
+                dNdv = (c * d1.x - a * d2.x) * inv;
+            }
+            uv = t0 * b0 + t1 * b1 + t2 * b2;
+        }
+    }
+
+    Vec3 n = ng, dndu, dndv;
+    if (smooth) {
+        const Vec3 N = n0 * b0 + n1 * b1 + n2 * b2;
+        const double len = length(N);
+        if (len > 0) {
+            n = N / len;
+            // d(N/|N|) = (dN - n (n . dN)) / |N|
+            dndu = (dNdu - n * dot(n, dNdu)) / len;
+            dndv = (dNdv - n * dot(n, dNdv)) / len;
+            ng = face_forward(ng, n);
+        }
+    }
+    if (m_flip) {
+        ng = -ng;
+        n = -n;
+        dndu = -dndu;
+        dndv = -dndv;
+    }
+    si->p = p0 * b0 + p1 * b1 + p2 * b2;
+    si->t = 0;
+    si->ng = ng;
+    si->n = n;
+    si->dpdu = dpdu;
+    si->dpdv = dpdv;
+    si->dndu = dndu;
+    si->dndv = dndv;
+    si->uv = uv;
+    si->shading = Frame::from_normal_tangent(n, dpdu);
+    si->shape = this;
+    si->prim = prim;
+}
+
+void TriangleMesh::compute_interaction(const Ray& ray, double t, uint32_t prim, const Vec2& uv,
+                                       SurfaceInteraction* si) const {
+    // The point comes from the barycentrics rather than o + t d: it then lies on the triangle
+    // up to double rounding, whatever the float error of Embree's t.
+    interaction_at(prim, uv, si);
+    si->t = t;
+    si->wo = -normalize(ray.d);
+}
+
+namespace {
+
+struct PointQueryData {
+    const TriangleMesh* mesh = nullptr;
+    Vec3 p;
+    double best_d2 = kInfinity;
+    double pad = 0;  ///< slack for the float query position Embree culls with
+    uint32_t prim = 0;
+    Vec2 b;
+    bool found = false;
+};
+
+/// Float radius for Embree's culling that surely covers the double radius r around p.
+float query_radius(double r, double pad) {
+    const double padded = r + pad;
+    if (!(padded < double(FLT_MAX))) return FLT_MAX;
+    return std::nextafter(float(padded), FLT_MAX);
+}
+
+void visit_triangle(PointQueryData& q, uint32_t prim) {
+    const auto& t = q.mesh->triangle(prim);
+    const Vec3 a = q.mesh->vertex(t[0]), b = q.mesh->vertex(t[1]), c = q.mesh->vertex(t[2]);
+    const Vec2 bc = closest_point_on_triangle(q.p, a, b, c);
+    const Vec3 x = a + (b - a) * bc.x + (c - a) * bc.y;
+    const double d2 = length_squared(x - q.p);
+    if (d2 <= q.best_d2 && (!q.found || d2 < q.best_d2)) {
+        q.best_d2 = d2;
+        q.prim = prim;
+        q.b = bc;
+        q.found = true;
+    }
+}
+
+bool point_query_callback(RTCPointQueryFunctionArguments* args) {
+    auto& q = *static_cast<PointQueryData*>(args->userPtr);
+    const bool had = q.found;
+    const double before = q.best_d2;
+    visit_triangle(q, args->primID);
+    if (q.found && (!had || q.best_d2 < before)) {
+        const float r = query_radius(std::sqrt(q.best_d2), q.pad);
+        if (r < args->query->radius) {
+            args->query->radius = r;
+            return true;  // tells Embree the search sphere shrank
+        }
+    }
+    return false;
+}
+
+}  // namespace
+
+bool TriangleMesh::closest_point(const Vec3& p, double radius, SurfaceInteraction* si) const {
+    PointQueryData q;
+    q.mesh = this;
+    q.p = p;
+    q.best_d2 = radius * radius;
+    // Float rounding of the query point moves it by ~6e-8 |p| per axis; 1e-6 covers that.
+    q.pad = 1e-6 * (max_component(Vec3(std::abs(p.x), std::abs(p.y), std::abs(p.z))) +
+                    max_component(m_bounds.extent()));
+    if (m_query_scene) {
+        RTCPointQuery query;
+        query.x = float(p.x);
+        query.y = float(p.y);
+        query.z = float(p.z);
+        query.time = 0;
+        query.radius = query_radius(radius, q.pad);
+        RTCPointQueryContext ctx;
+        rtcInitPointQueryContext(&ctx);
+        rtcPointQuery(m_query_scene, &query, &ctx, point_query_callback, &q);
+    } else {
+        for (uint32_t i = 0; i < m_tris.size(); ++i) visit_triangle(q, i);
+    }
+    if (!q.found) return false;
+    interaction_at(q.prim, q.b, si);
+    si->wo = Vec3();
+    return true;
+}
+
+ShapeSample TriangleMesh::sample_area(const Vec2& u) const {
+    double pmf, ux;
+    const uint32_t prim = uint32_t(m_tri_dist.sample_discrete(u.x, &pmf, &ux));
+    const Vec2 w = warp::square_to_uniform_triangle({ux, u.y});  // weights of (p0, p1)
+    SurfaceInteraction si;
+    interaction_at(prim, {w.y, 1 - w.x - w.y}, &si);
+    ShapeSample s;
+    s.p = si.p;
+    s.n = si.ng;
+    s.pdf = 1.0 / m_area;
+    return s;
+}
+
+}  // namespace snell

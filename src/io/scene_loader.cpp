@@ -1,0 +1,237 @@
+// Stage 2 of scene loading: instantiate the parsed XML (io/xml_scene.h) through the plugin
+// factories. Every Props is checked for unused entries after its factory ran, so a parameter no
+// plugin understood is always an error with its file:line. The syntax is in docs/scene-format.md.
+#include "io/scene_loader.h"
+
+#include <filesystem>
+#include <iostream>
+#include <set>
+
+#include "bsdf/factory.h"
+#include "geometry/factory.h"
+#include "integrators/integrator.h"
+#include "io/xml_scene.h"
+#include "light/factory.h"
+
+namespace snell {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Runs a factory; non-scene exceptions (bad data deep in a plugin) get the element's location.
+template <typename F>
+auto located(const XmlObject& o, F&& f) -> decltype(f()) {
+    try {
+        return f();
+    } catch (const SceneError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw SceneError(o.loc, o.tag, e.what());
+    }
+}
+
+class Instantiator {
+public:
+    explicit Instantiator(LoadedScene& out) : m_out(out) {}
+
+    void run(const XmlObject& root) {
+        auto scene = std::make_unique<Scene>();
+        const XmlObject* sensor = nullptr;
+        const XmlObject* integrator = nullptr;
+        for (const auto& c : root.children) {
+            const XmlObject& o = *c.obj;
+            if (o.tag == "sensor") {
+                if (sensor) throw SceneError(o.loc, o.tag, "more than one <sensor> (first at " + sensor->loc.str() + ")");
+                sensor = &o;
+            } else if (o.tag == "integrator") {
+                if (integrator)
+                    throw SceneError(o.loc, o.tag, "more than one <integrator> (first at " + integrator->loc.str() + ")");
+                integrator = &o;
+            } else if (o.tag == "bsdf") {
+                bsdf(o);  // instantiated even if unused, so its errors are reported
+            } else if (o.tag == "shape") {
+                add_shape(o, *scene);
+            } else if (o.tag == "emitter") {
+                if (o.type == "area")
+                    throw SceneError(o.loc, o.tag, "an area emitter must be nested inside the <shape> that emits");
+                Props p = props(o);
+                if (o.param("filename")) p.set("__base_dir", o.base_dir, o.loc);  // envmap image
+                auto light = located(o, [&] { return create_light(p); });
+                p.check_unused();
+                scene->add_light(light);
+            }
+        }
+        if (!sensor) throw SceneError(root.loc, "scene", "the scene has no <sensor type=\"perspective\">");
+        scene->set_camera(camera(*sensor));
+        if (integrator) {
+            Props p = props(*integrator);
+            auto integ = located(*integrator, [&] { return create_integrator(p); });
+            p.check_unused();
+            scene->set_integrator(integ);
+        } else {  // Mitsuba's default integrator
+            Props p("integrator", "path", root.loc);
+            scene->set_integrator(create_integrator(p));
+        }
+        located(root, [&] { scene->build(); });
+        m_out.scene = std::move(scene);
+    }
+
+private:
+    LoadedScene& m_out;
+    std::map<const XmlObject*, std::shared_ptr<BSDF>> m_bsdfs;  // one instance per element (refs share)
+
+    static Props props(const XmlObject& o) {
+        Props p(o.tag, o.type, o.loc);
+        p.set_id(o.id);
+        for (const auto& q : o.params) p.set(q.name, q.value, q.loc);
+        return p;
+    }
+
+    std::shared_ptr<BSDF> bsdf(const XmlObject& o) {
+        if (auto it = m_bsdfs.find(&o); it != m_bsdfs.end()) return it->second;
+        Props p = props(o);
+        for (const auto& c : o.children) p.add_child(c.name, bsdf(*c.obj), c.loc);  // twosided's nested bsdf
+        auto b = located(o, [&] { return create_bsdf(p); });
+        p.check_unused();
+        b->set_id(o.id);
+        m_bsdfs[&o] = b;
+        return b;
+    }
+
+    void add_shape(const XmlObject& o, Scene& scene) {
+        Props p = props(o);
+        // Mesh file names are relative to the file the shape was written in.
+        if (o.param("filename")) p.set("__base_dir", o.base_dir, o.loc);
+        const XmlObject* emitter = nullptr;
+        for (const auto& c : o.children) {
+            if (c.obj->tag == "bsdf") {
+                p.add_child(c.name, bsdf(*c.obj), c.loc);
+            } else {  // emitter (the parser allows nothing else here)
+                if (emitter)
+                    throw SceneError(c.obj->loc, "emitter", "a shape has at most one emitter (first at " + emitter->loc.str() + ")");
+                if (c.obj->type != "area")
+                    throw SceneError(c.obj->loc, "emitter",
+                                     "only type=\"area\" emitters can be nested in a <shape>, not '" + c.obj->type + "'");
+                emitter = c.obj.get();
+            }
+        }
+        auto shape = located(o, [&] { return create_shape(p); });
+        p.check_unused();
+        shape->set_id(o.id);
+        if (emitter) {
+            Props ep = props(*emitter);
+            auto light = located(*emitter, [&] { return create_area_light(ep, shape); });
+            ep.check_unused();
+            scene.add_light(light);
+        }
+        scene.add_shape(shape);
+    }
+
+    std::shared_ptr<PerspectiveCamera> camera(const XmlObject& o) {
+        Props p = props(o);
+        if (o.type != "perspective") p.raise("unknown sensor type '" + o.type + "' (supported: perspective)");
+        const double fov = p.get_float("fov");
+        if (!(fov > 0 && fov < 180)) p.raise_param("fov", "fov must lie in (0, 180) degrees");
+        const std::string axis = p.get_string("fov_axis", "x");
+        static const std::set<std::string> axes = {"x", "y", "smaller", "larger", "diagonal"};
+        if (!axes.count(axis)) p.raise_param("fov_axis", "fov_axis must be x, y, smaller, larger or diagonal");
+        const double near_clip = p.get_float("near_clip", 1e-2), far_clip = p.get_float("far_clip", 1e4);
+        if (!(near_clip > 0 && far_clip > near_clip))
+            p.raise_param("near_clip", "need 0 < near_clip < far_clip");
+        const Transform to_world = p.get_transform("to_world");
+
+        FilmSpec film;
+        const XmlObject *film_obj = nullptr, *sampler_obj = nullptr;
+        for (const auto& c : o.children) {
+            const XmlObject*& slot = c.obj->tag == "film" ? film_obj : sampler_obj;
+            if (slot) throw SceneError(c.obj->loc, c.obj->tag, "more than one <" + c.obj->tag + "> in the sensor");
+            slot = c.obj.get();
+        }
+        if (film_obj) film = read_film(*film_obj);
+        if (sampler_obj) read_sampler(*sampler_obj);
+        p.check_unused();
+        m_out.film = film;
+        return located(o, [&] { return std::make_shared<PerspectiveCamera>(to_world, fov, axis, film, near_clip, far_clip); });
+    }
+
+    static FilmSpec read_film(const XmlObject& o) {
+        Props p = props(o);
+        if (o.type != "hdrfilm") p.raise("unknown film type '" + o.type + "' (supported: hdrfilm)");
+        FilmSpec f;
+        f.width = int(p.get_int("width", 768));
+        f.height = int(p.get_int("height", 576));
+        if (f.width <= 0 || f.height <= 0) p.raise("film width and height must be positive");
+        const int cx = int(p.get_int("crop_offset_x", 0)), cy = int(p.get_int("crop_offset_y", 0));
+        const int cw = int(p.get_int("crop_width", f.width - cx)), ch = int(p.get_int("crop_height", f.height - cy));
+        if (cx < 0 || cy < 0 || cw <= 0 || ch <= 0 || cx + cw > f.width || cy + ch > f.height)
+            p.raise("crop window (offset " + std::to_string(cx) + "," + std::to_string(cy) + ", size " +
+                    std::to_string(cw) + "x" + std::to_string(ch) + ") does not fit the " +
+                    std::to_string(f.width) + "x" + std::to_string(f.height) + " film");
+        if (cx != 0 || cy != 0 || cw != f.width || ch != f.height) {
+            f.crop_x = cx;
+            f.crop_y = cy;
+            f.crop_w = cw;
+            f.crop_h = ch;
+        }
+        // Accepted for compatibility with Mitsuba files; the output format is chosen by the app.
+        static const std::set<std::string> pixel_formats = {"rgb", "rgba", "luminance", "luminance_alpha", "xyz", "xyza"};
+        static const std::set<std::string> component_formats = {"float16", "float32", "uint32"};
+        if (!pixel_formats.count(p.get_string("pixel_format", "rgb")))
+            p.raise_param("pixel_format", "unknown pixel_format (rgb, rgba, luminance, luminance_alpha, xyz, xyza)");
+        if (!component_formats.count(p.get_string("component_format", "float16")))
+            p.raise_param("component_format", "unknown component_format (float16, float32, uint32)");
+        for (const auto& c : o.children) read_rfilter(*c.obj);
+        if (o.children.size() > 1) throw SceneError(o.children[1].loc, "rfilter", "more than one <rfilter> in the film");
+        p.check_unused();
+        return f;
+    }
+
+    static void read_rfilter(const XmlObject& o) {
+        Props p = props(o);
+        if (o.type == "gaussian") {
+            p.get_float("stddev", 0.5);
+        } else if (o.type == "tent") {
+            p.get_float("radius", 1.0);
+        } else if (o.type != "box") {
+            p.raise("unknown rfilter type '" + o.type + "' (accepted: box, gaussian, tent)");
+        }
+        p.check_unused();
+        if (o.type != "box")  // not silent: the render differs slightly from Mitsuba's
+            std::cerr << "note: " << o.loc.str() << ": <rfilter type=\"" << o.type
+                      << "\"> is ignored; snell reconstructs with a one-pixel box filter\n";
+    }
+
+    void read_sampler(const XmlObject& o) {
+        Props p = props(o);
+        if (o.type != "independent")
+            p.raise("unknown sampler type '" + o.type + "' (supported: independent)");
+        const int64_t spp = p.get_int("sample_count", m_out.spp);
+        if (spp <= 0) p.raise_param("sample_count", "sample_count must be positive");
+        const int64_t seed = p.get_int("seed", 0);
+        if (seed < 0) p.raise_param("seed", "seed must be non-negative");
+        p.check_unused();
+        m_out.spp = int(spp);
+        m_out.seed = uint64_t(seed);
+    }
+};
+
+LoadedScene instantiate(const XmlObject& root, const std::string& path) {
+    LoadedScene out;
+    out.path = path;
+    Instantiator(out).run(root);
+    return out;
+}
+
+}  // namespace
+
+LoadedScene load_scene_file(const std::string& path, const Defines& defines) {
+    return instantiate(*parse_scene_xml_file(path, defines), path);
+}
+
+LoadedScene load_scene_string(const std::string& xml, const std::string& name, const std::string& base_dir,
+                              const Defines& defines) {
+    return instantiate(*parse_scene_xml_string(xml, name, base_dir, defines), name);
+}
+
+}  // namespace snell

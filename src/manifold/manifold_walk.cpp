@@ -1,0 +1,133 @@
+#include "manifold/manifold_walk.h"
+
+#include <cmath>
+
+#include "geometry/scene.h"
+#include "geometry/shape.h"
+
+namespace snell {
+
+namespace {
+// Largest step, as a fraction of a vertex's local length scale, taken in one iteration.
+constexpr double kTrustFraction = 0.5;
+}  // namespace
+
+bool build_constraints(const Vec3& x_b, const std::vector<ManifoldVertex>& chain, const TangentBasis& x_c,
+                       BlockTridiagonal* m, std::vector<Vec2>* c) {
+    const size_t k = chain.size();
+    m->resize(k);
+    c->resize(k);
+    for (size_t i = 0; i < k; ++i) {
+        // x_b's basis is never used (no A block in the first row).
+        const TangentBasis prev = i == 0 ? TangentBasis{x_b, Vec3(), Vec3()}
+                                         : TangentBasis{chain[i - 1].p, chain[i - 1].dp_ds, chain[i - 1].dp_dt};
+        const TangentBasis next = i + 1 == k ? x_c : TangentBasis{chain[i + 1].p, chain[i + 1].dp_ds, chain[i + 1].dp_dt};
+        const ConstraintBlocks b = half_vector_constraint(prev, chain[i], next);
+        if (!b.valid) return false;
+        m->A[i] = b.A;
+        m->B[i] = b.B;
+        m->C[i] = b.C;
+        (*c)[i] = b.value;
+    }
+    return true;
+}
+
+double constraint_error(const Vec3& x_b, const std::vector<ManifoldVertex>& chain, const Vec3& x_c) {
+    double err = 0;
+    for (size_t i = 0; i < chain.size(); ++i) {
+        const Vec3& prev = i == 0 ? x_b : chain[i - 1].p;
+        const Vec3& next = i + 1 == chain.size() ? x_c : chain[i + 1].p;
+        const Vec2 c = half_vector_constraint_value(prev, chain[i], next);
+        err = std::max(err, std::max(std::abs(c.x), std::abs(c.y)));
+    }
+    return std::isfinite(err) ? err : kInfinity;
+}
+
+bool project_vertex(const Scene* scene, const ManifoldVertex& from, const Vec3& prev_p, const Vec3& displaced,
+                    Projection mode, ManifoldVertex* out) {
+    SurfaceInteraction si;
+    const double step = length(displaced - from.p);
+    if (mode == Projection::ClosestPoint || !scene) {
+        // Search radius: the step itself plus a margin; a projection further away than the
+        // step cannot be the continuation of this vertex.
+        if (!from.shape->closest_point(displaced, 2.0 * step + 1e-9 * (length(displaced) + 1.0), &si)) return false;
+    } else {
+        // Cast from the previous vertex through the displaced point; accept only hits on the
+        // same shape near the displaced point.
+        Ray r{prev_p, normalize(displaced - prev_p), 0.0, kInfinity};
+        r.tmin = scene->ray_epsilon();
+        if (!scene->intersect(r, &si) || si.shape != from.shape) return false;
+        if (length(si.p - displaced) > 4.0 * step + scene->ray_epsilon()) return false;
+    }
+    ManifoldVertex v = ManifoldVertex::from_interaction(si, from.eta);
+    v.h_target = from.h_target;
+    v.bsdf = from.bsdf;
+    *out = v;
+    return true;
+}
+
+WalkResult manifold_walk(const Scene* scene, const Vec3& x_b, std::vector<ManifoldVertex>& chain,
+                         const TangentBasis& x_c, const WalkSettings& st) {
+    WalkResult res;
+    BlockTridiagonal m;
+    std::vector<Vec2> c, dx;
+    std::vector<ManifoldVertex> proposal(chain.size());
+    double err = constraint_error(x_b, chain, x_c.p);
+    double beta = 1.0;  // step size
+    const double beta_max = st.allow_error_increase ? 2.0 : 1.0;
+    for (res.iterations = 0; res.iterations < st.max_iterations; ++res.iterations) {
+        if (err < st.threshold) {
+            res.outcome = WalkOutcome::Converged;
+            res.error = err;
+            return res;
+        }
+        // Predictor: first-order offsets that would zero the constraints.
+        if (!build_constraints(x_b, chain, x_c, &m, &c) || !solve_matrix_h_to_x(m, c, &dx)) {
+            res.outcome = WalkOutcome::SingularMatrix;
+            res.error = err;
+            return res;
+        }
+        // Trust region: no vertex may move further than a fraction of its local length
+        // scale (distance to its neighbours, radius of curvature) in one step; far from the
+        // solution the linearisation is poor and unbounded steps wrap around curved shapes.
+        // All lengths are the scene's own, so this is scale-free.
+        double limit = 1.0;
+        for (size_t i = 0; i < chain.size(); ++i) {
+            const Vec3& prev = i == 0 ? x_b : chain[i - 1].p;
+            const Vec3& next = i + 1 == chain.size() ? x_c.p : chain[i + 1].p;
+            const double curvature = std::max(length(chain[i].dn_ds), length(chain[i].dn_dt));
+            double scale = std::min(length(prev - chain[i].p), length(next - chain[i].p));
+            if (curvature > 0) scale = std::min(scale, 1.0 / curvature);
+            const double step = length(dx[i]);
+            if (step > 0) limit = std::min(limit, kTrustFraction * scale / step);
+        }
+        for (Vec2& d : dx) d = d * limit;
+
+        // Corrector: project every displaced vertex back onto its own shape.
+        bool projected = true;
+        for (size_t i = 0; i < chain.size() && projected; ++i) {
+            const Vec3 prev = i == 0 ? x_b : proposal[i - 1].p;
+            projected = project_vertex(scene, chain[i], prev, chain[i].offset(dx[i] * beta), st.projection, &proposal[i]);
+        }
+        const double new_err = projected ? constraint_error(x_b, proposal, x_c.p) : kInfinity;
+        if (new_err < err || (st.allow_error_increase && std::isfinite(new_err))) {
+            // Accept; grow the step back (variant B lets it exceed one: over-relaxation).
+            beta = new_err < err ? std::min(beta_max, beta * 2.0) : beta * 0.5;
+            chain.swap(proposal);
+            err = new_err;
+        } else {
+            // Variant A: revert to X^i and halve the step.
+            beta *= 0.5;
+            if (beta < 1e-4) {
+                res.outcome = projected ? WalkOutcome::MaxIterations : WalkOutcome::ProjectionFailed;
+                res.error = err;
+                return res;
+            }
+        }
+    }
+    res.error = err;
+    res.outcome = err < st.threshold ? WalkOutcome::Converged : WalkOutcome::MaxIterations;
+    return res;
+}
+
+}  // namespace snell

@@ -1,0 +1,276 @@
+// Closed-form checks of Fresnel, microfacet identities, per-model flags/eta and the factory.
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "bsdf/conductor.h"
+#include "bsdf/conductor_data.h"
+#include "bsdf/dielectric.h"
+#include "bsdf/diffuse.h"
+#include "bsdf/factory.h"
+#include "bsdf/fresnel.h"
+#include "bsdf/microfacet.h"
+#include "bsdf/plastic.h"
+#include "bsdf/roughconductor.h"
+#include "bsdf/roughdielectric.h"
+#include "bsdf/thindielectric.h"
+#include "bsdf/twosided.h"
+#include "core/frame.h"
+#include "stat/chi2.h"
+
+using namespace snell;
+using MD = MicrofacetDistribution;
+
+namespace {
+
+Vec3 dir(double theta_deg, double phi_deg = 17) {
+    const double t = theta_deg * kPi / 180, p = phi_deg * kPi / 180;
+    return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+}
+
+/// Integral over the upper hemisphere of f(w) dw (dw = dz dphi), adaptive quadrature.
+template <typename F>
+double hemisphere_integral(const F& f) {
+    auto inner = [&](double z) {
+        const double s = safe_sqrt(1 - z * z);
+        return snell::test::adaptive_simpson(
+            [&](double phi) { return f(Vec3(s * std::cos(phi), s * std::sin(phi), z)); }, 0,
+            2 * kPi, 1e-10, 16);
+    };
+    return snell::test::adaptive_simpson(inner, 0, 1, 1e-9, 32);
+}
+
+TEST(Fresnel, NormalIncidenceClosedForm) {
+    for (double eta : {1.2, 1.5, 2.4}) {
+        const double R0 = sqr((eta - 1) / (eta + 1));
+        EXPECT_NEAR(fresnel_dielectric(1.0, eta).R, R0, 1e-14);
+        EXPECT_NEAR(fresnel_dielectric(-1.0, eta).R, R0, 1e-14);  // from inside: same
+        EXPECT_NEAR(fresnel_conductor(1.0, eta, 0.0), R0, 1e-14);
+        const double k = 3.1;
+        EXPECT_NEAR(fresnel_conductor(1.0, eta, k), (sqr(eta - 1) + k * k) / (sqr(eta + 1) + k * k), 1e-14);
+    }
+    // Conductor with k = 0 equals the dielectric at all angles.
+    for (double c : {0.1, 0.5, 0.9}) EXPECT_NEAR(fresnel_conductor(c, 1.5, 0), fresnel_dielectric(c, 1.5).R, 1e-12);
+    EXPECT_NEAR(fresnel_dielectric(1e-9, 1.5).R, 1.0, 1e-6);  // grazing
+    EXPECT_EQ(fresnel_dielectric(0.5, 1.0).R, 0.0);          // index matched
+}
+
+TEST(Fresnel, TotalInternalReflectionAndSnell) {
+    const double eta = 1.5, cos_crit = std::sqrt(1 - 1 / (eta * eta));
+    // Inside (cos < 0): beyond the critical angle everything reflects.
+    EXPECT_EQ(fresnel_dielectric(-(cos_crit - 1e-6), eta).R, 1.0);
+    EXPECT_LT(fresnel_dielectric(-(cos_crit + 1e-3), eta).R, 1.0);
+    for (double th : {10.0, 35.0, 70.0}) {
+        const Vec3 wo = dir(th);
+        const DielectricFresnel f = fresnel_dielectric(wo.z, eta);
+        EXPECT_LT(f.cos_t, 0);
+        EXPECT_DOUBLE_EQ(f.eta_it, eta);
+        const Vec3 wt = refract(wo, f.cos_t, f.eta_ti);
+        EXPECT_NEAR(length(wt), 1.0, 1e-12);
+        EXPECT_NEAR(std::sqrt(sin2_theta(wo)), eta * std::sqrt(sin2_theta(wt)), 1e-12);  // Snell
+        // Through a tilted microfacet: Snell's law w.r.t. m.
+        const Vec3 m = normalize(Vec3(0.2, -0.1, 1));
+        const DielectricFresnel fm = fresnel_dielectric(dot(wo, m), eta);
+        const Vec3 wm = refract(wo, m, fm.cos_t, fm.eta_ti);
+        EXPECT_NEAR(length(wm), 1.0, 1e-12);
+        EXPECT_NEAR(length(cross(wo, m)), eta * length(cross(wm, m)), 1e-12);
+        // Reversibility: refracting back gives wo.
+        const DielectricFresnel fb = fresnel_dielectric(dot(wm, m), eta);
+        const Vec3 back = refract(wm, m, fb.cos_t, fb.eta_ti);
+        EXPECT_NEAR(length(back - wo), 0.0, 1e-12);
+    }
+}
+
+TEST(Fresnel, DiffuseReflectanceReciprocity) {
+    // Hemispherical transmittances on the two sides relate by eta^2 (reciprocity):
+    // 1 - Fdr(eta) = eta^2 (1 - Fdr(1 / eta)).
+    for (double eta : {1.33, 1.5, 2.0}) {
+        EXPECT_NEAR(1 - fresnel_diffuse_reflectance(eta), eta * eta * (1 - fresnel_diffuse_reflectance(1 / eta)), 1e-8);
+    }
+    EXPECT_NEAR(fresnel_diffuse_reflectance(1.0), 0.0, 1e-14);
+    EXPECT_NEAR(fresnel_diffuse_reflectance(1.5), 0.0918, 2e-3);  // textbook value ~0.092
+}
+
+TEST(Conductors, NamedDataIsMeasured) {
+    for (const char* n : {"Au", "Ag", "Cu", "Al"}) ASSERT_TRUE(named_conductor(n)) << n;
+    EXPECT_FALSE(named_conductor("unobtainium"));
+    auto au = *named_conductor("Au");
+    // A tabulated point (Palik): Au at 619.92 nm has eta 0.194, k 3.06.
+    EXPECT_NEAR(au.eta(619.920898), 0.194, 1e-9);
+    EXPECT_NEAR(au.k(619.920898), 3.06, 1e-9);
+    // Gold is yellow: reflects red much better than blue.
+    auto R = [](const ConductorIOR& c, double l) { return fresnel_conductor(1.0, c.eta(l), c.k(l)); };
+    EXPECT_GT(R(au, 650), R(au, 450) + 0.3);
+    EXPECT_GT(R(*named_conductor("Ag"), 550), 0.9);
+    EXPECT_GT(R(*named_conductor("Al"), 550), 0.85);
+    auto cu = *named_conductor("Cu");
+    EXPECT_GT(R(cu, 650), R(cu, 450) + 0.3);
+    ConductorBSDF mirror(std::nullopt), gold(au);
+    EXPECT_DOUBLE_EQ(mirror.reflectance(500, 0.3), 1.0);
+    EXPECT_NEAR(gold.reflectance(650, 1.0), R(au, 650), 1e-14);
+}
+
+TEST(Microfacet, NormalisationAndSmithIdentity) {
+    for (auto t : {MD::Type::Beckmann, MD::Type::GGX})
+        for (auto [au, av] : {std::pair{0.1, 0.1}, std::pair{0.5, 0.5}, std::pair{0.15, 0.45}}) {
+            const MD d(t, au, av);
+            // Projected microfacet area equals the macro area: integral D cos = 1.
+            EXPECT_NEAR(hemisphere_integral([&](const Vec3& m) { return d.D(m) * m.z; }), 1.0, 2e-4);
+            // Smith: projected visible microfacet area equals the projected macro area,
+            // integral G1(wo, m) max(0, wo.m) D(m) dm = cos(theta_o). Validates Lambda.
+            for (double th : {0.0, 40.0, 75.0}) {
+                const Vec3 wo = dir(th, 30);
+                const double proj = hemisphere_integral(
+                    [&](const Vec3& m) { return d.G1(wo, m) * std::max(0.0, dot(wo, m)) * d.D(m); });
+                EXPECT_NEAR(proj, wo.z, 2e-4 * std::max(1.0, 1 / wo.z)) << int(t) << " " << au << " " << th;
+            }
+            EXPECT_EQ(d.D(Vec3(0, 0, -1)), 0.0);
+            EXPECT_EQ(d.G1(dir(30), Vec3(0, 0, 1)), d.G1(dir(30), normalize(Vec3(0.1, 0, 1))));
+            EXPECT_EQ(d.G1(dir(80, 0), normalize(Vec3(-5, 0, 1))), 0.0);  // back-facing
+        }
+    // Visible-normal density is normalised too (GGX exact; Beckmann falls back to global).
+    const MD g(MD::Type::GGX, 0.3);
+    EXPECT_TRUE(g.has_exact_visible());
+    EXPECT_NEAR(hemisphere_integral([&](const Vec3& m) { return g.pdf_visible_m(dir(60), m); }), 1.0, 2e-4);
+    EXPECT_DOUBLE_EQ(g.pdf_m(dir(20)), g.D(dir(20)) * dir(20).z);
+}
+
+TEST(Bsdfs, FlagsAndEta) {
+    const auto one = Spectrum::constant(1.0);
+    DiffuseBSDF diffuse(one);
+    DielectricBSDF glass(Spectrum::from_ior_abbe(1.5, 40), Spectrum::constant(1.000277));
+    ThinDielectricBSDF thin(Spectrum::constant(1.5), one);
+    RoughDielectricBSDF rough(MD(MD::Type::GGX, 0.2), Spectrum::constant(1.33), one, one, one,
+                              Spectrum::constant(0.1));
+    ConductorBSDF mirror(std::nullopt);
+    RoughConductorBSDF rc(MD(MD::Type::Beckmann, 0.2), named_conductor("Cu"));
+    PlasticBSDF plastic(one, one, 1.49, 1.0);
+    TwoSidedBSDF two(std::make_shared<DiffuseBSDF>(one), std::make_shared<ConductorBSDF>(std::nullopt));
+
+    EXPECT_EQ(diffuse.flags(), kReflection | kDiffuse);
+    EXPECT_EQ(glass.flags(), kReflection | kTransmission | kSpecular);
+    EXPECT_EQ(thin.flags(), kReflection | kTransmission | kSpecular);
+    EXPECT_EQ(rough.flags(), kReflection | kTransmission | kGlossy);
+    EXPECT_EQ(mirror.flags(), kReflection | kSpecular);
+    EXPECT_EQ(rc.flags(), kReflection | kGlossy);
+    EXPECT_EQ(plastic.flags(), kReflection | kSpecular | kDiffuse);
+    EXPECT_EQ(two.flags(), kReflection | kDiffuse | kSpecular);
+    EXPECT_TRUE(glass.has_delta() && glass.is_transmissive() && !glass.is_smooth_sampled());
+    EXPECT_TRUE(plastic.has_delta() && plastic.is_smooth_sampled());
+
+    // Dispersion: normal dispersion (Cauchy) with Abbe number 40.
+    EXPECT_GT(glass.eta(400), glass.eta(700));
+    EXPECT_NEAR(glass.eta(587.56), 1.5 / 1.000277, 1e-12);
+    EXPECT_DOUBLE_EQ(rough.eta(500), 1.33);
+    EXPECT_EQ(thin.eta(500), 1.0);
+    EXPECT_EQ(rc.eta(500), 1.0);
+    EXPECT_EQ(glass.interior_absorption(), nullptr);
+    ASSERT_NE(rough.interior_absorption(), nullptr);
+    EXPECT_DOUBLE_EQ(rough.interior_absorption()->eval(500), 0.1);
+}
+
+TEST(Bsdfs, SmoothDielectricSampling) {
+    DielectricBSDF glass(Spectrum::constant(1.5), Spectrum::constant(1.0));
+    BSDFContext ctx;
+    const double R0 = 0.04;
+    // uc below F reflects, above refracts.
+    auto r = glass.sample(ctx, Vec3(0, 0, 1), 0.5 * R0, {0.5, 0.5});
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->lobe, uint32_t(kReflection | kSpecular));
+    EXPECT_NEAR(r->pdf, R0, 1e-12);
+    EXPECT_EQ(r->wi, Vec3(0, 0, 1));
+    auto t = glass.sample(ctx, Vec3(0, 0, 1), 0.5, {0.5, 0.5});
+    ASSERT_TRUE(t);
+    EXPECT_EQ(t->lobe, uint32_t(kTransmission | kSpecular));
+    EXPECT_NEAR(t->wi.z, -1, 1e-15);
+    EXPECT_NEAR(t->weight, 1 / 2.25, 1e-12);  // radiance compressed entering the glass
+    EXPECT_DOUBLE_EQ(t->eta, 1.5);
+    // Leaving the glass: radiance expands by eta^2; importance mode: no scaling.
+    auto out = glass.sample(ctx, Vec3(0, 0, -1), 0.5, {0.5, 0.5});
+    EXPECT_NEAR(out->weight, 2.25, 1e-12);
+    EXPECT_NEAR(out->eta, 1 / 1.5, 1e-15);
+    ctx.mode = TransportMode::Importance;
+    EXPECT_NEAR(glass.sample(ctx, Vec3(0, 0, -1), 0.5, {0.5, 0.5})->weight, 1.0, 1e-15);
+    // Total internal reflection from inside beyond 41.8 degrees: always reflects.
+    auto tir = glass.sample(ctx, dir(180 - 50), 0.999, {0.5, 0.5});
+    EXPECT_EQ(tir->lobe, uint32_t(kReflection | kSpecular));
+    EXPECT_EQ(glass.eval(ctx, dir(10), dir(170)), 0.0);
+    EXPECT_EQ(glass.pdf(ctx, dir(10), reflect(dir(10))), 0.0);
+}
+
+// --- factory -------------------------------------------------------------------------------
+
+Props make(const std::string& type) { return Props("bsdf", type, SourceLoc{"test.xml", 3}); }
+const SourceLoc kLoc{"test.xml", 4};
+
+TEST(BsdfFactory, BuildsEveryTypeWithMitsubaParameters) {
+    {
+        Props p = make("roughdielectric");
+        p.set("distribution", std::string("ggx"), kLoc);
+        p.set("alpha", 0.3, kLoc);
+        p.set("int_ior", std::string("water"), kLoc);
+        p.set("abbe", 55.0, kLoc);
+        p.set("sigma_a", 0.5, kLoc);
+        auto b = create_bsdf(p);
+        auto* rd = dynamic_cast<RoughDielectricBSDF*>(b.get());
+        ASSERT_NE(rd, nullptr);
+        EXPECT_NEAR(rd->eta(587.56), 1.333 / 1.00028, 1e-9);
+        EXPECT_GT(rd->eta(400), rd->eta(700));
+        EXPECT_EQ(rd->distribution().type(), MD::Type::GGX);
+        ASSERT_NE(rd->interior_absorption(), nullptr);
+    }
+    {
+        Props p = make("roughconductor");
+        p.set("alpha_u", 0.1, kLoc);
+        p.set("alpha_v", 0.3, kLoc);
+        p.set("material", std::string("Au"), kLoc);
+        auto* rc = dynamic_cast<RoughConductorBSDF*>(create_bsdf(p).get());
+        ASSERT_NE(rc, nullptr);
+        EXPECT_DOUBLE_EQ(rc->distribution().alpha_v(), 0.3);
+    }
+    for (const char* t : {"diffuse", "dielectric", "thindielectric", "conductor", "plastic"}) {
+        EXPECT_NE(create_bsdf(make(t)), nullptr) << t;
+    }
+    {
+        Props p = make("twosided");
+        p.add_child("", std::make_shared<DiffuseBSDF>(Spectrum::constant(0.5)), kLoc);
+        EXPECT_NE(dynamic_cast<TwoSidedBSDF*>(create_bsdf(p).get()), nullptr);
+    }
+}
+
+TEST(BsdfFactory, RejectsBadInput) {
+    auto throws = [](Props p) { EXPECT_THROW(create_bsdf(p), SceneError) << p.type(); };
+    throws(make("velvet"));
+    {
+        Props p = make("roughconductor");
+        p.set("alpha", -0.1, kLoc);
+        throws(p);
+    }
+    {
+        Props p = make("roughdielectric");
+        p.set("distribution", std::string("phong"), kLoc);
+        throws(p);
+    }
+    {
+        Props p = make("diffuse");
+        p.set("reflectanse", 0.5, kLoc);  // typo: unused parameter
+        throws(p);
+    }
+    {
+        Props p = make("conductor");
+        p.set("material", std::string("Xx"), kLoc);
+        throws(p);
+    }
+    {
+        Props p = make("dielectric");
+        p.set("int_ior", std::string("unobtainium"), kLoc);
+        throws(p);
+    }
+    {
+        Props p = make("twosided");
+        p.add_child("", std::make_shared<DielectricBSDF>(Spectrum::constant(1.5), Spectrum::constant(1.0)), kLoc);
+        throws(p);  // transmissive BSDFs cannot be two-sided
+    }
+}
+
+}  // namespace

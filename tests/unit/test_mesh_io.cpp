@@ -1,0 +1,161 @@
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <bit>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+#include "io/mesh_obj.h"
+#include "io/mesh_ply.h"
+
+using namespace snell;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path temp_dir() {
+    const fs::path d = fs::temp_directory_path() / ("snell_mesh_io_" + std::to_string(::getpid()));
+    fs::create_directories(d);
+    return d;
+}
+
+void write(const fs::path& p, const std::string& s) {
+    std::ofstream f(p, std::ios::binary);
+    f << s;
+}
+
+template <typename T>
+void put(std::string& out, T v, bool big_endian) {
+    unsigned char b[sizeof(T)];
+    std::memcpy(b, &v, sizeof(T));
+    if (big_endian == (std::endian::native == std::endian::little))
+        for (size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
+    out.append(reinterpret_cast<const char*>(b), sizeof(T));
+}
+
+void expect_throws_naming(const std::function<void()>& f, const std::string& path,
+                          const std::string& what = "") {
+    try {
+        f();
+        ADD_FAILURE() << "no exception for " << path;
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+        if (!what.empty()) {
+            EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+        }
+    }
+}
+
+}  // namespace
+
+TEST(MeshIo, ObjQuadsNormalsUvs) {
+    const fs::path p = temp_dir() / "quad.obj";
+    write(p,
+          "# two quads sharing an edge\n"
+          "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
+          "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+          "vn 0 0 1\n"
+          "f 1/1/1 2/2/1 3/3/1 4/4/1\n"
+          "f 2/1/1 5/2/1 6/3/1 3/4/1\n");
+    const MeshData m = load_obj(p.string());
+    EXPECT_EQ(m.triangles.size(), 4u);
+    // Vertex 2 appears with two different uvs, so it is split: 8 unique corners.
+    EXPECT_EQ(m.positions.size(), 8u);
+    ASSERT_EQ(m.normals.size(), m.positions.size());
+    ASSERT_EQ(m.uvs.size(), m.positions.size());
+    for (const auto& t : m.triangles) {
+        const Vec3 n =
+            cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
+        EXPECT_GT(n.z, 0);  // winding preserved
+        for (uint32_t k : t) EXPECT_EQ(m.normals[k], Vec3(0, 0, 1));
+    }
+}
+
+TEST(MeshIo, ObjErrorsNameThePath) {
+    const fs::path missing = temp_dir() / "does_not_exist.obj";
+    expect_throws_naming([&] { load_obj(missing.string()); }, missing.string(), "not found");
+    const fs::path bad = temp_dir() / "bad.obj";
+    write(bad, "v 0 0 0\nv 1 0 0\nf 1 2 9\n");
+    expect_throws_naming([&] { load_obj(bad.string()); }, bad.string());
+}
+
+TEST(MeshIo, PlyAscii) {
+    const fs::path p = temp_dir() / "ascii.ply";
+    write(
+        p,
+        "ply\nformat ascii 1.0\ncomment test\n"
+        "element vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
+        "property float nx\nproperty float ny\nproperty float nz\nproperty float s\nproperty float "
+        "t\n"
+        "element face 2\nproperty list uchar int vertex_indices\n"
+        "element edge 1\nproperty int vertex1\nproperty int vertex2\n"
+        "end_header\n"
+        "0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n1 1 0 0 0 1 1 1\n0 1 0 0 0 1 0 1\n0.5 2 0 0 0 1 0.5 1\n"
+        "4 0 1 2 3\n3 3 2 4\n"
+        "0 1\n");
+    const MeshData m = load_ply(p.string());
+    EXPECT_EQ(m.positions.size(), 5u);
+    EXPECT_EQ(m.triangles.size(), 3u);
+    EXPECT_EQ(m.normals.size(), 5u);
+    ASSERT_EQ(m.uvs.size(), 5u);
+    EXPECT_EQ(m.uvs[4].x, 0.5);
+    EXPECT_EQ(m.positions[4].y, 2.0);
+    EXPECT_EQ(m.triangles[2], (std::array<uint32_t, 3>{3, 2, 4}));
+}
+
+class MeshIoBinary : public ::testing::TestWithParam<bool> {};
+
+TEST_P(MeshIoBinary, PlyBinary) {
+    const bool big = GetParam();
+    std::string body;
+    const double pos[4][3] = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0.5}};
+    for (int i = 0; i < 4; ++i) {
+        put<double>(body, pos[i][0], big);
+        put<double>(body, pos[i][1], big);
+        put<double>(body, pos[i][2], big);
+        put<float>(body, 0.25f * float(i), big);  // u
+        put<float>(body, 0.5f, big);              // v
+        put<uint8_t>(body, 7, big);               // an ignored property
+    }
+    put<uint8_t>(body, 4, big);  // one quad with uint indices
+    for (uint32_t k : {0u, 1u, 2u, 3u}) put<uint32_t>(body, k, big);
+    put<int16_t>(body, -3, big);  // an ignored per-face property
+    const std::string header =
+        std::string("ply\nformat ") + (big ? "binary_big_endian" : "binary_little_endian") +
+        " 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
+        "property float u\nproperty float v\nproperty uchar flags\n"
+        "element face 1\nproperty list uchar uint vertex_index\nproperty short tag\n"
+        "end_header\n";
+    const fs::path p = temp_dir() / (big ? "be.ply" : "le.ply");
+    write(p, header + body);
+    const MeshData m = load_ply(p.string());
+    ASSERT_EQ(m.positions.size(), 4u);
+    EXPECT_EQ(m.triangles.size(), 2u);
+    EXPECT_TRUE(m.normals.empty());
+    ASSERT_EQ(m.uvs.size(), 4u);
+    EXPECT_EQ(m.positions[3], Vec3(0, 1, 0.5));
+    EXPECT_EQ(m.uvs[2].x, 0.5);
+
+    // Truncated body: the error names the file.
+    const fs::path t = temp_dir() / (big ? "be_trunc.ply" : "le_trunc.ply");
+    write(t, header + body.substr(0, body.size() - 5));
+    expect_throws_naming([&] { load_ply(t.string()); }, t.string(), "end of file");
+}
+INSTANTIATE_TEST_SUITE_P(Endianness, MeshIoBinary, ::testing::Values(false, true));
+
+TEST(MeshIo, PlyErrorsNameThePath) {
+    const fs::path missing = temp_dir() / "nope.ply";
+    expect_throws_naming([&] { load_ply(missing.string()); }, missing.string(), "not found");
+    const fs::path bad = temp_dir() / "bad_header.ply";
+    write(bad, "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n0\n");
+    expect_throws_naming([&] { load_ply(bad.string()); }, bad.string(), "x, y or z");
+    const fs::path idx = temp_dir() / "bad_index.ply";
+    write(idx,
+          "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty "
+          "float z\n"
+          "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 "
+          "0\n3 0 1 5\n");
+    expect_throws_naming([&] { load_ply(idx.string()); }, idx.string(), "vertex 5");
+}
