@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <thread>
 
 #include "builtin_scenes.h"
@@ -65,7 +66,7 @@ Image film_to_image(const Film& film) {
 }
 
 int cmd_render(const std::string& scene_arg, std::string out, int spp, double time_limit, int threads,
-               uint64_t seed, double exposure, std::string stats_path, bool quiet,
+               std::optional<uint64_t> seed_arg, double exposure, std::string stats_path, bool quiet,
                const std::vector<std::string>& define_items) {
     const Defines defines = parse_defines(define_items);
     LoadedScene ls = load(scene_arg, defines);
@@ -76,6 +77,7 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
     opt.spp = spp > 0 ? spp : ls.spp;
     opt.time_limit = time_limit;
     opt.threads = threads;
+    const uint64_t seed = seed_arg ? *seed_arg : ls.seed;  // --seed overrides the scene's <sampler> seed
     opt.seed = seed;
     opt.progress = !quiet;
 
@@ -159,7 +161,7 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber)
         ->excludes(spp_opt);
     render_cmd->add_option("-t,--threads", threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
-    render_cmd->add_option("--seed", seed, "sampler seed (default 0)");
+    auto* seed_opt = render_cmd->add_option("--seed", seed, "sampler seed (default: the scene's <sampler> seed, else 0)");
     render_cmd->add_option("--exposure", exposure, "PNG exposure in stops");
     render_cmd->add_option("--stats", stats_path, "stats JSON path (default: beside the EXR)");
     render_cmd->add_option("-D,--define", defines, "override a scene <default>: -D name=value")->allow_extra_args(false);
@@ -172,7 +174,9 @@ int main(int argc, char** argv) {
     }
     try {
         if (render_cmd->parsed())
-            return cmd_render(scene_arg, out, spp, time_limit, threads, seed, exposure, stats_path, quiet, defines);
+            return cmd_render(scene_arg, out, spp, time_limit, threads,
+                              seed_opt->count() ? std::optional<uint64_t>(seed) : std::nullopt, exposure,
+                              stats_path, quiet, defines);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "snell: error: %s\n", e.what());
         return 1;

@@ -18,14 +18,12 @@ target_link_libraries(snell_bsdf PUBLIC snell_spectral snell_props)
 snell_test(test_bsdf_chi2
   SOURCES tests/stat/test_bsdf_chi2.cpp
   LIBS snell_bsdf)
-target_include_directories(test_bsdf_chi2 PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+
 
 snell_test(test_bsdf_furnace
   SOURCES tests/stat/test_bsdf_furnace.cpp
   LIBS snell_bsdf)
-target_include_directories(test_bsdf_furnace PRIVATE ${PROJECT_SOURCE_DIR}/tests)
 
 snell_test(test_bsdf_unit
   SOURCES tests/unit/test_bsdf_unit.cpp
   LIBS snell_bsdf)
-target_include_directories(test_bsdf_unit PRIVATE ${PROJECT_SOURCE_DIR}/tests)

@@ -10,4 +10,3 @@ set(SNELL_ALL_LIBS snell_loader snell_integrators)
 snell_test(test_integrators
   SOURCES tests/stat/test_integrator_agreement.cpp tests/stat/test_furnace.cpp tests/unit/test_render_determinism.cpp
   LIBS ${SNELL_ALL_LIBS})
-target_include_directories(test_integrators PRIVATE ${PROJECT_SOURCE_DIR}/tests)

@@ -16,9 +16,7 @@ target_link_libraries(snell_light PUBLIC snell_spectral snell_props snell_geomet
 snell_test(test_light
   SOURCES tests/unit/test_light.cpp
   LIBS snell_light)
-target_include_directories(test_light PRIVATE ${PROJECT_SOURCE_DIR}/tests)
 
 snell_test(test_light_stat
   SOURCES tests/stat/test_light_stat.cpp
   LIBS snell_light)
-target_include_directories(test_light_stat PRIVATE ${PROJECT_SOURCE_DIR}/tests)

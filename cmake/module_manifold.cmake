@@ -12,4 +12,3 @@ target_link_libraries(snell_manifold PUBLIC snell_geometry)
 snell_test(test_manifold
   SOURCES tests/manifold/test_constraints.cpp tests/manifold/test_walk.cpp
   LIBS snell_manifold)
-target_include_directories(test_manifold PRIVATE ${PROJECT_SOURCE_DIR}/tests)

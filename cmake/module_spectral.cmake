@@ -18,7 +18,9 @@ snell_test(test_image
   SOURCES tests/unit/test_image.cpp tests/unit/test_image_stats.cpp
           tests/unit/test_image_progress.cpp
   LIBS snell_spectral OpenEXR::OpenEXR ${STB_LIBRARY})
-target_include_directories(test_image PRIVATE ${STB_INCLUDE_DIR})
+if(TARGET test_image)
+  target_include_directories(test_image PRIVATE ${STB_INCLUDE_DIR})
+endif()
 
 snell_test(test_film
   SOURCES tests/unit/test_film.cpp

@@ -126,8 +126,13 @@ Spectrum Props::get_spectrum(const std::string& name, SpectrumUse use, const Spe
     if (!e) return def;
     e->used = true;
     const Value& v = e->value;
-    if (const double* d = std::get_if<double>(&v)) return Spectrum::constant(*d);
-    if (const int64_t* i = std::get_if<int64_t>(&v)) return Spectrum::constant(double(*i));
+    // A single number is grey: for emitters that is the white illuminant scaled (as Mitsuba
+    // scales D65), so <float name="radiance" value="5"/> is white light, not equal energy.
+    const auto grey = [&](double x) {
+        return use == SpectrumUse::Illuminant ? Spectrum::from_rgb_illuminant(RGB(x)) : Spectrum::constant(x);
+    };
+    if (const double* d = std::get_if<double>(&v)) return grey(*d);
+    if (const int64_t* i = std::get_if<int64_t>(&v)) return grey(double(*i));
     if (const RGB* c = std::get_if<RGB>(&v)) {
         switch (use) {
             case SpectrumUse::Reflectance: return Spectrum::from_rgb_reflectance(*c);
@@ -136,7 +141,7 @@ Spectrum Props::get_spectrum(const std::string& name, SpectrumUse use, const Spe
         }
     }
     if (const SpectrumData* s = std::get_if<SpectrumData>(&v)) {
-        if (s->lambda.empty() && s->values.size() == 1) return Spectrum::constant(s->values[0]);
+        if (s->lambda.empty() && s->values.size() == 1) return grey(s->values[0]);
         if (s->lambda.empty() || s->lambda.size() != s->values.size())
             throw SceneError(e->loc, m_tag, "spectrum '" + name + "': need wavelength:value pairs or one value");
         for (size_t k = 1; k < s->lambda.size(); ++k)

@@ -131,7 +131,8 @@ private:
     std::shared_ptr<PerspectiveCamera> camera(const XmlObject& o) {
         Props p = props(o);
         if (o.type != "perspective") p.raise("unknown sensor type '" + o.type + "' (supported: perspective)");
-        const double fov = p.get_float("fov");
+        // Mitsuba's default is a 50 mm lens on 35 mm film (36 mm wide): fov_x = 39.6 degrees.
+        const double fov = p.get_float("fov", 2.0 * std::atan(36.0 / (2.0 * 50.0)) * 180.0 / kPi);
         if (!(fov > 0 && fov < 180)) p.raise_param("fov", "fov must lie in (0, 180) degrees");
         const std::string axis = p.get_string("fov_axis", "x");
         static const std::set<std::string> axes = {"x", "y", "smaller", "larger", "diagonal"};

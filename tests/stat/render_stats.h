@@ -23,7 +23,48 @@ inline LoadedScene load_xml(const std::string& xml, const Defines& d = {}) {
 /// Mean and standard error of a quantity over independent replicas.
 struct Estimate {
     double mean = 0, stderr_ = 0;
+    int n = 0;  ///< replicas
 };
+
+/// Regularised incomplete beta I_x(a, b) by Lentz's continued fraction (converges for
+/// x < (a + 1) / (a + b + 2); the symmetry I_x(a,b) = 1 - I_{1-x}(b,a) covers the rest).
+inline double incomplete_beta(double a, double b, double x) {
+    if (x <= 0) return 0;
+    if (x >= 1) return 1;
+    if (x > (a + 1) / (a + b + 2)) return 1 - incomplete_beta(b, a, 1 - x);
+    const double log_front = std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log1p(-x);
+    const double tiny = 1e-300;
+    double f = 1, c = 1, d = 0;
+    for (int i = 0; i <= 400; ++i) {
+        const int m = i / 2;
+        double num;
+        if (i == 0) num = 1;
+        else if (i % 2 == 0) num = m * (b - m) * x / ((a + 2 * m - 1) * (a + 2 * m));
+        else num = -(a + m) * (a + b + m) * x / ((a + 2 * m) * (a + 2 * m + 1));
+        d = 1 + num * d;
+        if (std::abs(d) < tiny) d = tiny;
+        d = 1 / d;
+        c = 1 + num / c;
+        if (std::abs(c) < tiny) c = tiny;
+        const double cd = c * d;
+        f *= cd;
+        if (std::abs(1 - cd) < 1e-14) break;
+    }
+    return std::exp(log_front) * (f - 1) / a;
+}
+
+/// Two-sided tail probability P(|T| > t) of Student's t with nu degrees of freedom.
+inline double student_t_two_sided_p(double t, double nu) { return incomplete_beta(0.5 * nu, 0.5, nu / (nu + t * t)); }
+
+/// Welch's two-sample t-test of equal means; returns the two-sided p-value.
+inline double welch_p_value(const Estimate& a, const Estimate& b) {
+    const double va = a.stderr_ * a.stderr_, vb = b.stderr_ * b.stderr_;
+    const double diff = std::abs(a.mean - b.mean);
+    if (va + vb == 0) return diff <= 1e-12 * std::max(std::abs(a.mean), std::abs(b.mean)) ? 1.0 : 0.0;
+    const double t = diff / std::sqrt(va + vb);
+    const double nu = sqr(va + vb) / (va * va / (a.n - 1) + vb * vb / (b.n - 1));
+    return student_t_two_sided_p(t, nu);
+}
 
 /// Block-averaged linear sRGB luminance (or one channel) of `replicas` independent renders.
 /// Returns per block the mean and standard error across replicas.
@@ -58,40 +99,35 @@ inline std::vector<Estimate> block_estimates(const LoadedScene& ls, const Integr
         double var = 0;
         for (double x : v) var += (x - m) * (x - m);
         var /= double(v.size() - 1);
-        out.push_back({m, std::sqrt(var / double(v.size()))});
+        out.push_back({m, std::sqrt(var / double(v.size())), int(v.size())});
     }
     return out;
 }
 
-/// Two-sided normal quantile for a Bonferroni-corrected family of `n` tests at level alpha.
-inline double bonferroni_z(double alpha, size_t n) {
-    // Bisection on the normal tail: P(|Z| > z) = alpha / n.
-    const double target = alpha / double(n);
-    double lo = 0, hi = 40;
-    for (int i = 0; i < 200; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        if (std::erfc(mid / std::sqrt(2.0)) > target) lo = mid; else hi = mid;
-    }
-    return 0.5 * (lo + hi);
-}
-
-/// Expects that two independent estimators agree per block within their joint standard error.
-/// Blocks whose both estimates have zero variance must agree exactly.
+/// Expects that two independent estimators agree per block: Welch's t-test per block (the
+/// standard errors come from few replicas, so Student's t, not the normal), with a
+/// Bonferroni correction over the blocks at family-wise level alpha.
 inline void expect_agreement(const std::vector<Estimate>& a, const std::vector<Estimate>& b, double alpha,
                              const char* what) {
     ASSERT_EQ(a.size(), b.size());
-    const double z = bonferroni_z(alpha, a.size());
+    const double threshold = alpha / double(a.size());
     int failures = 0;
     for (size_t i = 0; i < a.size(); ++i) {
-        const double se = std::sqrt(a[i].stderr_ * a[i].stderr_ + b[i].stderr_ * b[i].stderr_);
-        const double diff = std::abs(a[i].mean - b[i].mean);
-        if (diff > z * se + 1e-12 * std::max(a[i].mean, b[i].mean)) {
+        const double p = welch_p_value(a[i], b[i]);
+        if (p < threshold) {
             if (++failures <= 5)
                 ADD_FAILURE() << what << ": block " << i << " differs: " << a[i].mean << " +- " << a[i].stderr_ << " vs "
-                              << b[i].mean << " +- " << b[i].stderr_ << " (z threshold " << z << ")";
+                              << b[i].mean << " +- " << b[i].stderr_ << " (p = " << p << " < " << threshold << ")";
         }
     }
     EXPECT_EQ(failures, 0) << what;
+}
+
+/// Number of blocks where the two estimators differ at family-wise level alpha.
+inline int count_disagreements(const std::vector<Estimate>& a, const std::vector<Estimate>& b, double alpha) {
+    int n = 0;
+    for (size_t i = 0; i < a.size(); ++i) n += welch_p_value(a[i], b[i]) < alpha / double(a.size());
+    return n;
 }
 
 }  // namespace snell::test

@@ -55,11 +55,6 @@ TEST(IntegratorAgreement, DetectsABrighterLight) {
     LoadedScene b_scene = load_xml(brighter, {{"integrator", "nee"}});
     const auto a = block_estimates(a_scene, *a_scene.scene->integrator(), 16, 8, 6, 3000);
     const auto b = block_estimates(b_scene, *b_scene.scene->integrator(), 16, 8, 6, 4000);
-    const double z = bonferroni_z(0.01, a.size());
-    int differing = 0;
-    for (size_t i = 0; i < a.size(); ++i) {
-        const double se = std::sqrt(a[i].stderr_ * a[i].stderr_ + b[i].stderr_ * b[i].stderr_);
-        differing += std::abs(a[i].mean - b[i].mean) > z * se;
-    }
+    const int differing = count_disagreements(a, b, 0.01);
     EXPECT_GT(differing, int(a.size()) / 2);
 }
