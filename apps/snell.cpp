@@ -129,7 +129,8 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
     write_stats_json(stats_path, rep);
 
     const double s = std::max(r.seconds, 1e-9);
-    std::fprintf(stderr,
+    if (!quiet || r.interrupted)
+        std::fprintf(stderr,
                  "snell: %s%.2f s, %llu spp (mean %.1f), %.3g paths/s, %.3g rays/s; discarded NaN %llu, Inf %llu, "
                  "negative %llu\n  wrote %s, %s, %s\n",
                  r.interrupted ? "INTERRUPTED after " : "", r.seconds, (unsigned long long)r.spp_completed,

@@ -15,3 +15,8 @@ if(SNELL_BUILD_BENCH)
   target_include_directories(snell_bench PRIVATE ${PROJECT_SOURCE_DIR}/apps)
   target_link_libraries(snell_bench PRIVATE snell_loader snell_integrators benchmark::benchmark)
 endif()
+
+if(SNELL_BUILD_TESTS)
+  add_test(NAME cli.end_to_end COMMAND bash ${PROJECT_SOURCE_DIR}/tests/cli/test_cli.sh $<TARGET_FILE:snell>)
+  set_tests_properties(cli.end_to_end PROPERTIES TIMEOUT 300)
+endif()

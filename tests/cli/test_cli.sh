@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# End-to-end checks of the `snell` command (run by ctest): errors name file:line, Ctrl-C still
+# writes the image, --time stops at the budget, the stats JSON is complete.
+set -u
+SNELL="$1"
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+fail=0
+check() { if ! eval "$2"; then echo "FAIL: $1"; fail=1; else echo "ok: $1"; fi; }
+
+# A small valid scene.
+cat > "$TMP/ok.xml" <<'XML'
+<scene version="3.0.0">
+  <integrator type="nee"/>
+  <sensor type="perspective">
+    <transform name="to_world"><lookat origin="0,0,4" target="0,0,0" up="0,1,0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="64"/><integer name="height" value="48"/></film>
+  </sensor>
+  <shape type="sphere"><bsdf type="dielectric"/></shape>
+  <emitter type="constant"><rgb name="radiance" value="1,1,1"/></emitter>
+</scene>
+XML
+
+# 1. Malformed XML: the error names file:line.
+printf '<scene version="3.0.0">\n  <shape type="sphere">\n</scene>\n' > "$TMP/bad.xml"
+out=$("$SNELL" render "$TMP/bad.xml" -o "$TMP/bad.exr" -q 2>&1); rc=$?
+check "malformed XML exits non-zero" "[ $rc -ne 0 ]"
+check "malformed XML names file:line" "echo \"\$out\" | grep -q 'bad.xml:[0-9]'"
+
+# 2. Unknown parameter: file:line and the element.
+sed 's|<bsdf type="dielectric"/>|<bsdf type="dielectric"><float name="int_iorr" value="1.5"/></bsdf>|' "$TMP/ok.xml" > "$TMP/unk.xml"
+out=$("$SNELL" render "$TMP/unk.xml" -o "$TMP/unk.exr" -q 2>&1); rc=$?
+check "unknown parameter exits non-zero" "[ $rc -ne 0 ]"
+check "unknown parameter names file:line and element" "echo \"\$out\" | grep -q 'unk.xml:7.*int_iorr'"
+
+# 3. Missing mesh: the path is named.
+sed 's|<shape type="sphere"><bsdf type="dielectric"/></shape>|<shape type="obj"><string name="filename" value="nowhere/missing.obj"/></shape>|' "$TMP/ok.xml" > "$TMP/mesh.xml"
+out=$("$SNELL" render "$TMP/mesh.xml" -o "$TMP/mesh.exr" -q 2>&1); rc=$?
+check "missing mesh exits non-zero" "[ $rc -ne 0 ]"
+check "missing mesh names the path" "echo \"\$out\" | grep -q 'nowhere/missing.obj'"
+
+# 4. A normal render writes EXR, PNG and a stats JSON with the promised fields.
+"$SNELL" render "$TMP/ok.xml" -o "$TMP/ok.exr" --spp 4 -q; rc=$?
+check "render succeeds" "[ $rc -eq 0 ]"
+check "EXR, PNG and JSON written" "[ -s $TMP/ok.exr ] && [ -s $TMP/ok.png ] && [ -s $TMP/ok.json ]"
+for key in seconds spp_reached paths_per_second rays_per_second discarded; do
+  check "stats JSON has $key" "grep -q '\"$key\"' $TMP/ok.json"
+done
+
+# 5. --time stops near the budget and reports the spp reached.
+"$SNELL" render "$TMP/ok.xml" -o "$TMP/timed.exr" --time 1 -q; rc=$?
+check "timed render succeeds" "[ $rc -eq 0 ]"
+check "timed render reports spp" "grep -q '\"spp_reached\": [1-9]' $TMP/timed.json"
+
+# 6. Ctrl-C (SIGINT) still writes the partial image.
+"$SNELL" render "$TMP/ok.xml" -o "$TMP/int.exr" --spp 100000000 -q &
+pid=$!
+sleep 1.5
+kill -INT $pid
+wait $pid; rc=$?
+check "interrupted render exits 130" "[ $rc -eq 130 ]"
+check "interrupted render wrote its image" "[ -s $TMP/int.exr ] && [ -s $TMP/int.png ]"
+check "stats JSON says interrupted" "grep -q '\"interrupted\": true' $TMP/int.json"
+
+# 7. -D overrides a <default>; an unknown -D is an error.
+"$SNELL" render builtin:droplet -o "$TMP/d.exr" -D res_x=32 -D res_y=24 -D spp=1 -q; rc=$?
+check "-D override renders" "[ $rc -eq 0 ] && grep -q '\"width\": 32' $TMP/d.json"
+
+exit $fail
