@@ -223,6 +223,9 @@ std::optional<ShapeSample> Sphere::sample_from(const Vec3& ref, const Vec2& u) c
 double Sphere::pdf_from(const Vec3& ref, const Vec3& p, const Vec3& n) const {
     const double dc2 = length_squared(m_center - ref), r2 = m_radius * m_radius;
     if (dc2 <= r2) return Shape::pdf_from(ref, p, n);
+    // Cone sampling only produces points on the cap facing ref; elsewhere the density is 0
+    // (MNEE asks for it at points reached by refracted paths, which may lie behind the cap).
+    if (dot(p - m_center, ref - p) <= 0) return 0.0;
     const double sin2_max = r2 / dc2;
     return 1.0 / (2 * kPi * sin2_max / (1 + safe_sqrt(1 - sin2_max)));
 }

@@ -203,11 +203,13 @@ TEST(DirectionalLight, DeltaDirectionAndFarPoint) {
     auto ls = light->sample_li({Vec3(0.5, 0, 0), Vec3()}, Vec2(0.1, 0.2), 550);
     ASSERT_TRUE(ls);
     EXPECT_EQ(ls->wi, Vec3(0, 1, 0));
-    EXPECT_EQ(ls->Le, 5.0);
+    // A <float> irradiance is grey: 5 times the renderer's white illuminant.
+    const Spectrum white5 = Spectrum::from_rgb_illuminant(RGB(5.0));
+    EXPECT_NEAR(ls->Le, white5.eval(550), 1e-12);
     EXPECT_TRUE(ls->delta);
     EXPECT_EQ(ls->dist, kInfinity);
     EXPECT_GT(ls->p.y, std::sqrt(3.0));  // outside the scene's bounding sphere
-    EXPECT_NEAR(light->power(), 5.0 * kPi * 3.0, 1e-12);
+    EXPECT_NEAR(light->power(), white5.average() * kPi * 3.0, 1e-9);
     EXPECT_TRUE(light->is_infinite());
 
     Props q = make_props("directional");

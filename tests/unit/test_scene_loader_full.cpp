@@ -105,7 +105,7 @@ TEST(SceneLoaderFull, SensorFilmSamplerErrors) {
     expect_error("<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n"
                  "<film type=\"hdrfilm\">\n<rfilter type=\"lanczos\"/>\n</film>\n</sensor>\n</scene>",
                  "test.xml:5: <rfilter>", "lanczos");
-    expect_error("<scene version=\"3.0.0\">\n<sensor type=\"perspective\"/>\n</scene>", "test.xml:2: <sensor>", "fov");
+    expect_error("<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"200\"/>\n</sensor>\n</scene>", "test.xml:3: <sensor>", "fov");
 }
 
 TEST(SceneLoaderFull, EmitterPlacementErrors) {
