@@ -17,6 +17,7 @@
 #include "io/image.h"
 #include "io/scene_loader.h"
 #include "io/stats_json.h"
+#include "manifold/walk_statistics.h"
 #include "render/renderer.h"
 
 namespace fs = std::filesystem;
@@ -126,6 +127,11 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
     rep.discarded_nan = r.counters.discarded_nan;
     rep.discarded_inf = r.counters.discarded_inf;
     rep.discarded_negative = r.counters.discarded_negative;
+    const Counters& c = r.counters;
+    if (c.walks_started > 0 || c.pdf_walks > 0) {
+        rep.extra["mnee"] = mnee_stats_json(c);
+        if (!quiet) std::fprintf(stderr, "%s", mnee_stats_text(c).c_str());
+    }
     write_stats_json(stats_path, rep);
 
     const double s = std::max(r.seconds, 1e-9);

@@ -2,11 +2,16 @@
 snell_library(snell_integrators
   src/integrators/registry.cpp
   src/integrators/path/path_tracer.cpp
+  src/integrators/mnee/mnee_integrator.cpp
   src/render/renderer.cpp
 )
-target_link_libraries(snell_integrators PUBLIC snell_geometry snell_bsdf snell_light snell_props TBB::tbb)
+target_link_libraries(snell_integrators PUBLIC snell_manifold snell_geometry snell_bsdf snell_light snell_props TBB::tbb)
 
 set(SNELL_ALL_LIBS snell_loader snell_integrators)
 snell_test(test_integrators
   SOURCES tests/stat/test_integrator_agreement.cpp tests/stat/test_furnace.cpp tests/unit/test_render_determinism.cpp
   LIBS ${SNELL_ALL_LIBS})
+snell_test(test_mnee
+  SOURCES tests/stat/test_mnee_agreement.cpp
+  LIBS ${SNELL_ALL_LIBS})
+snell_test(test_path_features SOURCES tests/stat/test_path_features.cpp LIBS ${SNELL_ALL_LIBS})

@@ -6,8 +6,11 @@ snell_library(snell_manifold
   src/manifold/block_tridiagonal.cpp
   src/manifold/manifold_walk.cpp
   src/manifold/generalized_geometry.cpp
+  src/manifold/seed_path.cpp
+  src/manifold/mnee.cpp
+  src/manifold/walk_statistics.cpp
 )
-target_link_libraries(snell_manifold PUBLIC snell_geometry)
+target_link_libraries(snell_manifold PUBLIC snell_geometry snell_bsdf snell_light nlohmann_json::nlohmann_json)
 
 snell_test(test_manifold
   SOURCES tests/manifold/test_constraints.cpp tests/manifold/test_walk.cpp

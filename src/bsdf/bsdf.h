@@ -14,6 +14,8 @@
 
 namespace snell {
 
+class MicrofacetDistribution;
+
 enum class TransportMode { Radiance, Importance };
 
 /// Lobe classification flags (bitwise).
@@ -53,6 +55,16 @@ public:
     bool is_transmissive() const { return (flags() & kTransmission) != 0; }
     /// Non-delta lobes exist (light sampling is worthwhile).
     bool is_smooth_sampled() const { return (flags() & (kDiffuse | kGlossy)) != 0; }
+
+    /// Paper Eq. 9: the value kappa of a delta lobe in delta-half-vector measure for a pair
+    /// (wo, wi) that obeys the specular law -- Fresnel R for reflection, (1 - F) with the
+    /// radiance scaling for refraction, times the specular factors. 0 without delta lobes.
+    virtual double eval_delta(const BSDFContext& /*ctx*/, const Vec3& /*wo*/, const Vec3& /*wi*/) const { return 0; }
+    /// Discrete probability with which sample() picks the delta lobe connecting wo to wi.
+    virtual double pdf_delta(const BSDFContext& /*ctx*/, const Vec3& /*wo*/, const Vec3& /*wi*/) const { return 0; }
+    /// The microfacet distribution of a rough interface (MNEE samples its half vectors from
+    /// it, paper Sec. 3.2), or nullptr.
+    virtual const MicrofacetDistribution* microfacet() const { return nullptr; }
 
     /// Interior over exterior IOR at lambda (1 for non-dielectrics). Used by MNEE's constraints.
     virtual double eta(double /*lambda*/) const { return 1.0; }

@@ -38,4 +38,18 @@ std::optional<BSDFSample> DielectricBSDF::sample(const BSDFContext& ctx, const V
     return s;
 }
 
+double DielectricBSDF::eval_delta(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
+    if (wo.z == 0 || wi.z == 0) return 0;
+    const DielectricFresnel f = fresnel_dielectric(wo.z, eta(ctx.lambda));
+    if (wo.z * wi.z > 0) return f.R * m_specular_reflectance.eval(ctx.lambda);
+    const double scale = ctx.mode == TransportMode::Radiance ? sqr(f.eta_ti) : 1.0;
+    return (1 - f.R) * m_specular_transmittance.eval(ctx.lambda) * scale;
+}
+
+double DielectricBSDF::pdf_delta(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
+    if (wo.z == 0 || wi.z == 0) return 0;
+    const double R = fresnel_dielectric(wo.z, eta(ctx.lambda)).R;
+    return wo.z * wi.z > 0 ? R : 1 - R;
+}
+
 }  // namespace snell

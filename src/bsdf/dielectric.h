@@ -26,6 +26,10 @@ public:
     std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc,
                                      const Vec2& u) const override;
     uint32_t flags() const override { return kReflection | kTransmission | kSpecular; }
+    /// kappa of Eq. 9: F or (1 - F) (radiance-scaled) depending on the sides of wo and wi.
+    double eval_delta(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
+    /// F or 1 - F: the probability with which sample() chooses that lobe.
+    double pdf_delta(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
 
     double eta(double lambda) const override { return m_int_ior(lambda) / m_ext_ior(lambda); }
     const Spectrum* interior_absorption() const override {

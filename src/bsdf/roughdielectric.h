@@ -33,6 +33,7 @@ public:
         return m_sigma_a ? &*m_sigma_a : nullptr;
     }
     const MicrofacetDistribution& distribution() const { return m_distr; }
+    const MicrofacetDistribution* microfacet() const override { return &m_distr; }
 
 private:
     /// Generalised half vector of (wo, wi), oriented to +z; false when degenerate.

@@ -3,6 +3,7 @@
 
 #include "core/props.h"
 #include "integrators/integrator.h"
+#include "integrators/mnee/mnee_integrator.h"
 #include "integrators/path/path_tracer.h"
 
 namespace snell {
@@ -16,6 +17,9 @@ const std::map<std::string, Factory>& registry() {
     static const std::map<std::string, Factory> r = {
         {"path", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), false); }},
         {"nee", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), true); }},
+        {"mnee", [](const Props& p) {
+             return std::make_shared<MneeIntegrator>(PathSettings::from_props(p), MneeIntegrator::settings_from_props(p));
+         }},
     };
     return r;
 }

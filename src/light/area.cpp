@@ -45,6 +45,14 @@ double AreaLight::pdf_li(const LightSampleContext& ref, const Vec3& p, const Vec
     return m_shape->pdf_from(ref.p, p, n);
 }
 
+double AreaLight::pdf_point(const Vec3& ref, const Vec3& p, const Vec3& n) const {
+    const Vec3 d = p - ref;
+    const double dist2 = length_squared(d);
+    const double cos_light = -dot(n, d) / std::sqrt(dist2);
+    if (!(cos_light > 0)) return 0;  // sample_li's one-sided culling
+    return m_shape->pdf_from(ref, p, n) * cos_light / dist2;
+}
+
 double AreaLight::le(const Vec3& /*p*/, const Vec3& n, const Vec3& w, double lambda) const {
     return dot(n, w) > 0 ? m_radiance.eval(lambda) : 0.0;
 }

@@ -24,6 +24,8 @@ public:
     /// Shape::pdf_from(ref.p, p, n): solid-angle density at ref.
     double pdf_li(const LightSampleContext& ref, const Vec3& p, const Vec3& n, const Vec3& wi) const override;
     /// radiance if dot(n, w) > 0, else 0.
+    /// Area density of sample_li's point, zero where the light faces away from ref.
+    double pdf_point(const Vec3& ref, const Vec3& p, const Vec3& n) const override;
     double le(const Vec3& p, const Vec3& n, const Vec3& w, double lambda) const override;
     /// Average radiance * area * pi.
     double power() const override;

@@ -52,6 +52,15 @@ public:
     /// Infinite lights: radiance arriving along a ray escaping the scene in unit direction d.
     virtual double le_escaped(const Vec3& /*d*/, double /*lambda*/) const { return 0; }
 
+    /// MNEE (paper Alg. 2, first line): density in area measure with which sample_li(ref)
+    /// returns the light point p with normal n, including its culling (0 where sample_li never
+    /// returns p). Delta-position lights (point, spot) return 1; lights at infinity 0.
+    virtual double pdf_point(const Vec3& /*ref*/, const Vec3& /*p*/, const Vec3& /*n*/) const { return 0; }
+    /// MNEE: emission leaving light point p (normal n) along unit direction w: radiance for
+    /// area lights, intensity for point and spot lights (the admissible path leaves the light
+    /// in a different direction than the seed path, so this is evaluated afresh).
+    virtual double emitted(const Vec3& p, const Vec3& n, const Vec3& w, double lambda) const { return le(p, n, w, lambda); }
+
     /// Emitted power, averaged over the visible range (for light selection; need not be exact).
     virtual double power() const = 0;
     /// Called once the scene bounds are known (infinite and directional lights need them).

@@ -32,4 +32,8 @@ std::optional<LightSample> PointLight::sample_li(const LightSampleContext& ref, 
 
 double PointLight::power() const { return 4 * kPi * m_intensity.average(); }
 
+double PointLight::emitted(const Vec3&, const Vec3&, const Vec3& w, double lambda) const {
+    return m_intensity.eval(lambda);
+}
+
 }  // namespace snell

@@ -59,4 +59,8 @@ double SpotLight::power() const {
     return 2 * kPi * ((1 - m_cos_beam) + ramp) * m_intensity.average();
 }
 
+double SpotLight::emitted(const Vec3&, const Vec3&, const Vec3& w, double lambda) const {
+    return m_intensity.eval(lambda) * falloff(w);
+}
+
 }  // namespace snell

@@ -6,7 +6,6 @@
 #include "core/props.h"
 #include "core/stats.h"
 #include "geometry/scene.h"
-#include "integrators/medium_stack.h"
 #include "integrators/mis.h"
 
 namespace snell {
@@ -21,44 +20,71 @@ PathSettings PathSettings::from_props(const Props& props) {
     return s;
 }
 
-double PathTracer::bsdf_hit_weight(double bsdf_pdf, double light_pdf_sa) const {
-    return power_heuristic(bsdf_pdf, light_pdf_sa);
+std::optional<LightSample> PathTracer::sample_light(const Scene& scene, const SurfaceInteraction& si, double lambda,
+                                                    Sampler& sampler, const Light** light, double* pmf) {
+    *light = scene.light_sampler().sample(sampler.next_1d(), pmf);
+    const Vec2 u = sampler.next_2d();
+    if (!*light || !(*pmf > 0)) return std::nullopt;
+    auto ls = (*light)->sample_li({si.p, si.n}, u, lambda);
+    if (!ls || !(ls->pdf > 0) || !(ls->Le > 0)) return std::nullopt;
+    return ls;
+}
+
+double PathTracer::nee_estimate(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
+                                const PathState& state, const LightSample& ls, double pmf, double w) {
+    const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls.wi);
+    const double f = bsdf.eval(ctx, wo, wi) * std::abs(wi.z);
+    // Unoccluded, so the shadow segment lies entirely in the current medium.
+    const double tr = state.media.inside() ? state.media.transmittance(ls.dist, ctx.lambda) : 1.0;
+    return f * tr * ls.Le * w / (pmf * ls.pdf);
+}
+
+double PathTracer::nee_weight(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
+                              const LightSample& ls, double pmf) {
+    // Delta lights cannot be hit by BSDF sampling.
+    if (ls.delta) return 1.0;
+    return power_heuristic(pmf * ls.pdf, bsdf.pdf(ctx, si.to_local(si.wo), si.to_local(ls.wi)));
+}
+
+double PathTracer::nee_connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
+                               const BSDFContext& ctx, const PathState& state, const LightSample& ls, double pmf) {
+    if (!(bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls.wi)) > 0)) return 0;
+    const Ray shadow = std::isinf(ls.dist) ? scene.spawn_ray(si, ls.wi) : scene.spawn_ray_to(si, ls.p);
+    if (scene.occluded(shadow)) return 0;
+    return nee_estimate(si, bsdf, ctx, state, ls, pmf, nee_weight(si, bsdf, ctx, ls, pmf));
 }
 
 double PathTracer::connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
-                                    const BSDFContext& ctx, const MediumStack& media,
-                                    Sampler& sampler) const {
+                                    const BSDFContext& ctx, const PathState& state, Sampler& sampler) const {
+    const Light* light = nullptr;
     double pmf = 0;
-    const Light* light = scene.light_sampler().sample(sampler.next_1d(), &pmf);
-    const Vec2 u = sampler.next_2d();
-    if (!light || pmf <= 0) return 0;
-    const auto ls = light->sample_li({si.p, si.n}, u, ctx.lambda);
-    if (!ls || !(ls->pdf > 0) || !(ls->Le > 0)) return 0;
+    const auto ls = sample_light(scene, si, ctx.lambda, sampler, &light, &pmf);
+    return ls ? nee_connect(scene, si, bsdf, ctx, state, *ls, pmf) : 0.0;
+}
 
-    const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls->wi);
-    const double f = bsdf.eval(ctx, wo, wi) * std::abs(wi.z);
-    if (!(f > 0)) return 0;
-    const Ray shadow = std::isinf(ls->dist) ? scene.spawn_ray(si, ls->wi) : scene.spawn_ray_to(si, ls->p);
-    if (scene.occluded(shadow)) return 0;
-    // Unoccluded, so the shadow segment lies entirely in the current medium.
-    const double tr = media.inside() ? media.transmittance(ls->dist, ctx.lambda) : 1.0;
-    // Power heuristic against BSDF sampling; delta lights cannot be hit by BSDF sampling.
-    const double w = ls->delta ? 1.0 : power_heuristic(pmf * ls->pdf, bsdf.pdf(ctx, wo, wi));
-    return f * tr * ls->Le * w / (pmf * ls->pdf);
+double PathTracer::emitter_hit_weight(const Scene& scene, const PathState& state, const Light& light, const Vec3& p,
+                                      const Vec3& n, const Vec3& d, double /*lambda*/) const {
+    if (!m_nee || state.prev_delta) return 1.0;
+    const double light_pdf = scene.light_sampler().pmf(&light) * light.pdf_li(state.prev, p, n, d);
+    return power_heuristic(state.prev_bsdf_pdf, light_pdf);
+}
+
+void PathTracer::on_scatter(PathState& state, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFSample& bs,
+                            double /*lambda*/) const {
+    state.prev_delta = bs.is_delta();
+    state.prev_bsdf_pdf = bs.pdf;
+    state.prev = {si.p, si.n};
+    if ((bs.lobe & kTransmission) && bs.eta != 1.0) state.media.cross(bsdf.interior_absorption(), dot(si.wo, si.ng) > 0);
 }
 
 double PathTracer::li(const Ray& camera_ray, const Scene& scene, Sampler& sampler, double lambda) const {
     thread_counters().paths++;
     const BSDFContext ctx{lambda, TransportMode::Radiance};
-    const LightSampler& lights = scene.light_sampler();
 
     double L = 0, beta = 1, eta_scale = 1;
     Ray ray = camera_ray;
-    MediumStack media;
-    // State of the previous vertex for MIS of emitter hits (the camera acts like a delta).
-    bool prev_delta = true;
-    double prev_bsdf_pdf = 0;
-    LightSampleContext prev{ray.o, Vec3()};
+    PathState state;
+    state.prev = {ray.o, Vec3()};
 
     for (int depth = 0;; ++depth) {
         SurfaceInteraction si;
@@ -67,48 +93,34 @@ double PathTracer::li(const Ray& camera_ray, const Scene& scene, Sampler& sample
             if (emitters_visible) {
                 for (const Light* light : scene.infinite_lights()) {
                     const double le = light->le_escaped(ray.d, lambda);
-                    if (!(le > 0)) continue;
-                    double w = 1;
-                    if (m_nee && !prev_delta)
-                        w = bsdf_hit_weight(prev_bsdf_pdf, lights.pmf(light) * light->pdf_li(prev, Vec3(), Vec3(), ray.d));
-                    L += beta * w * le;
+                    if (le > 0) L += beta * le * emitter_hit_weight(scene, state, *light, Vec3(), Vec3(), ray.d, lambda);
                 }
             }
             break;
         }
         // Beer-Lambert along the segment just traced.
-        beta *= media.transmittance(si.t, lambda);
+        beta *= state.media.transmittance(si.t, lambda);
+        on_arrival(state, si, ray, lambda);
 
         if (const Light* em = si.emitter(); em && emitters_visible) {
             const double le = em->le(si.p, si.n, -ray.d, lambda);
-            if (le > 0) {
-                double w = 1;
-                if (m_nee && !prev_delta)
-                    w = bsdf_hit_weight(prev_bsdf_pdf, lights.pmf(em) * em->pdf_li(prev, si.p, si.n, ray.d));
-                L += beta * w * le;
-            }
+            if (le > 0) L += beta * le * emitter_hit_weight(scene, state, *em, si.p, si.n, ray.d, lambda);
         }
         if (m_settings.max_depth >= 0 && depth + 1 >= m_settings.max_depth) break;
         const BSDF* bsdf = si.bsdf();
         if (!bsdf) break;
 
-        if (m_nee && bsdf->is_smooth_sampled()) {
-            L += beta * connect_to_light(scene, si, *bsdf, ctx, media, sampler);
-        }
+        if (m_nee && bsdf->is_smooth_sampled()) L += beta * connect_to_light(scene, si, *bsdf, ctx, state, sampler);
 
         const Vec3 wo = si.to_local(si.wo);
         const auto bs = bsdf->sample(ctx, wo, sampler.next_1d(), sampler.next_2d());
         if (!bs || !(bs->weight > 0)) break;
-        const Vec3 wi = si.to_world(bs->wi);
+        BSDFSample bs_world = *bs;
+        bs_world.wi = si.to_world(bs->wi);
         beta *= bs->weight;
-        prev_delta = bs->is_delta();
-        prev_bsdf_pdf = bs->pdf;
-        prev = {si.p, si.n};
-        if ((bs->lobe & kTransmission) && bs->eta != 1.0) {
-            media.cross(bsdf->interior_absorption(), dot(si.wo, si.ng) > 0);
-            eta_scale *= sqr(bs->eta);
-        }
-        ray = scene.spawn_ray(si, wi);
+        on_scatter(state, si, *bsdf, bs_world, lambda);
+        if ((bs->lobe & kTransmission) && bs->eta != 1.0) eta_scale *= sqr(bs->eta);
+        ray = scene.spawn_ray(si, bs_world.wi);
 
         // Russian roulette on the throughput with the radiance compression of refraction undone.
         if (depth + 1 >= m_settings.rr_depth) {

@@ -1,5 +1,8 @@
 #pragma once
+#include <optional>
+
 #include "integrators/integrator.h"
+#include "integrators/path/path_state.h"
 
 namespace snell {
 
@@ -8,7 +11,9 @@ class Scene;
 struct SurfaceInteraction;
 class BSDF;
 struct BSDFContext;
-class MediumStack;
+struct BSDFSample;
+class Light;
+struct LightSample;
 
 /// Settings shared by the path-tracing family (Mitsuba names).
 struct PathSettings {
@@ -20,7 +25,7 @@ struct PathSettings {
 
 /// Unidirectional path tracer. `path` samples only the BSDF (the paper's PT); `nee` adds next
 /// event estimation combined with BSDF sampling by the power heuristic (the paper's NEE).
-/// Later techniques (MNEE) derive from it and replace the light connection.
+/// MNEE derives from it and replaces the light connection and the emitter-hit weights.
 class PathTracer : public Integrator {
 public:
     PathTracer(const PathSettings& settings, bool nee) : m_settings(settings), m_nee(nee) {}
@@ -29,15 +34,32 @@ public:
     const PathSettings& settings() const { return m_settings; }
 
 protected:
-    /// Light connection from a non-delta vertex (NEE with MIS). Returns the contribution
-    /// (to be multiplied by the path throughput).
+    /// Light connection from a vertex with a non-delta BSDF. Returns the contribution (to be
+    /// multiplied by the path throughput). Default: NEE with MIS.
     virtual double connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
-                                    const BSDFContext& ctx, const MediumStack& media,
-                                    Sampler& sampler) const;
-    /// MIS weight of an emitter hit by BSDF sampling from `prev` with solid-angle density
-    /// `bsdf_pdf` (light density computed inside). `light_pdf_sa` is the light sampling
-    /// density of the hit point seen from prev.
-    virtual double bsdf_hit_weight(double bsdf_pdf, double light_pdf_sa) const;
+                                    const BSDFContext& ctx, const PathState& state, Sampler& sampler) const;
+    /// MIS weight of an emitter found by BSDF sampling at point p (normal n; zero for lights at
+    /// infinity) along unit direction d from the previous vertex.
+    virtual double emitter_hit_weight(const Scene& scene, const PathState& state, const Light& light, const Vec3& p,
+                                      const Vec3& n, const Vec3& d, double lambda) const;
+    /// Called when the path arrives at `si` along `ray` (before connecting or scattering).
+    virtual void on_arrival(PathState& /*state*/, const SurfaceInteraction& /*si*/, const Ray& /*ray*/, double /*lambda*/) const {}
+    /// Called after the BSDF at `si` sampled `bs` (directions in world space: wi is the new one).
+    virtual void on_scatter(PathState& state, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFSample& bs,
+                            double lambda) const;
+
+    /// Picks a light and samples it as NEE does (same random numbers in the same order).
+    static std::optional<LightSample> sample_light(const Scene& scene, const SurfaceInteraction& si, double lambda,
+                                                   Sampler& sampler, const Light** light, double* pmf);
+    /// NEE for an already drawn light sample: shadow ray, power heuristic against BSDF sampling.
+    static double nee_connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
+                              const BSDFContext& ctx, const PathState& state, const LightSample& ls, double pmf);
+    /// MIS weight of NEE against BSDF sampling (power heuristic, solid angle).
+    static double nee_weight(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
+                             const LightSample& ls, double pmf);
+    /// NEE estimate for a visible light sample with MIS weight `w`: f |cos| Tr Le w / (pmf pdf).
+    static double nee_estimate(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
+                               const PathState& state, const LightSample& ls, double pmf, double w);
 
     PathSettings m_settings;
     bool m_nee;

@@ -1,0 +1,149 @@
+#include "integrators/mnee/mnee_integrator.h"
+
+#include <cmath>
+
+#include "core/props.h"
+#include "core/stats.h"
+#include "geometry/scene.h"
+#include "integrators/mis.h"
+#include "manifold/mnee.h"
+#include "manifold/seed_path.h"
+
+namespace snell {
+
+namespace {
+
+/// Power-heuristic weight of technique a among three (area densities, same measure).
+double power3(double a, double b, double c) {
+    const double a2 = a * a, s = a2 + b * b + c * c;
+    return s > 0 && std::isfinite(s) ? a2 / s : 0.0;
+}
+
+}  // namespace
+
+MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
+    MneeSettings s;
+    s.max_vertices = int(p.get_int("max_vertices", s.max_vertices));
+    s.ignore_occluders = p.get_bool("ignore_occluders", s.ignore_occluders);
+    s.cull_margin = p.get_float("cull_margin", s.cull_margin);
+    s.biased = p.get_bool("biased", s.biased);
+    s.walk.max_iterations = int(p.get_int("max_iterations", s.walk.max_iterations));
+    s.walk.threshold = p.get_float("threshold", s.walk.threshold);
+    s.walk.allow_error_increase = p.get_bool("allow_error_increase", s.walk.allow_error_increase);
+    const std::string proj = p.get_string("projection", "closest_point");
+    if (proj == "closest_point") s.walk.projection = Projection::ClosestPoint;
+    else if (proj == "raycast") s.walk.projection = Projection::RayCast;
+    else p.raise_param("projection", "projection must be 'closest_point' or 'raycast'");
+    if (s.max_vertices < 1 || s.max_vertices > RefractiveSuffix::kMaxVertices)
+        p.raise_param("max_vertices", "max_vertices must lie in [1, " + std::to_string(RefractiveSuffix::kMaxVertices) + "]");
+    if (s.walk.max_iterations < 1) p.raise_param("max_iterations", "max_iterations must be >= 1");
+    if (!(s.walk.threshold > 0)) p.raise_param("threshold", "threshold must be > 0");
+    if (!(s.cull_margin >= 0)) p.raise_param("cull_margin", "cull_margin must be >= 0");
+    return s;
+}
+
+void MneeIntegrator::on_arrival(PathState& state, const SurfaceInteraction& si, const Ray& ray, double lambda) const {
+    RefractiveSuffix& s = state.suffix;
+    if (!s.has_xb || !is_manifold_interface(si.bsdf(), lambda)) return;
+    if (s.k >= RefractiveSuffix::kMaxVertices) {
+        s.has_xb = false;
+        return;
+    }
+    // Area density of reaching this vertex: solid-angle density times |cos| / d^2.
+    s.p_prefix *= s.q_last * std::abs(dot(si.ng, ray.d)) / (si.t * si.t);
+    s.chain[size_t(s.k++)] = si;
+}
+
+void MneeIntegrator::on_scatter(PathState& state, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFSample& bs,
+                                double lambda) const {
+    RefractiveSuffix& s = state.suffix;
+    const MediumStack media_before = state.media;
+    PathTracer::on_scatter(state, si, bsdf, bs, lambda);
+    if (is_manifold_interface(&bsdf, lambda)) {
+        if (!s.has_xb) return;
+        const size_t i = size_t(s.k - 1);
+        s.specular[i] = bs.is_delta();
+        if (!(bs.lobe & kTransmission)) s.transmissions_only = false;
+        const ManifoldVertex v = ManifoldVertex::from_interaction(si, bsdf.eta(lambda));
+        s.q_last = vertex_bsdf_density(v, si.wo, bs.wi, BSDFContext{lambda, TransportMode::Radiance});
+    } else if (bsdf.is_smooth_sampled() && !bs.is_delta()) {
+        // A new x_b: MNEE connected from here.
+        s = RefractiveSuffix();
+        s.has_xb = true;
+        s.xb = si;
+        s.xb_media = media_before;
+        s.q_last = bs.pdf;
+    } else {
+        s.has_xb = false;
+    }
+}
+
+double MneeIntegrator::emitter_hit_weight(const Scene& scene, const PathState& state, const Light& light, const Vec3& p,
+                                          const Vec3& n, const Vec3& d, double lambda) const {
+    const RefractiveSuffix& s = state.suffix;
+    if (!s.has_xb || s.k == 0 || !mnee_supports(light)) return PathTracer::emitter_hit_weight(scene, state, light, p, n, d, lambda);
+    // A BSDF-sampled path x_b, x_1..x_k (refractive), x_c: three techniques can produce it.
+    const double pmf = scene.light_sampler().pmf(&light);
+    const size_t last = size_t(s.k - 1);
+    const double p_bsdf = s.p_prefix * s.q_last * std::abs(dot(n, d)) / length_squared(p - s.chain[last].p);
+    const double p_mnee = s.transmissions_only ? mnee_pdf(scene, m_mnee, s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light,
+                                                          pmf, p, n, lambda)
+                                               : 0.0;
+    const double p_nee = s.specular[last] ? 0.0 : s.p_prefix * pmf * light.pdf_point(s.chain[last].p, p, n);
+    // Sec. 3.5: outlier removal drops refractive-suffix paths that MNEE cannot find.
+    if (m_mnee.biased && !(p_mnee > 0)) return 0.0;
+    return power3(p_bsdf, p_mnee, p_nee);
+}
+
+double MneeIntegrator::connect_at_interface(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
+                                            const BSDFContext& ctx, const PathState& state, Sampler& sampler) const {
+    const RefractiveSuffix& s = state.suffix;
+    const Light* light = nullptr;
+    double pmf = 0;
+    const auto ls = sample_light(scene, si, ctx.lambda, sampler, &light, &pmf);
+    if (!ls) return 0;
+    if (!s.has_xb || s.k == 0 || !mnee_supports(*light)) return nee_connect(scene, si, bsdf, ctx, state, *ls, pmf);
+    const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls->wi);
+    if (!(bsdf.eval(ctx, wo, wi) > 0)) return 0;
+    if (scene.occluded(scene.spawn_ray_to(si, ls->p))) return 0;
+    // The path x_b, x_1..x_k = si, x_c in area measure.
+    const double p_nee = s.p_prefix * pmf * light->pdf_point(si.p, ls->p, ls->n);
+    const double p_bsdf = ls->delta ? 0.0 : s.p_prefix * bsdf.pdf(ctx, wo, wi) * std::abs(dot(ls->n, ls->wi)) / sqr(ls->dist);
+    const bool refracts = dot(si.wo, si.ng) * dot(ls->wi, si.ng) < 0;
+    const double p_mnee = s.transmissions_only && refracts
+                              ? mnee_pdf(scene, m_mnee, s.xb, *s.xb.bsdf(), s.chain.data(), s.k, *light, pmf, ls->p,
+                                         ls->n, ctx.lambda)
+                              : 0.0;
+    if (m_mnee.biased && !(p_mnee > 0)) return 0;
+    return nee_estimate(si, bsdf, ctx, state, *ls, pmf, power3(p_nee, p_bsdf, p_mnee));
+}
+
+double MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
+                                        const BSDFContext& ctx, const PathState& state, Sampler& sampler) const {
+    if (is_manifold_interface(&bsdf, ctx.lambda)) return connect_at_interface(scene, si, bsdf, ctx, state, sampler);
+
+    // Alg. 1, line 1: the light point, drawn exactly as NEE draws it.
+    const Light* light = nullptr;
+    double pmf = 0;
+    const auto ls = sample_light(scene, si, ctx.lambda, sampler, &light, &pmf);
+    if (!ls) return 0;
+    if (!mnee_supports(*light)) return nee_connect(scene, si, bsdf, ctx, state, *ls, pmf);
+
+    // Line 2: the seed path (Sec. 3.1).
+    std::vector<ManifoldVertex> chain;
+    switch (trace_seed_path(scene, si, ls->p, ctx.lambda, m_mnee, &chain)) {
+        case SeedStatus::Clear:
+            // Nothing refracts in between: MNEE is NEE (same sample, same weight).
+            if (!(bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls->wi)) > 0)) return 0;
+            return nee_estimate(si, bsdf, ctx, state, *ls, pmf, nee_weight(si, bsdf, ctx, *ls, pmf));
+        case SeedStatus::Occluded: thread_counters().seeds_occluded++; return 0;
+        case SeedStatus::TooMany: thread_counters().seeds_too_many++; return 0;
+        case SeedStatus::Refractive: break;
+    }
+    // Lines 3-5: half vectors, walk, measurement; then MIS against the other techniques.
+    const MneeConnection c = mnee_connect(scene, m_mnee, si, bsdf, ctx, state.media, *light, pmf, *ls, chain, sampler);
+    if (c.outcome != MneeOutcome::Success) return 0;
+    return c.value * power3(c.pdf_mnee, c.pdf_bsdf, c.pdf_nee_last);
+}
+
+}  // namespace snell

@@ -1,0 +1,34 @@
+#pragma once
+// `mnee`: path tracing whose light connection is manifold next event estimation (paper Sec. 3),
+// combined with BSDF sampling and with NEE at rough interface vertices by the power heuristic.
+#include "integrators/path/path_tracer.h"
+#include "manifold/mnee_settings.h"
+
+namespace snell {
+
+class MneeIntegrator : public PathTracer {
+public:
+    MneeIntegrator(const PathSettings& path, const MneeSettings& mnee) : PathTracer(path, true), m_mnee(mnee) {}
+    std::string name() const override { return m_mnee.biased ? "mnee-biased" : "mnee"; }
+    const MneeSettings& mnee_settings() const { return m_mnee; }
+    static MneeSettings settings_from_props(const Props& props);
+
+protected:
+    double connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
+                            const PathState& state, Sampler& sampler) const override;
+    double emitter_hit_weight(const Scene& scene, const PathState& state, const Light& light, const Vec3& p,
+                              const Vec3& n, const Vec3& d, double lambda) const override;
+    void on_arrival(PathState& state, const SurfaceInteraction& si, const Ray& ray, double lambda) const override;
+    void on_scatter(PathState& state, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFSample& bs,
+                    double lambda) const override;
+
+private:
+    /// NEE at a rough refractive vertex x_k, weighted against BSDF sampling and against MNEE
+    /// from x_b when the path so far is x_b followed by refractions.
+    double connect_at_interface(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
+                                const BSDFContext& ctx, const PathState& state, Sampler& sampler) const;
+
+    MneeSettings m_mnee;
+};
+
+}  // namespace snell

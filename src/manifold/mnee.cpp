@@ -1,0 +1,269 @@
+#include "manifold/mnee.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "bsdf/microfacet.h"
+#include "core/stats.h"
+#include "geometry/scene.h"
+#include "manifold/generalized_geometry.h"
+#include "manifold/manifold_walk.h"
+#include "manifold/seed_path.h"
+
+namespace snell {
+
+namespace {
+
+bool is_specular(const ManifoldVertex& v) { return !v.bsdf->microfacet(); }
+
+/// IOR of the side of v that direction w points into (1 outside, eta inside).
+double side_ior(const ManifoldVertex& v, const Vec3& w) { return dot(w, v.ng) >= 0 ? 1.0 : v.eta; }
+
+/// Tangent basis at the light point: the light's tangent plane (area measure), or for lights
+/// without area (point, spot) the plane perpendicular to the arriving direction.
+TangentBasis light_basis(const Vec3& p, const Vec3& n, const Vec3& arrival_dir) {
+    const Frame f = Frame::from_normal(length_squared(n) > 0 ? n : arrival_dir);
+    return {p, f.s, f.t};
+}
+
+/// Each vertex refracts, and for rough ones both directions see the microfacet from their
+/// own side (otherwise the converged path is not one the BSDF can scatter).
+bool admissible(const Vec3& xb, const std::vector<ManifoldVertex>& chain, const Vec3& xc) {
+    for (size_t i = 0; i < chain.size(); ++i) {
+        const ManifoldVertex& v = chain[i];
+        const Vec3 wi = normalize((i == 0 ? xb : chain[i - 1].p) - v.p);
+        const Vec3 wo = normalize((i + 1 == chain.size() ? xc : chain[i + 1].p) - v.p);
+        if (!(dot(wi, v.ng) * dot(wo, v.ng) < 0)) return false;
+        const Vec3 h = generalized_half_vector(v, wi, wo);
+        if (!(dot(wi, h) * dot(wi, v.ng) > 0) || !(dot(wo, h) * dot(wo, v.ng) > 0)) return false;
+    }
+    return true;
+}
+
+/// Directions (towards the camera side, towards the light side) at vertex i of a chain.
+void vertex_directions(const Vec3& xb, const std::vector<ManifoldVertex>& chain, const Vec3& xc, size_t i, Vec3* wi,
+                       Vec3* wo) {
+    *wi = normalize((i == 0 ? xb : chain[i - 1].p) - chain[i].p);
+    *wo = normalize((i + 1 == chain.size() ? xc : chain[i + 1].p) - chain[i].p);
+}
+
+uint64_t elapsed_ns(std::chrono::steady_clock::time_point t0) {
+    return uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count());
+}
+
+}  // namespace
+
+double half_vector_jacobian(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const Vec3& h) {
+    const double eta_i = side_ior(v, wi), eta_o = side_ior(v, wo);
+    if (eta_i == eta_o) return 4.0 * std::abs(dot(wo, h));  // reflection (Eq. 14)
+    const double wo_h = std::abs(dot(wo, h));
+    if (!(wo_h > 0)) return 0;
+    return sqr(eta_i * dot(wi, h) + eta_o * dot(wo, h)) / (eta_o * eta_o * wo_h);  // refraction (Eq. 16)
+}
+
+double half_vector_density(const ManifoldVertex& v, const Vec3& h) {
+    if (is_specular(v)) return 1.0;
+    const Vec3 hl = v.si.to_local(h);
+    return hl.z > 0 ? v.bsdf->microfacet()->D(hl) : 0.0;
+}
+
+double vertex_throughput(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const BSDFContext& ctx) {
+    const Vec3 wi_l = v.si.to_local(wi), wo_l = v.si.to_local(wo);
+    // BSDF convention: its wo is our camera-side wi, its wi our light-side wo.
+    if (is_specular(v)) return v.bsdf->eval_delta(ctx, wi_l, wo_l);  // Eq. 9: kappa
+    const Vec3 h = generalized_half_vector(v, wi, wo);
+    const double D = half_vector_density(v, h);
+    const double cos_h = std::abs(dot(h, v.n));
+    if (!(D > 0) || !(cos_h > 0)) return 0;
+    // Eq. 6: f_r |do/dh| |<o, n>| / |<h, n>| over p_dH(h) = D(h).
+    return v.bsdf->eval(ctx, wi_l, wo_l) * std::abs(wo_l.z) * half_vector_jacobian(v, wi, wo, h) / (cos_h * D);
+}
+
+double vertex_bsdf_density(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const BSDFContext& ctx) {
+    const Vec3 wi_l = v.si.to_local(wi), wo_l = v.si.to_local(wo);
+    if (!is_specular(v)) return v.bsdf->pdf(ctx, wi_l, wo_l);
+    // A delta lobe: its discrete probability, with delta(o) rewritten as delta(h) / |do/dh|.
+    const double J = half_vector_jacobian(v, wi, wo, generalized_half_vector(v, wi, wo));
+    return J > 0 ? v.bsdf->pdf_delta(ctx, wi_l, wo_l) / J : 0.0;
+}
+
+void sample_half_vectors(std::vector<ManifoldVertex>& chain, Sampler& sampler) {
+    for (ManifoldVertex& v : chain) {
+        if (is_specular(v)) {
+            v.h_target = Vec2(0, 0);
+        } else {
+            // Global distribution D(m) cos(theta_m), not visible normals (Sec. 3.2): the
+            // incoming direction changes while the walk moves the path.
+            const Vec3 m = v.si.to_world(v.bsdf->microfacet()->sample_m(sampler.next_2d()));
+            v.h_target = tangential(v, m);
+        }
+    }
+}
+
+bool mnee_seed_culled(const SurfaceInteraction& xb, const BSDF& bsdf_b, const Vec3& xc, double margin) {
+    if (bsdf_b.is_transmissive()) return false;
+    const Vec3 n = dot(xb.wo, xb.n) >= 0 ? xb.n : -xb.n;  // the side the path arrived on
+    return dot(n, normalize(xc - xb.p)) < -margin;
+}
+
+MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb,
+                            const BSDF& bsdf_b, const BSDFContext& ctx, const MediumStack& media, const Light& light,
+                            double pmf, const LightSample& ls, std::vector<ManifoldVertex>& chain, Sampler& sampler) {
+    Counters& counters = thread_counters();
+    MneeConnection out;
+    if (mnee_seed_culled(xb, bsdf_b, ls.p, st.cull_margin)) {
+        counters.seeds_culled++;
+        out.outcome = MneeOutcome::SeedCulled;
+        return out;
+    }
+    // Sec. 3.2 then Sec. 3.4: half vectors, then the walk from the seed.
+    sample_half_vectors(chain, sampler);
+    counters.walks_started++;
+    const auto t0 = std::chrono::steady_clock::now();
+    const TangentBasis seed_basis = light_basis(ls.p, ls.n, ls.wi);
+    const WalkResult walk = manifold_walk(&scene, xb.p, chain, seed_basis, st.walk);
+    counters.walk_time_ns += elapsed_ns(t0);
+    switch (walk.outcome) {
+        case WalkOutcome::Converged: break;
+        case WalkOutcome::MaxIterations: counters.walk_fail_no_convergence++; out.outcome = MneeOutcome::NoConvergence; return out;
+        case WalkOutcome::SingularMatrix: counters.walk_fail_singular++; out.outcome = MneeOutcome::Singular; return out;
+        case WalkOutcome::ProjectionFailed: counters.walk_fail_projection++; out.outcome = MneeOutcome::ProjectionFailed; return out;
+    }
+    const Vec3 xc = ls.p;
+    if (!admissible(xb.p, chain, xc)) {
+        counters.walk_fail_scattering++;
+        out.outcome = MneeOutcome::WrongScattering;
+        return out;
+    }
+    counters.walks_converged++;
+    counters.walk_iterations_success += uint64_t(walk.iterations);
+    counters.iteration_histogram[std::min(walk.iterations, Counters::kIterationBins - 1)]++;
+
+    // Self-occlusion was ignored for the seed; the admissible path must be visible (Sec. 3.1).
+    const size_t k = chain.size();
+    bool visible = !scene.occluded(scene.spawn_ray_to(xb, chain[0].p));
+    for (size_t i = 0; i < k && visible; ++i)
+        visible = !scene.occluded(scene.spawn_ray_to(chain[i].si, i + 1 < k ? chain[i + 1].p : xc));
+    if (!visible) {
+        counters.walk_fail_occluded++;
+        out.outcome = MneeOutcome::Occluded;
+        return out;
+    }
+
+    // Measurement in half-vector space (Eq. 6): f_r(x_b) |cos| |do_b/dx_c| prod(vertex) Le.
+    const Vec3 o_b = normalize(chain[0].p - xb.p);
+    const Vec3 wo_b = xb.to_local(xb.wo), o_b_l = xb.to_local(o_b);
+    const double f_b = bsdf_b.eval(ctx, wo_b, o_b_l) * std::abs(o_b_l.z);
+    const Vec3 from_light = normalize(chain[k - 1].p - xc);
+    const double Le = light.emitted(xc, ls.n, from_light, ctx.lambda);
+    if (!(f_b > 0) || !(Le > 0)) {
+        out.outcome = MneeOutcome::Zero;
+        return out;
+    }
+    const ChainJacobians jac = chain_jacobians(xb.p, chain, light_basis(xc, ls.n, -from_light));
+    if (!jac.valid) {
+        counters.walk_fail_singular++;
+        out.outcome = MneeOutcome::Singular;
+        return out;
+    }
+    double throughput = 1, p_dH = 1;
+    MediumStack m = media;
+    double tr = m.transmittance(length(chain[0].p - xb.p), ctx.lambda);
+    // BSDF-sampling density of the same path (area measure), and its prefix up to x_k.
+    double p_bsdf = bsdf_b.pdf(ctx, wo_b, o_b_l) * std::abs(dot(chain[0].ng, o_b)) / length_squared(chain[0].p - xb.p);
+    double p_prefix_k = p_bsdf;
+    for (size_t i = 0; i < k; ++i) {
+        Vec3 wi, wo;
+        vertex_directions(xb.p, chain, xc, i, &wi, &wo);
+        const ManifoldVertex& v = chain[i];
+        throughput *= vertex_throughput(v, wi, wo, ctx);
+        p_dH *= half_vector_density(v, generalized_half_vector(v, wi, wo));
+        // Beer-Lambert inside absorbing interiors along the admissible path.
+        m.cross(v.bsdf->interior_absorption(), dot(wi, v.ng) > 0);
+        const Vec3 next = i + 1 < k ? chain[i + 1].p : xc;
+        tr *= m.transmittance(length(next - v.p), ctx.lambda);
+        const Vec3 next_n = i + 1 < k ? chain[i + 1].ng : ls.n;
+        p_prefix_k = p_bsdf;
+        p_bsdf *= vertex_bsdf_density(v, wi, wo, ctx) * std::abs(dot(next_n, wo)) / length_squared(next - v.p);
+    }
+    const double p_point = ls.delta ? 1.0 : ls.pdf_area;
+    if (!(throughput > 0) || !(p_point > 0)) {
+        out.outcome = MneeOutcome::Zero;
+        return out;
+    }
+    out.outcome = MneeOutcome::Success;
+    out.value = f_b * jac.do_b_dx_c * throughput * Le * tr / (pmf * p_point);  // Alg. 1, last line
+    out.pdf_mnee = pmf * p_point * p_dH * jac.dH_dX;                          // Eq. 7 with Eq. 8
+    // Delta lights cannot be hit by BSDF sampling.
+    out.pdf_bsdf = ls.delta ? 0.0 : p_bsdf;
+    // NEE from a rough last vertex competes for the same path.
+    if (!is_specular(chain[k - 1])) out.pdf_nee_last = p_prefix_k * pmf * light.pdf_point(chain[k - 1].p, xc, ls.n);
+    return out;
+}
+
+double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb, const BSDF& bsdf_b,
+                const SurfaceInteraction* path, int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
+                double lambda) {
+    if (k <= 0 || k > st.max_vertices || !mnee_supports(light)) return 0;
+    Counters& counters = thread_counters();
+    // Alg. 2, line 1: density of x_c as the light sampler would produce it from x_b.
+    const double p_point = light.pdf_point(xb.p, xc, nc);
+    if (!(p_point > 0) || mnee_seed_culled(xb, bsdf_b, xc, st.cull_margin)) return 0;
+
+    // The input path as manifold vertices, with its own half vectors.
+    std::vector<ManifoldVertex> input(static_cast<size_t>(k));
+    for (int i = 0; i < k; ++i) {
+        const BSDF* b = path[i].bsdf();
+        if (!is_manifold_interface(b, lambda)) return 0;
+        input[size_t(i)] = ManifoldVertex::from_interaction(path[i], b->eta(lambda));
+    }
+    if (!admissible(xb.p, input, xc)) return 0;
+
+    // Line 2: the seed path from x_b to x_c must cross the same shapes in the same order.
+    std::vector<ManifoldVertex> seed;
+    if (trace_seed_path(scene, xb, xc, lambda, st, &seed) != SeedStatus::Refractive || int(seed.size()) != k) return 0;
+    double p_dH = 1;
+    for (int i = 0; i < k; ++i) {
+        if (seed[size_t(i)].shape != input[size_t(i)].shape) return 0;
+        Vec3 wi, wo;
+        vertex_directions(xb.p, input, xc, size_t(i), &wi, &wo);
+        const Vec3 h = generalized_half_vector(input[size_t(i)], wi, wo);
+        // Line 3: p_dH on the input path's half vectors (consistent MIS weights).
+        p_dH *= half_vector_density(input[size_t(i)], h);
+        input[size_t(i)].h_target = is_specular(input[size_t(i)]) ? Vec2(0, 0) : tangential(input[size_t(i)], h);
+        seed[size_t(i)].h_target = input[size_t(i)].h_target;
+    }
+    if (!(p_dH > 0)) return 0;
+
+    // Line 4: walk from the seed with those half vectors.
+    counters.pdf_walks++;
+    const TangentBasis basis = light_basis(xc, nc, normalize(xc - xb.p));
+    const auto t0 = std::chrono::steady_clock::now();
+    const WalkResult walk = manifold_walk(&scene, xb.p, seed, basis, st.walk);
+    counters.walk_time_ns += elapsed_ns(t0);
+    if (walk.outcome != WalkOutcome::Converged) return 0;
+    // Lines 5-7: a different admissible path means MNEE cannot produce the input one. Both
+    // paths are only approximately admissible (the walk stops at its threshold; a traced path
+    // carries ray offsets), and near caustics the constraints hardly depend on position, so
+    // first polish both to the same solution precision with a few Newton steps (quadratic
+    // convergence), then compare positions relative to the segment lengths.
+    WalkSettings polish = st.walk;
+    polish.threshold = 1e-13;
+    polish.max_iterations = 6;
+    polish.allow_error_increase = false;
+    std::vector<ManifoldVertex> target = input;
+    manifold_walk(&scene, xb.p, seed, basis, polish);
+    manifold_walk(&scene, xb.p, target, basis, polish);
+    for (int i = 0; i < k; ++i) {
+        const Vec3& prev = i == 0 ? xb.p : input[size_t(i - 1)].p;
+        const double scale = length(input[size_t(i)].p - prev);
+        if (length(seed[size_t(i)].p - target[size_t(i)].p) > 1e-5 * scale) return 0;
+    }
+    counters.pdf_walks_found++;
+    // Line 8: p_dX = p_dH |dH/dX| (Eq. 7, 8), times the light point's density.
+    const ChainJacobians jac = chain_jacobians(xb.p, input, basis);
+    if (!jac.valid) return 0;
+    return pmf * p_point * p_dH * jac.dH_dX;
+}
+
+}  // namespace snell

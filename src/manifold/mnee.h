@@ -1,0 +1,85 @@
+#pragma once
+// Manifold next event estimation (Hanika, Droske & Fascione 2015): sampling a light connection
+// through refractive interfaces (Alg. 1) and evaluating its density for MIS (Alg. 2), with the
+// measurement in half-vector space (Eq. 6, Eq. 9). Independent of any integrator.
+//
+// Measures. The chain x_1..x_k and the light point x_c are measured in vertex area; the
+// density of a specular vertex is written without its Dirac delta in half-vector space, and
+// every competing technique (BSDF sampling, NEE from the last rough vertex) is expressed with
+// the same deltas factored out (Sec. 3.3, "Specular Case"), so MIS compares like with like.
+#include <vector>
+
+#include "bsdf/bsdf.h"
+#include "core/medium_stack.h"
+#include "core/sampler.h"
+#include "geometry/interaction.h"
+#include "light/light.h"
+#include "manifold/manifold_vertex.h"
+#include "manifold/mnee_settings.h"
+
+namespace snell {
+
+class Scene;
+
+/// Outcome of one MNEE connection attempt.
+enum class MneeOutcome {
+    Success,
+    NoLightSample,
+    SeedOccluded,
+    SeedTooMany,
+    SeedCulled,
+    NoConvergence,
+    Singular,
+    ProjectionFailed,
+    WrongScattering,
+    Occluded,
+    Zero,  ///< admissible and visible, but the measurement vanished (e.g. back of the light)
+};
+
+/// A connection from x_b to a light through a refractive chain.
+struct MneeConnection {
+    MneeOutcome outcome = MneeOutcome::Zero;
+    double value = 0;      ///< f(X) / p(X) of Alg. 1 (light pmf included), before MIS
+    double pdf_mnee = 0;   ///< area density of this technique (Eq. 7 with Eq. 8)
+    double pdf_bsdf = 0;   ///< area density of BSDF sampling x_1..x_k, x_c from x_b
+    double pdf_nee_last = 0;  ///< area density of NEE from x_k (0 unless x_k is rough)
+};
+
+/// |do/dh|: solid angle of the light-side direction wo per solid angle of the half vector at
+/// vertex v, with the camera-side direction wi fixed (Walter et al. 2007, Eqs. 14 and 16).
+double half_vector_jacobian(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const Vec3& h);
+
+/// The scattering factor of vertex v in half-vector measure: kappa (Eq. 9) if specular, else
+/// f_r |cos o| |do/dh| / (|cos h| D(h)) (Eq. 6 over p_dH = D, projected solid angle).
+double vertex_throughput(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const BSDFContext& ctx);
+
+/// Density with which BSDF sampling at v produces wo from wi: solid angle for rough
+/// vertices, lobe probability / |do/dh| for specular ones (delta factored out in h).
+double vertex_bsdf_density(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const BSDFContext& ctx);
+
+/// p_dH of a vertex's half vector: D(h) (projected solid angle) for rough, 1 for specular.
+double half_vector_density(const ManifoldVertex& v, const Vec3& h);
+
+/// Paper Sec. 3.2: sets each vertex's target half vector (global microfacet distribution for
+/// rough vertices, the delta for specular ones).
+void sample_half_vectors(std::vector<ManifoldVertex>& chain, Sampler& sampler);
+
+/// Alg. 1 for a light sample `ls` (from NEE's sampler, pmf `pmf`) whose seed segment from x_b
+/// crossed the refractive vertices in `chain` (consumed). `media` is the medium at x_b.
+MneeConnection mnee_connect(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb,
+                            const BSDF& bsdf_b, const BSDFContext& ctx, const MediumStack& media, const Light& light,
+                            double pmf, const LightSample& ls, std::vector<ManifoldVertex>& chain, Sampler& sampler);
+
+/// Alg. 2: area density with which MNEE from x_b produces the path x_b, chain[0..k), x_c.
+/// 0 if the seed path from x_b to x_c walks to a different path (or none).
+double mnee_pdf(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb, const BSDF& bsdf_b,
+                const SurfaceInteraction* chain, int k, const Light& light, double pmf, const Vec3& xc,
+                const Vec3& nc, double lambda);
+
+/// Whether MNEE can connect to this light (it needs a light point: area, point, spot).
+inline bool mnee_supports(const Light& light) { return !light.is_infinite(); }
+
+/// Culling of a seed at x_b with the tolerance margin of Fig. 3.
+bool mnee_seed_culled(const SurfaceInteraction& xb, const BSDF& bsdf_b, const Vec3& xc, double margin);
+
+}  // namespace snell

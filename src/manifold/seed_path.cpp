@@ -1,0 +1,31 @@
+#include "manifold/seed_path.h"
+
+#include "bsdf/bsdf.h"
+#include "geometry/scene.h"
+
+namespace snell {
+
+bool is_manifold_interface(const BSDF* bsdf, double lambda) {
+    return bsdf && bsdf->is_transmissive() && (bsdf->has_delta() || bsdf->microfacet()) && bsdf->eta(lambda) != 1.0;
+}
+
+SeedStatus trace_seed_path(const Scene& scene, const SurfaceInteraction& xb, const Vec3& xc, double lambda,
+                           const MneeSettings& settings, std::vector<ManifoldVertex>* chain) {
+    chain->clear();
+    Ray ray = scene.spawn_ray_to(xb, xc);
+    for (;;) {
+        SurfaceInteraction si;
+        if (!scene.intersect(ray, &si)) break;
+        const BSDF* bsdf = si.bsdf();
+        if (is_manifold_interface(bsdf, lambda)) {
+            if (int(chain->size()) >= settings.max_vertices) return SeedStatus::TooMany;
+            chain->push_back(ManifoldVertex::from_interaction(si, bsdf->eta(lambda)));
+        } else if (!settings.ignore_occluders) {
+            return SeedStatus::Occluded;
+        }
+        ray = scene.spawn_ray_to(si, xc);
+    }
+    return chain->empty() ? SeedStatus::Clear : SeedStatus::Refractive;
+}
+
+}  // namespace snell

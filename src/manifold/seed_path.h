@@ -1,0 +1,32 @@
+#pragma once
+// Paper Sec. 3.1: the seed path is the straight segment x_b -> x_c with every refractive
+// vertex on it collected. It needs no energy balance; it only starts the manifold walk.
+#include <vector>
+
+#include "core/vector.h"
+#include "geometry/interaction.h"
+#include "manifold/manifold_vertex.h"
+#include "manifold/mnee_settings.h"
+
+namespace snell {
+
+class Scene;
+class BSDF;
+
+enum class SeedStatus {
+    Clear,       ///< nothing in between: MNEE is plain NEE for this sample
+    Refractive,  ///< one or more refractive vertices (the chain to walk)
+    Occluded,    ///< an opaque surface blocks the segment
+    TooMany,     ///< more refractive vertices than max_vertices
+};
+
+/// Whether a BSDF is a refractive interface that MNEE treats as a chain vertex: a dielectric,
+/// smooth or rough (something that bends light: eta != 1 with a transmission lobe).
+bool is_manifold_interface(const BSDF* bsdf, double lambda);
+
+/// Traces the straight segment from `xb` to `xc` and collects the refractive vertices
+/// (h_target zero; the half-vector sampler sets it).
+SeedStatus trace_seed_path(const Scene& scene, const SurfaceInteraction& xb, const Vec3& xc, double lambda,
+                           const MneeSettings& settings, std::vector<ManifoldVertex>* chain);
+
+}  // namespace snell
