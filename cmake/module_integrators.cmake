@@ -12,6 +12,6 @@ snell_test(test_integrators
   SOURCES tests/stat/test_integrator_agreement.cpp tests/stat/test_furnace.cpp tests/unit/test_render_determinism.cpp
   LIBS ${SNELL_ALL_LIBS})
 snell_test(test_mnee
-  SOURCES tests/stat/test_mnee_agreement.cpp
+  SOURCES tests/stat/test_mnee_agreement.cpp tests/stat/test_mnee_estimator.cpp
   LIBS ${SNELL_ALL_LIBS})
 snell_test(test_path_features SOURCES tests/stat/test_path_features.cpp LIBS ${SNELL_ALL_LIBS})

@@ -8,6 +8,7 @@ snell_library(snell_manifold
   src/manifold/generalized_geometry.cpp
   src/manifold/seed_path.cpp
   src/manifold/mnee.cpp
+  src/manifold/light_point.cpp
   src/manifold/walk_statistics.cpp
 )
 target_link_libraries(snell_manifold PUBLIC snell_geometry snell_bsdf snell_light nlohmann_json::nlohmann_json)

@@ -29,4 +29,8 @@ std::optional<LightSample> DirectionalLight::sample_li(const LightSampleContext&
 
 double DirectionalLight::power() const { return m_irradiance.average() * kPi * sqr(m_sphere.radius); }
 
+double DirectionalLight::emitted(const Vec3&, const Vec3&, const Vec3&, double lambda) const {
+    return m_irradiance.eval(lambda);
+}
+
 }  // namespace snell

@@ -59,7 +59,11 @@ public:
     /// MNEE: emission leaving light point p (normal n) along unit direction w: radiance for
     /// area lights, intensity for point and spot lights (the admissible path leaves the light
     /// in a different direction than the seed path, so this is evaluated afresh).
-    virtual double emitted(const Vec3& p, const Vec3& n, const Vec3& w, double lambda) const { return le(p, n, w, lambda); }
+    /// Lights at infinity give the radiance arriving from -w (environment) or, for the
+    /// directional light, its irradiance (MNEE turns both into points on a far sphere).
+    virtual double emitted(const Vec3& p, const Vec3& n, const Vec3& w, double lambda) const {
+        return is_infinite() ? le_escaped(-w, lambda) : le(p, n, w, lambda);
+    }
 
     /// Emitted power, averaged over the visible range (for light selection; need not be exact).
     virtual double power() const = 0;

@@ -108,10 +108,10 @@ bool mnee_seed_culled(const SurfaceInteraction& xb, const BSDF& bsdf_b, const Ve
 
 MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb,
                             const BSDF& bsdf_b, const BSDFContext& ctx, const MediumStack& media, const Light& light,
-                            double pmf, const LightSample& ls, std::vector<ManifoldVertex>& chain, Sampler& sampler) {
+                            double pmf, const LightPoint& lp, std::vector<ManifoldVertex>& chain, Sampler& sampler) {
     Counters& counters = thread_counters();
     MneeConnection out;
-    if (mnee_seed_culled(xb, bsdf_b, ls.p, st.cull_margin)) {
+    if (mnee_seed_culled(xb, bsdf_b, lp.p, st.cull_margin)) {
         counters.seeds_culled++;
         out.outcome = MneeOutcome::SeedCulled;
         return out;
@@ -120,7 +120,7 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     sample_half_vectors(chain, sampler);
     counters.walks_started++;
     const auto t0 = std::chrono::steady_clock::now();
-    const TangentBasis seed_basis = light_basis(ls.p, ls.n, ls.wi);
+    const TangentBasis seed_basis = light_basis(lp.p, lp.n, normalize(lp.p - xb.p));
     const WalkResult walk = manifold_walk(&scene, xb.p, chain, seed_basis, st.walk);
     counters.walk_time_ns += elapsed_ns(t0);
     switch (walk.outcome) {
@@ -129,7 +129,7 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
         case WalkOutcome::SingularMatrix: counters.walk_fail_singular++; out.outcome = MneeOutcome::Singular; return out;
         case WalkOutcome::ProjectionFailed: counters.walk_fail_projection++; out.outcome = MneeOutcome::ProjectionFailed; return out;
     }
-    const Vec3 xc = ls.p;
+    const Vec3 xc = lp.p;
     if (!admissible(xb.p, chain, xc)) {
         counters.walk_fail_scattering++;
         out.outcome = MneeOutcome::WrongScattering;
@@ -155,12 +155,12 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     const Vec3 wo_b = xb.to_local(xb.wo), o_b_l = xb.to_local(o_b);
     const double f_b = bsdf_b.eval(ctx, wo_b, o_b_l) * std::abs(o_b_l.z);
     const Vec3 from_light = normalize(chain[k - 1].p - xc);
-    const double Le = light.emitted(xc, ls.n, from_light, ctx.lambda);
+    const double Le = light_point_emission(light, xc, lp.n, from_light, xb.p, ctx.lambda);
     if (!(f_b > 0) || !(Le > 0)) {
         out.outcome = MneeOutcome::Zero;
         return out;
     }
-    const ChainJacobians jac = chain_jacobians(xb.p, chain, light_basis(xc, ls.n, -from_light));
+    const ChainJacobians jac = chain_jacobians(xb.p, chain, light_basis(xc, lp.n, -from_light));
     if (!jac.valid) {
         counters.walk_fail_singular++;
         out.outcome = MneeOutcome::Singular;
@@ -182,11 +182,11 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
         m.cross(v.bsdf->interior_absorption(), dot(wi, v.ng) > 0);
         const Vec3 next = i + 1 < k ? chain[i + 1].p : xc;
         tr *= m.transmittance(length(next - v.p), ctx.lambda);
-        const Vec3 next_n = i + 1 < k ? chain[i + 1].ng : ls.n;
+        const Vec3 next_n = i + 1 < k ? chain[i + 1].ng : lp.n;
         p_prefix_k = p_bsdf;
         p_bsdf *= vertex_bsdf_density(v, wi, wo, ctx) * std::abs(dot(next_n, wo)) / length_squared(next - v.p);
     }
-    const double p_point = ls.delta ? 1.0 : ls.pdf_area;
+    const double p_point = lp.pdf;
     if (!(throughput > 0) || !(p_point > 0)) {
         out.outcome = MneeOutcome::Zero;
         return out;
@@ -195,19 +195,19 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     out.value = f_b * jac.do_b_dx_c * throughput * Le * tr / (pmf * p_point);  // Alg. 1, last line
     out.pdf_mnee = pmf * p_point * p_dH * jac.dH_dX;                          // Eq. 7 with Eq. 8
     // Delta lights cannot be hit by BSDF sampling.
-    out.pdf_bsdf = ls.delta ? 0.0 : p_bsdf;
+    out.pdf_bsdf = lp.delta ? 0.0 : p_bsdf;
     // NEE from a rough last vertex competes for the same path.
-    if (!is_specular(chain[k - 1])) out.pdf_nee_last = p_prefix_k * pmf * light.pdf_point(chain[k - 1].p, xc, ls.n);
+    if (!is_specular(chain[k - 1])) out.pdf_nee_last = p_prefix_k * pmf * light_point_pdf(scene, light, chain[k - 1].p, xc, lp.n);
     return out;
 }
 
 double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb, const BSDF& bsdf_b,
                 const SurfaceInteraction* path, int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
                 double lambda) {
-    if (k <= 0 || k > st.max_vertices || !mnee_supports(light)) return 0;
+    if (k <= 0 || k > st.max_vertices) return 0;
     Counters& counters = thread_counters();
     // Alg. 2, line 1: density of x_c as the light sampler would produce it from x_b.
-    const double p_point = light.pdf_point(xb.p, xc, nc);
+    const double p_point = light_point_pdf(scene, light, xb.p, xc, nc);
     if (!(p_point > 0) || mnee_seed_culled(xb, bsdf_b, xc, st.cull_margin)) return 0;
 
     // The input path as manifold vertices, with its own half vectors.

@@ -14,6 +14,7 @@
 #include "core/sampler.h"
 #include "geometry/interaction.h"
 #include "light/light.h"
+#include "manifold/light_point.h"
 #include "manifold/manifold_vertex.h"
 #include "manifold/mnee_settings.h"
 
@@ -64,20 +65,17 @@ double half_vector_density(const ManifoldVertex& v, const Vec3& h);
 /// rough vertices, the delta for specular ones).
 void sample_half_vectors(std::vector<ManifoldVertex>& chain, Sampler& sampler);
 
-/// Alg. 1 for a light sample `ls` (from NEE's sampler, pmf `pmf`) whose seed segment from x_b
-/// crossed the refractive vertices in `chain` (consumed). `media` is the medium at x_b.
+/// Alg. 1 for a light point `lp` (from NEE's light sample, light pmf `pmf`) whose seed segment
+/// from x_b crossed the refractive vertices in `chain` (consumed). `media` is the medium at x_b.
 MneeConnection mnee_connect(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb,
                             const BSDF& bsdf_b, const BSDFContext& ctx, const MediumStack& media, const Light& light,
-                            double pmf, const LightSample& ls, std::vector<ManifoldVertex>& chain, Sampler& sampler);
+                            double pmf, const LightPoint& lp, std::vector<ManifoldVertex>& chain, Sampler& sampler);
 
 /// Alg. 2: area density with which MNEE from x_b produces the path x_b, chain[0..k), x_c.
 /// 0 if the seed path from x_b to x_c walks to a different path (or none).
 double mnee_pdf(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb, const BSDF& bsdf_b,
                 const SurfaceInteraction* chain, int k, const Light& light, double pmf, const Vec3& xc,
                 const Vec3& nc, double lambda);
-
-/// Whether MNEE can connect to this light (it needs a light point: area, point, spot).
-inline bool mnee_supports(const Light& light) { return !light.is_infinite(); }
 
 /// Culling of a seed at x_b with the tolerance margin of Fig. 3.
 bool mnee_seed_culled(const SurfaceInteraction& xb, const BSDF& bsdf_b, const Vec3& xc, double margin);

@@ -81,15 +81,17 @@ void MneeIntegrator::on_scatter(PathState& state, const SurfaceInteraction& si, 
 double MneeIntegrator::emitter_hit_weight(const Scene& scene, const PathState& state, const Light& light, const Vec3& p,
                                           const Vec3& n, const Vec3& d, double lambda) const {
     const RefractiveSuffix& s = state.suffix;
-    if (!s.has_xb || s.k == 0 || !mnee_supports(light)) return PathTracer::emitter_hit_weight(scene, state, light, p, n, d, lambda);
+    if (!s.has_xb || s.k == 0) return PathTracer::emitter_hit_weight(scene, state, light, p, n, d, lambda);
     // A BSDF-sampled path x_b, x_1..x_k (refractive), x_c: three techniques can produce it.
+    const LightPoint lp = light_point_hit(scene, light, p, n, d, s.xb.p);
     const double pmf = scene.light_sampler().pmf(&light);
     const size_t last = size_t(s.k - 1);
-    const double p_bsdf = s.p_prefix * s.q_last * std::abs(dot(n, d)) / length_squared(p - s.chain[last].p);
+    const double p_bsdf = s.p_prefix * s.q_last * std::abs(dot(lp.n, d)) / length_squared(lp.p - s.chain[last].p);
     const double p_mnee = s.transmissions_only ? mnee_pdf(scene, m_mnee, s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light,
-                                                          pmf, p, n, lambda)
+                                                          pmf, lp.p, lp.n, lambda)
                                                : 0.0;
-    const double p_nee = s.specular[last] ? 0.0 : s.p_prefix * pmf * light.pdf_point(s.chain[last].p, p, n);
+    const double p_nee =
+        s.specular[last] ? 0.0 : s.p_prefix * pmf * light_point_pdf(scene, light, s.chain[last].p, lp.p, lp.n);
     // Sec. 3.5: outlier removal drops refractive-suffix paths that MNEE cannot find.
     if (m_mnee.biased && !(p_mnee > 0)) return 0.0;
     return power3(p_bsdf, p_mnee, p_nee);
@@ -102,17 +104,20 @@ double MneeIntegrator::connect_at_interface(const Scene& scene, const SurfaceInt
     double pmf = 0;
     const auto ls = sample_light(scene, si, ctx.lambda, sampler, &light, &pmf);
     if (!ls) return 0;
-    if (!s.has_xb || s.k == 0 || !mnee_supports(*light)) return nee_connect(scene, si, bsdf, ctx, state, *ls, pmf);
+    if (!s.has_xb || s.k == 0) return nee_connect(scene, si, bsdf, ctx, state, *ls, pmf);
     const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls->wi);
     if (!(bsdf.eval(ctx, wo, wi) > 0)) return 0;
-    if (scene.occluded(scene.spawn_ray_to(si, ls->p))) return 0;
-    // The path x_b, x_1..x_k = si, x_c in area measure.
-    const double p_nee = s.p_prefix * pmf * light->pdf_point(si.p, ls->p, ls->n);
-    const double p_bsdf = ls->delta ? 0.0 : s.p_prefix * bsdf.pdf(ctx, wo, wi) * std::abs(dot(ls->n, ls->wi)) / sqr(ls->dist);
+    const Ray shadow = std::isinf(ls->dist) ? scene.spawn_ray(si, ls->wi) : scene.spawn_ray_to(si, ls->p);
+    if (scene.occluded(shadow)) return 0;
+    // The path x_b, x_1..x_k = si, x_c in area measure (lights at infinity on MNEE's far sphere).
+    const LightPoint lp = light_point_hit(scene, *light, ls->p, ls->n, ls->wi, s.xb.p);
+    const double p_nee = s.p_prefix * pmf * light_point_pdf(scene, *light, si.p, lp.p, lp.n);
+    const double p_bsdf =
+        lp.delta ? 0.0 : s.p_prefix * bsdf.pdf(ctx, wo, wi) * std::abs(dot(lp.n, ls->wi)) / length_squared(lp.p - si.p);
     const bool refracts = dot(si.wo, si.ng) * dot(ls->wi, si.ng) < 0;
     const double p_mnee = s.transmissions_only && refracts
-                              ? mnee_pdf(scene, m_mnee, s.xb, *s.xb.bsdf(), s.chain.data(), s.k, *light, pmf, ls->p,
-                                         ls->n, ctx.lambda)
+                              ? mnee_pdf(scene, m_mnee, s.xb, *s.xb.bsdf(), s.chain.data(), s.k, *light, pmf, lp.p,
+                                         lp.n, ctx.lambda)
                               : 0.0;
     if (m_mnee.biased && !(p_mnee > 0)) return 0;
     return nee_estimate(si, bsdf, ctx, state, *ls, pmf, power3(p_nee, p_bsdf, p_mnee));
@@ -127,11 +132,11 @@ double MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInterac
     double pmf = 0;
     const auto ls = sample_light(scene, si, ctx.lambda, sampler, &light, &pmf);
     if (!ls) return 0;
-    if (!mnee_supports(*light)) return nee_connect(scene, si, bsdf, ctx, state, *ls, pmf);
+    const LightPoint lp = light_point(scene, *light, *ls, si.p);
 
     // Line 2: the seed path (Sec. 3.1).
     std::vector<ManifoldVertex> chain;
-    switch (trace_seed_path(scene, si, ls->p, ctx.lambda, m_mnee, &chain)) {
+    switch (trace_seed_path(scene, si, lp.p, ctx.lambda, m_mnee, &chain)) {
         case SeedStatus::Clear:
             // Nothing refracts in between: MNEE is NEE (same sample, same weight).
             if (!(bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls->wi)) > 0)) return 0;
@@ -140,8 +145,11 @@ double MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInterac
         case SeedStatus::TooMany: thread_counters().seeds_too_many++; return 0;
         case SeedStatus::Refractive: break;
     }
+    // The connection adds k + 1 segments to the depth + 1 the path has (max_depth, Mitsuba's
+    // meaning); BSDF sampling cannot produce longer paths, so neither may MNEE.
+    if (m_settings.max_depth >= 0 && state.depth + 2 + int(chain.size()) > m_settings.max_depth) return 0;
     // Lines 3-5: half vectors, walk, measurement; then MIS against the other techniques.
-    const MneeConnection c = mnee_connect(scene, m_mnee, si, bsdf, ctx, state.media, *light, pmf, *ls, chain, sampler);
+    const MneeConnection c = mnee_connect(scene, m_mnee, si, bsdf, ctx, state.media, *light, pmf, lp, chain, sampler);
     if (c.outcome != MneeOutcome::Success) return 0;
     return c.value * power3(c.pdf_mnee, c.pdf_bsdf, c.pdf_nee_last);
 }

@@ -26,6 +26,7 @@ struct RefractiveSuffix {
 };
 
 struct PathState {
+    int depth = 0;                  ///< index of the current vertex (0: first hit; it ends segment depth + 1)
     bool prev_delta = true;         ///< the previous vertex was sampled from a delta lobe (or is the camera)
     double prev_bsdf_pdf = 0;       ///< solid-angle density of the last sampled direction
     LightSampleContext prev;        ///< previous vertex (for light pdfs of emitter hits)

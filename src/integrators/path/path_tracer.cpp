@@ -88,6 +88,7 @@ double PathTracer::li(const Ray& camera_ray, const Scene& scene, Sampler& sample
 
     for (int depth = 0;; ++depth) {
         SurfaceInteraction si;
+        state.depth = depth;
         const bool emitters_visible = !(m_settings.hide_emitters && depth == 0);
         if (!scene.intersect(ray, &si)) {
             if (emitters_visible) {

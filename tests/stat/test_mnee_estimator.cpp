@@ -1,0 +1,236 @@
+// MNEE as an estimator on its own (Alg. 1) and its density (Alg. 2), at single shading points
+// under a water droplet: unbiased against BSDF sampling, MIS weights that sum to one, lights
+// without area.
+#include <cmath>
+
+#include "bsdf/fresnel.h"
+#include "integrators/mis.h"
+#include "manifold/mnee.h"
+#include "manifold/seed_path.h"
+#include "stat/render_stats.h"
+
+using namespace snell;
+using namespace snell::test;
+
+namespace {
+
+const char* kScene = R"(<scene version="3.0.0"><integrator type="mnee"/>
+  <sensor type="perspective"><transform name="to_world"><lookat origin="0,3,3" target="0,0,0" up="0,1,0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>
+  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><scale value="4"/></transform></shape>
+  <shape type="sphere"><point name="center" x="0" y="0.35" z="0"/><float name="radius" value="0.8"/>
+    <bsdf type="dielectric"><float name="int_ior" value="1.33"/><float name="ext_ior" value="1"/></bsdf></shape>
+  $light
+</scene>)";
+
+const char* kAreaLight = R"(<shape type="rectangle"><transform name="to_world"><scale value="1.5"/><rotate x="1" angle="90"/>
+    <translate x="-0.8" y="3" z="-0.5"/></transform><emitter type="area"><rgb name="radiance" value="3, 3, 3"/></emitter></shape>)";
+
+LoadedScene droplet(const std::string& light) {
+    std::string s = kScene;
+    s.replace(s.find("$light"), 6, light);
+    return load_xml(s);
+}
+
+// The point on the plane below (x, z), found by tracing down through the droplet.
+SurfaceInteraction receiver(const Scene& scene, double x, double z) {
+    Ray r{Vec3(x, 2, z), Vec3(0, -1, 0), 0, 100};
+    SurfaceInteraction si;
+    for (int i = 0; i < 4; ++i) {
+        EXPECT_TRUE(scene.intersect(r, &si));
+        if (!si.bsdf()->is_transmissive()) break;
+        r = scene.spawn_ray(si, Vec3(0, -1, 0));
+    }
+    si.wo = Vec3(0, 1, 0);
+    return si;
+}
+
+struct Mean {
+    double sum = 0, sq = 0;
+    long n = 0;
+    void add(double v) { sum += v, sq += v * v, ++n; }
+    double mean() const { return sum / double(n); }
+    double stderr_() const { return std::sqrt(std::max(0.0, sq / double(n) - sqr(mean())) / double(n)); }
+};
+
+const BSDFContext kCtx{550, TransportMode::Radiance};
+
+}  // namespace
+
+// Alg. 1 estimates the light arriving through the droplet exactly as BSDF sampling restricted
+// to refraction-only paths that Alg. 2 attributes to MNEE (the rest are caustic folds, Fig. 7).
+TEST(MneeEstimator, MatchesBsdfSamplingOfTheSamePaths) {
+    LoadedScene ls = droplet(kAreaLight);
+    const Scene& scene = *ls.scene;
+    const Light& light = *scene.lights()[0];
+    const MneeSettings st;
+    for (double x : {0.1, -0.3, 0.45}) {
+        const SurfaceInteraction xb = receiver(scene, x, 0.05);
+        IndependentSampler smp(7);
+        smp.start_pixel_sample(int(x * 100), 0, 0);
+        Mean mnee, bsdf;
+        for (int n = 0; n < 40000; ++n) {
+            double v = 0;
+            if (auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), 550)) {
+                std::vector<ManifoldVertex> chain;
+                if (trace_seed_path(scene, xb, s->p, 550, st, &chain) == SeedStatus::Refractive) {
+                    const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, 1.0, light_point(scene, light, *s, xb.p), chain, smp);
+                    if (c.outcome == MneeOutcome::Success) v = c.value;
+                }
+            }
+            mnee.add(v);
+        }
+        for (int n = 0; n < 200000; ++n) {
+            // Diffuse sampling at x_b, then refractions only, until the light.
+            double v = 0;
+            auto bs = xb.bsdf()->sample(kCtx, xb.to_local(xb.wo), smp.next_1d(), smp.next_2d());
+            if (bs) {
+                double beta = bs->weight;
+                Ray ray = scene.spawn_ray(xb, xb.to_world(bs->wi));
+                std::vector<SurfaceInteraction> chain;
+                SurfaceInteraction h;
+                for (int d = 0; d < 6 && scene.intersect(ray, &h); ++d) {
+                    if (h.emitter()) {
+                        const double pdf = chain.empty() ? 0.0
+                                                         : mnee_pdf(scene, st, xb, *xb.bsdf(), chain.data(), int(chain.size()),
+                                                                    light, 1.0, h.p, h.n, 550);
+                        if (pdf > 0) v = beta * h.emitter()->le(h.p, h.n, -ray.d, 550);
+                        break;
+                    }
+                    auto b2 = h.bsdf()->sample(kCtx, h.to_local(h.wo), smp.next_1d(), smp.next_2d());
+                    if (!b2 || !(b2->lobe & kTransmission)) break;
+                    chain.push_back(h);
+                    beta *= b2->weight;
+                    ray = scene.spawn_ray(h, h.to_world(b2->wi));
+                }
+            }
+            bsdf.add(v);
+        }
+        const double se = std::sqrt(sqr(mnee.stderr_()) + sqr(bsdf.stderr_()));
+        EXPECT_GT(mnee.mean(), 0.1) << "x = " << x;
+        EXPECT_NEAR(mnee.mean(), bsdf.mean(), 4.5 * se) << "x = " << x;
+    }
+}
+
+// For paths produced by MNEE, Alg. 2 returns the density Alg. 1 used, and the BSDF-sampling
+// density it reports equals one computed here independently (Walter et al.'s refraction
+// Jacobian, Fresnel lobe probability): so the power-heuristic weights of the two techniques
+// for the same path sum to one.
+TEST(MneeMis, WeightsOfAllTechniquesSumToOne) {
+    LoadedScene ls = droplet(kAreaLight);
+    const Scene& scene = *ls.scene;
+    const Light& light = *scene.lights()[0];
+    const MneeSettings st;
+    const SurfaceInteraction xb = receiver(scene, -0.2, 0.1);
+    IndependentSampler smp(3);
+    smp.start_pixel_sample(0, 0, 0);
+    int checked = 0;
+    for (int n = 0; n < 400 && checked < 50; ++n) {
+        auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), 550);
+        if (!s) continue;
+        std::vector<ManifoldVertex> chain;
+        if (trace_seed_path(scene, xb, s->p, 550, st, &chain) != SeedStatus::Refractive) continue;
+        const double pmf = 0.7;
+        const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, pmf, light_point(scene, light, *s, xb.p), chain, smp);
+        if (c.outcome != MneeOutcome::Success) continue;
+        ASSERT_EQ(chain.size(), 1u);
+        const SurfaceInteraction& v = chain[0].si;
+        // Alg. 2 on the produced path.
+        const double alg2 = mnee_pdf(scene, st, xb, *xb.bsdf(), &v, 1, light, pmf, s->p, s->n, 550);
+        EXPECT_NEAR(alg2, c.pdf_mnee, 1e-6 * c.pdf_mnee);
+        // BSDF sampling, independently: cosine lobe at x_b, then refraction chosen with
+        // probability 1 - F and its delta rewritten in half-vector measure.
+        const Vec3 o_b = normalize(v.p - xb.p), o_1 = normalize(s->p - v.p);
+        const double cos_b = std::abs(dot(xb.n, o_b));
+        double p = (cos_b / kPi) * std::abs(dot(v.ng, o_b)) / length_squared(v.p - xb.p);
+        const double eta = 1.33;  // inside -> outside: the camera side is water
+        const double F = fresnel_dielectric(dot(-o_b, v.n), eta).R;
+        const double jac = sqr(eta * dot(-o_b, v.n) + 1.0 * dot(o_1, v.n)) / std::abs(dot(o_1, v.n));  // |do/dh| at h = n
+        p *= (1 - F) / jac * std::abs(dot(s->n, o_1)) / length_squared(s->p - v.p);
+        EXPECT_NEAR(c.pdf_bsdf, p, 1e-5 * p);
+        const double w_mnee = power_heuristic(c.pdf_mnee, c.pdf_bsdf), w_bsdf = power_heuristic(p, alg2);
+        EXPECT_NEAR(w_mnee + w_bsdf, 1.0, 1e-5);
+        ++checked;
+    }
+    EXPECT_GE(checked, 20);
+}
+
+// A point light of intensity I is the limit of small spherical lights of radiance
+// I / (pi r^2): MNEE must give the same caustic for both (no area: a virtual tangent plane).
+TEST(MneeEstimator, PointLightIsTheLimitOfSmallSphereLights) {
+    const char* point = R"(<emitter type="point"><point name="position" x="-0.6" y="3" z="-0.4"/>
+        <rgb name="intensity" value="4, 4, 4"/></emitter>)";
+    const double r = 0.01;
+    const std::string sphere = std::string(R"(<shape type="sphere"><point name="center" x="-0.6" y="3" z="-0.4"/><float name="radius" value=")") +
+                               std::to_string(r) + R"("/><emitter type="area"><rgb name="radiance" value=")" +
+                               std::to_string(4 / (kPi * r * r)) + R"("/></emitter></shape>)";
+    LoadedScene a = droplet(point), b = droplet(sphere);
+    const MneeSettings st;
+    for (double x : {0.1, -0.25}) {
+        double va = 0;
+        Mean vb;
+        for (int which = 0; which < 2; ++which) {
+            const Scene& scene = which ? *b.scene : *a.scene;
+            const Light& light = *scene.lights()[0];
+            const SurfaceInteraction xb = receiver(scene, x, 0.05);
+            IndependentSampler smp(11);
+            smp.start_pixel_sample(which, 0, 0);
+            for (int n = 0; n < (which ? 4000 : 1); ++n) {
+                double v = 0;
+                if (auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), 550)) {
+                    std::vector<ManifoldVertex> chain;
+                    if (trace_seed_path(scene, xb, s->p, 550, st, &chain) == SeedStatus::Refractive) {
+                        const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, 1.0, light_point(scene, light, *s, xb.p), chain, smp);
+                        if (c.outcome == MneeOutcome::Success) v = c.value;
+                    }
+                }
+                if (which) vb.add(v); else va = v;
+            }
+        }
+        // The sphere's image is not a point: allow O(r) plus 5 standard errors.
+        EXPECT_GT(va, 0.0);
+        EXPECT_NEAR(va, vb.mean(), 5 * vb.stderr_() + 0.02 * va) << "x = " << x;
+    }
+}
+
+// A directional light is the limit of a distant small sphere light with the same irradiance
+// E = L pi r^2 / d^2 (MNEE puts it on a far sphere, light_point.h).
+TEST(MneeEstimator, DirectionalLightIsTheLimitOfADistantSphereLight) {
+    const Vec3 dir = normalize(Vec3(0.3, -1, 0.2));  // direction of travel of the light
+    const double d = 200, r = 0.2, E = 2;
+    const Vec3 c = dir * -d;
+    const std::string directional = R"(<emitter type="directional"><vector name="direction" x=")" + std::to_string(dir.x) +
+                                    R"(" y=")" + std::to_string(dir.y) + R"(" z=")" + std::to_string(dir.z) +
+                                    R"("/><rgb name="irradiance" value=")" + std::to_string(E) + R"("/></emitter>)";
+    const std::string sphere = R"(<shape type="sphere"><point name="center" x=")" + std::to_string(c.x) + R"(" y=")" +
+                               std::to_string(c.y) + R"(" z=")" + std::to_string(c.z) + R"("/><float name="radius" value=")" +
+                               std::to_string(r) + R"("/><emitter type="area"><rgb name="radiance" value=")" +
+                               std::to_string(E * d * d / (kPi * r * r)) + R"("/></emitter></shape>)";
+    LoadedScene a = droplet(directional), b = droplet(sphere);
+    const MneeSettings st;
+    for (double x : {0.05, -0.2}) {
+        double va = 0;
+        Mean vb;
+        for (int which = 0; which < 2; ++which) {
+            const Scene& scene = which ? *b.scene : *a.scene;
+            const Light& light = *scene.lights()[0];
+            const SurfaceInteraction xb = receiver(scene, x, 0.05);
+            IndependentSampler smp(13);
+            smp.start_pixel_sample(which, 1, 0);
+            for (int n = 0; n < (which ? 4000 : 1); ++n) {
+                double v = 0;
+                if (auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), 550)) {
+                    const LightPoint lp = light_point(scene, light, *s, xb.p);
+                    std::vector<ManifoldVertex> chain;
+                    if (trace_seed_path(scene, xb, lp.p, 550, st, &chain) == SeedStatus::Refractive) {
+                        const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, 1.0, lp, chain, smp);
+                        if (c.outcome == MneeOutcome::Success) v = c.value;
+                    }
+                }
+                if (which) vb.add(v); else va = v;
+            }
+        }
+        EXPECT_GT(va, 0.0);
+        EXPECT_NEAR(va, vb.mean(), 5 * vb.stderr_() + 0.02 * va) << "x = " << x;
+    }
+}
