@@ -1,0 +1,55 @@
+#include "io/image_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace snell {
+
+ImageMetrics compare_images(const Image& img, const Image& ref, const Crop& crop_in) {
+    if (img.width != ref.width || img.height != ref.height)
+        throw std::invalid_argument("image sizes differ: " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                                    " vs " + std::to_string(ref.width) + "x" + std::to_string(ref.height));
+    Crop c = crop_in;
+    if (c.w == 0) c = {0, 0, img.width, img.height};
+    if (c.x < 0 || c.y < 0 || c.w <= 0 || c.h <= 0 || c.x + c.w > img.width || c.y + c.h > img.height)
+        throw std::invalid_argument("crop " + std::to_string(c.x) + "," + std::to_string(c.y) + "," + std::to_string(c.w) +
+                                    "," + std::to_string(c.h) + " is outside the " + std::to_string(img.width) + "x" +
+                                    std::to_string(img.height) + " image");
+    ImageMetrics m;
+    double rel = 0, se = 0, se_clamped = 0, smape = 0, sa = 0, sr = 0;
+    for (int y = c.y; y < c.y + c.h; ++y)
+        for (int x = c.x; x < c.x + c.w; ++x)
+            for (int ch = 0; ch < 3; ++ch) {
+                const double a = img.at(x, y, ch), r = ref.at(x, y, ch), d = a - r;
+                rel += d * d / (r * r + 0.01);
+                se += d * d;
+                se_clamped += std::pow(std::clamp(a, 0.0, 1.0) - std::clamp(r, 0.0, 1.0), 2);
+                smape += std::abs(d) / (std::abs(a) + std::abs(r) + 0.01);
+                sa += a;
+                sr += r;
+            }
+    const double n = 3.0 * c.w * c.h;
+    m.pixels = long(c.w) * c.h;
+    m.rel_mse = rel / n;
+    m.mse = se / n;
+    m.rmse = std::sqrt(m.mse);
+    m.psnr = se_clamped > 0 ? 10.0 * std::log10(n / se_clamped) : std::numeric_limits<double>::infinity();
+    m.smape = smape / n;
+    m.mean = sa / n;
+    m.mean_reference = sr / n;
+    return m;
+}
+
+Crop parse_crop(const std::string& text) {
+    Crop c;
+    char s1, s2, s3;
+    std::istringstream in(text);
+    if (!(in >> c.x >> s1 >> c.y >> s2 >> c.w >> s3 >> c.h) || s1 != ',' || s2 != ',' || s3 != ',' || !in.eof())
+        throw std::invalid_argument("crop must be x,y,w,h (pixels), got '" + text + "'");
+    return c;
+}
+
+}  // namespace snell

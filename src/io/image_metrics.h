@@ -1,0 +1,32 @@
+#pragma once
+// Error metrics between an image and a reference, as used in rendering comparisons (the paper
+// reports PSNR; relative MSE is the usual figure for Monte Carlo noise).
+#include <string>
+
+#include "io/image.h"
+
+namespace snell {
+
+/// Pixel rectangle [x, x+w) x [y, y+h); w == 0 means the whole image.
+struct Crop {
+    int x = 0, y = 0, w = 0, h = 0;
+};
+
+struct ImageMetrics {
+    double rel_mse = 0;  ///< mean of (a - r)^2 / (r^2 + 0.01) over pixels and channels
+    double mse = 0;
+    double rmse = 0;
+    double psnr = 0;     ///< dB, on values clamped to [0, 1] (peak 1); inf for identical images
+    double smape = 0;    ///< mean of |a - r| / (|a| + |r| + 0.01), in [0, 1)
+    double mean = 0, mean_reference = 0;  ///< mean values (all channels) of both images
+    long pixels = 0;
+};
+
+/// Metrics of `img` against `ref` over `crop`. Throws std::invalid_argument on size mismatch or
+/// a crop outside the image.
+ImageMetrics compare_images(const Image& img, const Image& ref, const Crop& crop = {});
+
+/// Parses "x,y,w,h"; throws std::invalid_argument with the offending text.
+Crop parse_crop(const std::string& text);
+
+}  // namespace snell
