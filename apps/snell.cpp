@@ -97,10 +97,14 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
 
     std::signal(SIGINT, on_sigint);
     const int nthreads = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    char budget_buf[64];
+    if (time_limit > 0) std::snprintf(budget_buf, sizeof(budget_buf), "%g s", time_limit);
+    else std::snprintf(budget_buf, sizeof(budget_buf), "%d spp", opt.spp);
+    const std::string budget = budget_buf;
     if (!quiet)
         std::fprintf(stderr, "snell: %s, integrator %s, %dx%d, %s, %d threads\n", ls.path.c_str(), integ->name().c_str(),
                      ls.film.out_width(), ls.film.out_height(),
-                     time_limit > 0 ? (std::to_string(time_limit) + " s").c_str() : (std::to_string(opt.spp) + " spp").c_str(),
+                     budget.c_str(),
                      nthreads);
     const RenderResult r = render(*ls.scene, *integ, ls.film, opt, &g_cancel);
     std::signal(SIGINT, SIG_DFL);

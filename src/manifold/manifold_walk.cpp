@@ -111,8 +111,12 @@ WalkResult manifold_walk(const Scene* scene, const Vec3& x_b, std::vector<Manifo
         }
         const double new_err = projected ? constraint_error(x_b, proposal, x_c.p) : kInfinity;
         if (new_err < err || (st.allow_error_increase && std::isfinite(new_err))) {
-            // Accept; grow the step back (variant B lets it exceed one: over-relaxation).
-            beta = new_err < err ? std::min(beta_max, beta * 2.0) : beta * 0.5;
+            // Accept. Newton's full step is right once the error falls fast (quadratic phase);
+            // variant B over-relaxes (step > 1) only while progress is slow, to jump across
+            // the local minima of Fig. 4, and halves the step after an accepted increase.
+            if (new_err >= err) beta *= 0.5;
+            else if (new_err < 0.5 * err) beta = std::min(1.0, beta * 2.0);
+            else beta = std::min(beta_max, beta * 2.0);
             chain.swap(proposal);
             err = new_err;
         } else {

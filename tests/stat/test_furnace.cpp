@@ -30,7 +30,9 @@ TEST_P(Furnace, WhiteSphereInWhiteWorldIsWhite) {
         // One block covering the whole image; replicas give the standard error.
         const auto e = block_estimates(ls, *ls.scene->integrator(), 8, 6, 16, 77, c);
         ASSERT_EQ(e.size(), 1u);
-        EXPECT_NEAR(e[0].mean, 1.0, 4 * e[0].stderr_ + 2e-3) << "channel " << c;
+        // 4 standard errors, plus the white illuminant's fit error: its sRGB is (1,1,1) to
+        // 1e-4 per channel (Spectrum.WhiteIlluminantIsSrgbWhite checks that bound).
+        EXPECT_NEAR(e[0].mean, 1.0, 4 * e[0].stderr_ + 1e-4) << "channel " << c;
     }
 }
 

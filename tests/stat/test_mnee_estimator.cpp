@@ -55,6 +55,38 @@ struct Mean {
 
 const BSDFContext kCtx{550, TransportMode::Radiance};
 
+// MNEE's value at receivers under the droplet for light `a` (a single sample: the light has no
+// area, so MNEE is deterministic there) against the mean of MNEE samples for the area light
+// `b` that converges to it; O(size) bias allowed plus 5 standard errors.
+void expect_light_limit(const LoadedScene& a, const LoadedScene& b, std::initializer_list<double> xs) {
+    const MneeSettings st;
+    for (double x : xs) {
+        double va = 0;
+        Mean vb;
+        for (int which = 0; which < 2; ++which) {
+            const Scene& scene = which ? *b.scene : *a.scene;
+            const Light& light = *scene.lights()[0];
+            const SurfaceInteraction xb = receiver(scene, x, 0.05);
+            IndependentSampler smp(11);
+            smp.start_pixel_sample(which, 0, 0);
+            for (int n = 0; n < (which ? 4000 : 1); ++n) {
+                double v = 0;
+                if (auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), 550)) {
+                    const LightPoint lp = light_point(scene, light, *s, xb.p);
+                    std::vector<ManifoldVertex> chain;
+                    if (trace_seed_path(scene, xb, lp.p, 550, st, &chain) == SeedStatus::Refractive) {
+                        const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, 1.0, lp, chain, smp);
+                        if (c.outcome == MneeOutcome::Success) v = c.value;
+                    }
+                }
+                if (which) vb.add(v); else va = v;
+            }
+        }
+        EXPECT_GT(va, 0.0) << "x = " << x;
+        EXPECT_NEAR(va, vb.mean(), 5 * vb.stderr_() + 0.02 * va) << "x = " << x;
+    }
+}
+
 }  // namespace
 
 // Alg. 1 estimates the light arriving through the droplet exactly as BSDF sampling restricted
@@ -164,33 +196,7 @@ TEST(MneeEstimator, PointLightIsTheLimitOfSmallSphereLights) {
     const std::string sphere = std::string(R"(<shape type="sphere"><point name="center" x="-0.6" y="3" z="-0.4"/><float name="radius" value=")") +
                                std::to_string(r) + R"("/><emitter type="area"><rgb name="radiance" value=")" +
                                std::to_string(4 / (kPi * r * r)) + R"("/></emitter></shape>)";
-    LoadedScene a = droplet(point), b = droplet(sphere);
-    const MneeSettings st;
-    for (double x : {0.1, -0.25}) {
-        double va = 0;
-        Mean vb;
-        for (int which = 0; which < 2; ++which) {
-            const Scene& scene = which ? *b.scene : *a.scene;
-            const Light& light = *scene.lights()[0];
-            const SurfaceInteraction xb = receiver(scene, x, 0.05);
-            IndependentSampler smp(11);
-            smp.start_pixel_sample(which, 0, 0);
-            for (int n = 0; n < (which ? 4000 : 1); ++n) {
-                double v = 0;
-                if (auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), 550)) {
-                    std::vector<ManifoldVertex> chain;
-                    if (trace_seed_path(scene, xb, s->p, 550, st, &chain) == SeedStatus::Refractive) {
-                        const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, 1.0, light_point(scene, light, *s, xb.p), chain, smp);
-                        if (c.outcome == MneeOutcome::Success) v = c.value;
-                    }
-                }
-                if (which) vb.add(v); else va = v;
-            }
-        }
-        // The sphere's image is not a point: allow O(r) plus 5 standard errors.
-        EXPECT_GT(va, 0.0);
-        EXPECT_NEAR(va, vb.mean(), 5 * vb.stderr_() + 0.02 * va) << "x = " << x;
-    }
+    expect_light_limit(droplet(point), droplet(sphere), {0.1, -0.25});
 }
 
 // A directional light is the limit of a distant small sphere light with the same irradiance
@@ -206,31 +212,5 @@ TEST(MneeEstimator, DirectionalLightIsTheLimitOfADistantSphereLight) {
                                std::to_string(c.y) + R"(" z=")" + std::to_string(c.z) + R"("/><float name="radius" value=")" +
                                std::to_string(r) + R"("/><emitter type="area"><rgb name="radiance" value=")" +
                                std::to_string(E * d * d / (kPi * r * r)) + R"("/></emitter></shape>)";
-    LoadedScene a = droplet(directional), b = droplet(sphere);
-    const MneeSettings st;
-    for (double x : {0.05, -0.2}) {
-        double va = 0;
-        Mean vb;
-        for (int which = 0; which < 2; ++which) {
-            const Scene& scene = which ? *b.scene : *a.scene;
-            const Light& light = *scene.lights()[0];
-            const SurfaceInteraction xb = receiver(scene, x, 0.05);
-            IndependentSampler smp(13);
-            smp.start_pixel_sample(which, 1, 0);
-            for (int n = 0; n < (which ? 4000 : 1); ++n) {
-                double v = 0;
-                if (auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), 550)) {
-                    const LightPoint lp = light_point(scene, light, *s, xb.p);
-                    std::vector<ManifoldVertex> chain;
-                    if (trace_seed_path(scene, xb, lp.p, 550, st, &chain) == SeedStatus::Refractive) {
-                        const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, 1.0, lp, chain, smp);
-                        if (c.outcome == MneeOutcome::Success) v = c.value;
-                    }
-                }
-                if (which) vb.add(v); else va = v;
-            }
-        }
-        EXPECT_GT(va, 0.0);
-        EXPECT_NEAR(va, vb.mean(), 5 * vb.stderr_() + 0.02 * va) << "x = " << x;
-    }
+    expect_light_limit(droplet(directional), droplet(sphere), {0.05, -0.2});
 }

@@ -74,7 +74,10 @@ void PathTracer::on_scatter(PathState& state, const SurfaceInteraction& si, cons
     state.prev_delta = bs.is_delta();
     state.prev_bsdf_pdf = bs.pdf;
     state.prev = {si.p, si.n};
-    if ((bs.lobe & kTransmission) && bs.eta != 1.0) state.media.cross(bsdf.interior_absorption(), dot(si.wo, si.ng) > 0);
+    // Crossing into or out of a dielectric's interior (a thin sheet, eta 1 and no interior,
+    // encloses nothing; an index-matched absorbing dielectric still does).
+    if ((bs.lobe & kTransmission) && (bs.eta != 1.0 || bsdf.interior_absorption()))
+        state.media.cross(bsdf.interior_absorption(), dot(si.wo, si.ng) > 0);
 }
 
 double PathTracer::li(const Ray& camera_ray, const Scene& scene, Sampler& sampler, double lambda) const {
