@@ -39,8 +39,9 @@ std::optional<LightSample> SpotLight::sample_li(const LightSampleContext& ref, c
     const double dist2 = length_squared(d);
     if (!(dist2 > 0)) return std::nullopt;
     const double dist = std::sqrt(dist2);
+    // Outside the cone the sample carries no light (Le = 0) but is still returned: MNEE
+    // needs the light's position whatever the direction towards ref.
     const double f = falloff(-d / dist);
-    if (!(f > 0)) return std::nullopt;
     LightSample ls;
     ls.p = m_position;
     ls.dist = dist;

@@ -56,11 +56,13 @@ ManifoldVertex ManifoldVertex::from_interaction(const SurfaceInteraction& si, do
 
 double half_vector_orientation(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo) {
     const bool wi_out = dot(wi, v.ng) >= 0, wo_out = dot(wo, v.ng) >= 0;
-    // Transmission: eta_i wi + eta_o wo points into the denser side's opposite, i.e. away
-    // from the normal, for every admissible refraction; reflection inside points to -n.
-    // The sign depends only on which sides wi and wo lie, so c_i is continuous while the
-    // walk moves vertices (orienting by the sign of h.n instead jumps far from solutions).
-    if (wi_out != wo_out) return -1.0;
+    // Transmission: for every admissible refraction eta_i wi + eta_o wo points into the
+    // less dense side (Snell: the denser side's direction has the larger normal component
+    // once scaled by its IOR), i.e. to -n when the inside is denser (eta > 1) and to +n
+    // otherwise (an air bubble in water). Reflection inside points to -n. The sign depends
+    // only on the sides of wi and wo and on eta, so c_i is continuous while the walk moves
+    // vertices (orienting by the sign of h.n instead jumps far from solutions).
+    if (wi_out != wo_out) return v.eta > 1 ? -1.0 : 1.0;
     return wi_out ? 1.0 : -1.0;
 }
 

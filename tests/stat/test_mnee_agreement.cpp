@@ -152,3 +152,44 @@ TEST(MneeAgreement, RayCastProjectionAndVariantBAreUnbiased) {
     expect_mnee_matches_nee(scene_with(smooth_water(), R"(<boolean name="allow_error_increase" value="true"/>)"), 256, 64,
                             "variant B", scene_with(smooth_water()));
 }
+
+// Rough absorbing glass: the light reached by refracting at a rough vertex lies across the
+// interface, so NEE there must attenuate with the other side's medium. `path` (BSDF sampling
+// only) is the independent reference for both `nee` and `mnee`.
+TEST(MneeAgreement, AbsorbingRoughGlassMatchesPathTracing) {
+    const std::string glass = R"(<bsdf type="roughdielectric"><float name="alpha" value="0.3"/><float name="int_ior" value="1.5"/>
+        <float name="ext_ior" value="1"/><rgb name="sigma_a" value="0.5, 0.2, 0.8"/></bsdf>)";
+    const std::string xml = scene_with(glass);
+    LoadedScene path = load_xml(xml, {{"integrator", "path"}});
+    const auto ref = block_estimates(path, *path.scene->integrator(), 512, 8, 6, 700);
+    for (const char* integ : {"nee", "mnee"}) {
+        LoadedScene ls = load_xml(xml, {{"integrator", integ}});
+        expect_agreement(ref, block_estimates(ls, *ls.scene->integrator(), 96, 8, 6, 800), 0.01, integ);
+    }
+}
+
+// A glowing glass sphere: BSDF-sampled hits of an emitter that is itself a refractive
+// interface end the path there; they must not be treated as a chain vertex.
+TEST(MneeAgreement, EmissiveDielectricMatchesPathTracing) {
+    std::string xml = scene_with(R"(<bsdf type="dielectric"><float name="int_ior" value="1.33"/></bsdf>
+        <emitter type="area"><rgb name="radiance" value="0.5, 0.5, 0.5"/></emitter>)");
+    LoadedScene path = load_xml(xml, {{"integrator", "path"}});
+    LoadedScene mnee = load_xml(xml, {{"integrator", "mnee"}});
+    expect_agreement(block_estimates(path, *path.scene->integrator(), 256, 8, 6, 900),
+                     block_estimates(mnee, *mnee.scene->integrator(), 64, 8, 6, 1000), 0.01, "emissive dielectric");
+}
+
+// An air bubble (interior less dense than the outside, eta < 1): the walk must converge
+// there too (the half vector's orientation depends on which side is denser).
+TEST(MneeAgreement, BubbleWithEtaBelowOneConvergesAndMatchesNee) {
+    const std::string bubble = R"(<bsdf type="dielectric"><float name="int_ior" value="1.0"/><float name="ext_ior" value="1.33"/></bsdf>)";
+    const std::string xml = scene_with(bubble);
+    LoadedScene mnee = load_xml(xml, {{"integrator", "mnee"}});
+    RenderOptions opt;
+    opt.spp = 8;
+    opt.progress = false;
+    const RenderResult r = render(*mnee.scene, *mnee.scene->integrator(), mnee.film, opt);
+    ASSERT_GT(r.counters.walks_started, 100u);
+    EXPECT_GT(double(r.counters.walks_converged), 0.2 * double(r.counters.walks_started));
+    expect_mnee_matches_nee(xml, 256, 64, "bubble");
+}

@@ -160,7 +160,10 @@ TEST(SpotLight, MitsubaLinearFalloff) {
     ASSERT_TRUE(ls);
     EXPECT_NEAR(ls->Le, 10.0 * 0.5 / 4.0, 1e-8);
     EXPECT_TRUE(ls->delta);
-    EXPECT_FALSE(light.sample_li({Vec3(0, 4, 0) + dir_at(40) * 2.0, Vec3()}, Vec2(), 600));
+    // Outside the cone: the light point is still returned (MNEE needs it) but carries no light.
+    const auto outside = light.sample_li({Vec3(0, 4, 0) + dir_at(40) * 2.0, Vec3()}, Vec2(), 600);
+    ASSERT_TRUE(outside);
+    EXPECT_EQ(outside->Le, 0.0);
 
     // power: I times the solid-angle integral of the profile (midpoint rule in theta).
     double integral = 0;

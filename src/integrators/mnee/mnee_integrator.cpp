@@ -13,10 +13,14 @@ namespace snell {
 
 namespace {
 
-/// Power-heuristic weight of technique a among three (area densities, same measure).
+/// Power-heuristic weight of technique a among three (area densities, same measure),
+/// normalised by the largest density so that squaring cannot overflow.
 double power3(double a, double b, double c) {
-    const double a2 = a * a, s = a2 + b * b + c * c;
-    return s > 0 && std::isfinite(s) ? a2 / s : 0.0;
+    const double m = std::max(a, std::max(b, c));
+    if (!(m > 0)) return 0.0;
+    if (std::isinf(m)) return std::isinf(a) ? 1.0 / (std::isinf(a) + std::isinf(b) + std::isinf(c)) : 0.0;
+    a /= m, b /= m, c /= m;
+    return a * a / (a * a + b * b + c * c);
 }
 
 }  // namespace
@@ -92,8 +96,9 @@ double MneeIntegrator::emitter_hit_weight(const Scene& scene, const PathState& s
                                                : 0.0;
     const double p_nee =
         s.specular[last] ? 0.0 : s.p_prefix * pmf * light_point_pdf(scene, light, s.chain[last].p, lp.p, lp.n);
-    // Sec. 3.5: outlier removal drops refractive-suffix paths that MNEE cannot find.
-    if (m_mnee.biased && !(p_mnee > 0)) return 0.0;
+    // Sec. 3.5: outlier removal drops transmissive-suffix paths that MNEE cannot find (paths
+    // with an internal reflection are not MNEE's class and keep their weight).
+    if (m_mnee.biased && s.transmissions_only && !(p_mnee > 0)) return 0.0;
     return power3(p_bsdf, p_mnee, p_nee);
 }
 
@@ -119,7 +124,7 @@ double MneeIntegrator::connect_at_interface(const Scene& scene, const SurfaceInt
                               ? mnee_pdf(scene, m_mnee, s.xb, *s.xb.bsdf(), s.chain.data(), s.k, *light, pmf, lp.p,
                                          lp.n, ctx.lambda)
                               : 0.0;
-    if (m_mnee.biased && !(p_mnee > 0)) return 0;
+    if (m_mnee.biased && s.transmissions_only && refracts && !(p_mnee > 0)) return 0;
     return nee_estimate(si, bsdf, ctx, state, *ls, pmf, power3(p_nee, p_bsdf, p_mnee));
 }
 
@@ -130,7 +135,7 @@ double MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInterac
     // Alg. 1, line 1: the light point, drawn exactly as NEE draws it.
     const Light* light = nullptr;
     double pmf = 0;
-    const auto ls = sample_light(scene, si, ctx.lambda, sampler, &light, &pmf);
+    const auto ls = sample_light(scene, si, ctx.lambda, sampler, &light, &pmf, /*keep_dark=*/true);
     if (!ls) return 0;
     const LightPoint lp = light_point(scene, *light, *ls, si.p);
 

@@ -21,12 +21,12 @@ PathSettings PathSettings::from_props(const Props& props) {
 }
 
 std::optional<LightSample> PathTracer::sample_light(const Scene& scene, const SurfaceInteraction& si, double lambda,
-                                                    Sampler& sampler, const Light** light, double* pmf) {
+                                                    Sampler& sampler, const Light** light, double* pmf, bool keep_dark) {
     *light = scene.light_sampler().sample(sampler.next_1d(), pmf);
     const Vec2 u = sampler.next_2d();
     if (!*light || !(*pmf > 0)) return std::nullopt;
     auto ls = (*light)->sample_li({si.p, si.n}, u, lambda);
-    if (!ls || !(ls->pdf > 0) || !(ls->Le > 0)) return std::nullopt;
+    if (!ls || !(ls->pdf > 0) || !(ls->Le > 0 || (keep_dark && ls->Le == 0))) return std::nullopt;
     return ls;
 }
 
@@ -34,8 +34,12 @@ double PathTracer::nee_estimate(const SurfaceInteraction& si, const BSDF& bsdf, 
                                 const PathState& state, const LightSample& ls, double pmf, double w) {
     const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls.wi);
     const double f = bsdf.eval(ctx, wo, wi) * std::abs(wi.z);
-    // Unoccluded, so the shadow segment lies entirely in the current medium.
-    const double tr = state.media.inside() ? state.media.transmittance(ls.dist, ctx.lambda) : 1.0;
+    // Unoccluded, so the shadow segment lies entirely in one medium: the current one, or the
+    // one on the other side when the light is reached by refracting here (rough dielectrics).
+    MediumStack media = state.media;
+    if (dot(si.wo, si.ng) * dot(ls.wi, si.ng) < 0 && (bsdf.eta(ctx.lambda) != 1.0 || bsdf.interior_absorption()))
+        media.cross(bsdf.interior_absorption(), dot(si.wo, si.ng) > 0);
+    const double tr = media.inside() ? media.transmittance(ls.dist, ctx.lambda) : 1.0;
     return f * tr * ls.Le * w / (pmf * ls.pdf);
 }
 
@@ -104,12 +108,13 @@ double PathTracer::li(const Ray& camera_ray, const Scene& scene, Sampler& sample
         }
         // Beer-Lambert along the segment just traced.
         beta *= state.media.transmittance(si.t, lambda);
-        on_arrival(state, si, ray, lambda);
-
+        // The emitter's weight depends on the path *before* this vertex (it ends here), so
+        // it is computed before the vertex is recorded.
         if (const Light* em = si.emitter(); em && emitters_visible) {
             const double le = em->le(si.p, si.n, -ray.d, lambda);
             if (le > 0) L += beta * le * emitter_hit_weight(scene, state, *em, si.p, si.n, ray.d, lambda);
         }
+        on_arrival(state, si, ray, lambda);
         if (m_settings.max_depth >= 0 && depth + 1 >= m_settings.max_depth) break;
         const BSDF* bsdf = si.bsdf();
         if (!bsdf) break;

@@ -49,8 +49,11 @@ protected:
                             double lambda) const;
 
     /// Picks a light and samples it as NEE does (same random numbers in the same order).
+    /// `keep_dark` keeps samples that emit nothing towards si (a spot light seen from outside
+    /// its cone): MNEE reaches the light along another direction.
     static std::optional<LightSample> sample_light(const Scene& scene, const SurfaceInteraction& si, double lambda,
-                                                   Sampler& sampler, const Light** light, double* pmf);
+                                                   Sampler& sampler, const Light** light, double* pmf,
+                                                   bool keep_dark = false);
     /// NEE for an already drawn light sample: shadow ray, power heuristic against BSDF sampling.
     static double nee_connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
                               const BSDFContext& ctx, const PathState& state, const LightSample& ls, double pmf);

@@ -1,0 +1,69 @@
+#include "app_common.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+#include "builtin_scenes.h"
+
+namespace fs = std::filesystem;
+
+namespace snell {
+
+std::atomic<bool> g_cancel{false};
+
+// First Ctrl-C: stop rendering and write what we have. Second: leave at once.
+extern "C" void on_sigint(int) {
+    if (g_cancel.exchange(true)) std::_Exit(130);
+}
+
+namespace {
+// The XML text of "builtin:NAME", or nullptr when scene_arg names a file; unknown built-ins throw.
+const std::string* builtin_xml(const std::string& scene_arg) {
+    const std::string prefix = "builtin:";
+    if (scene_arg.rfind(prefix, 0) != 0) return nullptr;
+    const std::string name = scene_arg.substr(prefix.size());
+    const std::string* xml = builtin_scene(name);
+    if (!xml) {
+        std::string known;
+        for (auto& n : builtin_scene_names()) known += " builtin:" + n;
+        throw std::runtime_error("unknown built-in scene '" + scene_arg + "' (known:" + known + ")");
+    }
+    return xml;
+}
+}  // namespace
+
+LoadedScene load_scene_arg(const std::string& scene_arg, const Defines& defines) {
+    if (const std::string* xml = builtin_xml(scene_arg))
+        return load_scene_string(*xml, scene_arg, fs::current_path().string(), defines);
+    return load_scene_file(scene_arg, defines);
+}
+
+std::shared_ptr<XmlObject> parse_scene_arg(const std::string& scene_arg, const Defines& defines) {
+    if (const std::string* xml = builtin_xml(scene_arg))
+        return parse_scene_xml_string(*xml, scene_arg, fs::current_path().string(), defines);
+    return parse_scene_xml_file(scene_arg, defines);
+}
+
+Defines parse_defines(const std::vector<std::string>& items) {
+    Defines d;
+    for (const std::string& it : items) {
+        const auto eq = it.find('=');
+        if (eq == std::string::npos || eq == 0)
+            throw CLI::ValidationError("-D", "expected name=value, got '" + it + "'");
+        d[it.substr(0, eq)] = it.substr(eq + 1);
+    }
+    return d;
+}
+
+Image film_to_image(const Film& film) {
+    Image img;
+    img.width = film.width();
+    img.height = film.height();
+    img.rgb = film.to_linear_srgb();
+    return img;
+}
+
+}  // namespace snell

@@ -1,0 +1,29 @@
+#pragma once
+// Helpers shared by the `snell` sub-commands (render, diff, compare).
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "camera/film.h"
+#include "io/image.h"
+#include "io/scene_loader.h"
+#include "io/xml_scene.h"
+
+namespace snell {
+
+/// Set by the first Ctrl-C (see on_sigint); renders poll it and stop early.
+extern std::atomic<bool> g_cancel;
+/// SIGINT handler: the first Ctrl-C sets g_cancel, the second exits at once (status 130).
+extern "C" void on_sigint(int);
+
+/// Loads a scene file or a built-in ("builtin:NAME") with -D overrides.
+LoadedScene load_scene_arg(const std::string& scene_arg, const Defines& defines);
+/// Parses a scene file or built-in into the intermediate XML tree (no plugin is instantiated).
+std::shared_ptr<XmlObject> parse_scene_arg(const std::string& scene_arg, const Defines& defines);
+/// Parses -D items "name=value"; throws CLI::ValidationError on a malformed item.
+Defines parse_defines(const std::vector<std::string>& items);
+/// The film's linear sRGB pixels as an Image.
+Image film_to_image(const Film& film);
+
+}  // namespace snell

@@ -1,0 +1,105 @@
+// `snell render SCENE -o out.exr [--spp N | --time S] [-D name=value]...` (docs/rendering.md).
+#include <algorithm>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <thread>
+
+#include "app_common.h"
+#include "commands.h"
+#include "geometry/scene.h"
+#include "integrators/integrator.h"
+#include "io/stats_json.h"
+#include "manifold/walk_statistics.h"
+#include "render/renderer.h"
+
+namespace fs = std::filesystem;
+
+namespace snell {
+
+int cmd_render(const std::string& scene_arg, std::string out, int spp, double time_limit, int threads,
+               std::optional<uint64_t> seed_arg, double exposure, std::string stats_path, bool quiet,
+               const std::vector<std::string>& define_items) {
+    const Defines defines = parse_defines(define_items);
+    LoadedScene ls = load_scene_arg(scene_arg, defines);
+    const Integrator* integ = ls.scene->integrator().get();
+    if (!integ) throw std::runtime_error(scene_arg + ": the scene declares no <integrator>");
+
+    RenderOptions opt;
+    opt.spp = spp > 0 ? spp : ls.spp;
+    opt.time_limit = time_limit;
+    opt.threads = threads;
+    const uint64_t seed = seed_arg ? *seed_arg : ls.seed;  // --seed overrides the scene's <sampler> seed
+    opt.seed = seed;
+    opt.progress = !quiet;
+
+    if (out.empty()) out = "out.exr";
+    fs::path out_path(out);
+    if (out_path.extension() != ".exr") out_path += ".exr";
+    if (out_path.has_parent_path()) fs::create_directories(out_path.parent_path());
+    fs::path png_path = out_path;
+    png_path.replace_extension(".png");
+    if (stats_path.empty()) {
+        fs::path p = out_path;
+        p.replace_extension(".json");
+        stats_path = p.string();
+    }
+
+    std::signal(SIGINT, on_sigint);
+    const int nthreads = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    char budget_buf[64];
+    if (time_limit > 0) std::snprintf(budget_buf, sizeof(budget_buf), "%g s", time_limit);
+    else std::snprintf(budget_buf, sizeof(budget_buf), "%d spp", opt.spp);
+    const std::string budget = budget_buf;
+    if (!quiet)
+        std::fprintf(stderr, "snell: %s, integrator %s, %dx%d, %s, %d threads\n", ls.path.c_str(), integ->name().c_str(),
+                     ls.film.out_width(), ls.film.out_height(),
+                     budget.c_str(),
+                     nthreads);
+    const RenderResult r = render(*ls.scene, *integ, ls.film, opt, &g_cancel);
+    std::signal(SIGINT, SIG_DFL);
+
+    const Image img = film_to_image(r.film);
+    write_exr(out_path.string(), img);
+    write_png(png_path.string(), img, exposure);
+
+    RenderReport rep;
+    rep.scene = ls.path;
+    rep.integrator = integ->name();
+    rep.width = ls.film.out_width();
+    rep.height = ls.film.out_height();
+    rep.spp_requested = time_limit > 0 ? 0 : opt.spp;
+    rep.spp_reached = r.spp_completed;
+    rep.spp_mean = r.spp_mean;
+    rep.seconds = r.seconds;
+    rep.time_limit = time_limit;
+    rep.threads = nthreads;
+    rep.seed = seed;
+    rep.interrupted = r.interrupted;
+    rep.paths = r.counters.paths;
+    rep.rays = r.counters.rays;
+    rep.shadow_rays = r.counters.shadow_rays;
+    rep.discarded_nan = r.counters.discarded_nan;
+    rep.discarded_inf = r.counters.discarded_inf;
+    rep.discarded_negative = r.counters.discarded_negative;
+    const Counters& c = r.counters;
+    if (c.walks_started > 0 || c.pdf_walks > 0) {
+        rep.extra["mnee"] = mnee_stats_json(c);
+        if (!quiet) std::fprintf(stderr, "%s", mnee_stats_text(c).c_str());
+    }
+    write_stats_json(stats_path, rep);
+
+    const double s = std::max(r.seconds, 1e-9);
+    if (!quiet || r.interrupted)
+        std::fprintf(stderr,
+                 "snell: %s%.2f s, %llu spp (mean %.1f), %.3g paths/s, %.3g rays/s; discarded NaN %llu, Inf %llu, "
+                 "negative %llu\n  wrote %s, %s, %s\n",
+                 r.interrupted ? "INTERRUPTED after " : "", r.seconds, (unsigned long long)r.spp_completed,
+                 r.spp_mean, r.counters.paths / s, (r.counters.rays + r.counters.shadow_rays) / s,
+                 (unsigned long long)r.counters.discarded_nan, (unsigned long long)r.counters.discarded_inf,
+                 (unsigned long long)r.counters.discarded_negative, out_path.c_str(), png_path.c_str(),
+                 stats_path.c_str());
+    return r.interrupted ? 130 : 0;
+}
+
+}  // namespace snell

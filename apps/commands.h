@@ -1,0 +1,42 @@
+#pragma once
+// The `snell` sub-commands; main() in snell.cpp parses the command line and calls one of these.
+// Each returns the process exit status and throws std::exception with a user-facing message.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace snell {
+
+/// `snell render` (docs/rendering.md).
+int cmd_render(const std::string& scene_arg, std::string out, int spp, double time_limit, int threads,
+               std::optional<uint64_t> seed_arg, double exposure, std::string stats_path, bool quiet,
+               const std::vector<std::string>& define_items);
+
+/// `snell diff a.exr b.exr [--crop x,y,w,h]... [--json]`: metrics of a against the reference b.
+int cmd_diff(const std::string& a_path, const std::string& b_path, const std::vector<std::string>& crops, bool json);
+
+/// Options of `snell compare` (docs/compare.md).
+struct CompareOptions {
+    std::string scene;
+    std::vector<std::string> integrators;  ///< path, nee, mnee, mnee-biased
+    double time = 0;                       ///< equal-time budget per integrator (s)
+    std::string out_dir;
+    std::string reference_file;            ///< --reference ref.exr
+    std::string reference_integrator = "mnee";
+    int reference_spp = 0;                 ///< --reference-spp
+    double reference_time = 0;             ///< --reference-time
+    std::vector<std::string> defines;
+    std::vector<std::string> crops;        ///< "x,y,w,h"
+    int threads = 0;
+    std::optional<uint64_t> seed;
+    double exposure = 0;
+    int convergence_steps = 4;             ///< renders at budget/2^k, k = steps..1, before the full one
+    double error_max = 1.0;                ///< top of the false-colour error scale
+    bool quiet = false;
+};
+
+/// `snell compare`: equal-time renders, reference, metrics, report.html and report.json.
+int cmd_compare(const CompareOptions& opt);
+
+}  // namespace snell

@@ -1,0 +1,77 @@
+#pragma once
+// Everything `snell compare` measured, in one structure: written as report.json and rendered as
+// report.html. Image paths are relative to the report folder so the folder can be moved.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "io/image_metrics.h"
+#include "io/stats_json.h"
+
+namespace snell {
+
+/// Metrics of one image region against the reference.
+struct RegionMetrics {
+    std::string region;  ///< "image" or "crop x,y,w,h"
+    Crop crop;           ///< w == 0 for the whole image
+    ImageMetrics metrics;
+};
+
+/// One point of a convergence curve: a render stopped at `time_limit` seconds.
+struct ConvergencePoint {
+    double time_limit = 0;  ///< budget asked for (s)
+    double seconds = 0;     ///< time actually rendered (s)
+    double spp_mean = 0;    ///< mean samples per pixel reached
+    ImageMetrics metrics;   ///< whole image against the reference
+};
+
+/// One technique of the comparison.
+struct IntegratorResult {
+    std::string name;     ///< as given on the command line, e.g. "mnee-biased"
+    std::string type;     ///< integrator type it was built as, e.g. "mnee"
+    bool biased = false;  ///< mnee's biased outlier removal switched on
+    RenderReport stats;   ///< the equal-time render (MNEE walk statistics under extra["mnee"])
+    std::vector<RegionMetrics> regions;         ///< [0] is the whole image, then the crops in order
+    std::vector<ConvergencePoint> convergence;  ///< increasing time; the last is the equal-time render
+    std::string image_exr, image_png, error_png;  ///< relative to the report folder
+    std::vector<std::string> crop_pngs;           ///< enlarged crops, one per crop
+};
+
+/// Where the reference came from.
+struct ReferenceInfo {
+    std::string source;      ///< "file" (--reference) or "render"
+    std::string file;        ///< the --reference path, if any
+    std::string integrator;  ///< reference integrator when rendered
+    uint64_t spp = 0;        ///< --reference-spp (0: time-limited)
+    double time_limit = 0;   ///< --reference-time (0: spp mode)
+    RenderReport stats;      ///< when rendered
+    std::string image_exr, image_png;
+    std::vector<std::string> crop_pngs;
+};
+
+struct CompareReport {
+    std::string scene;
+    std::vector<std::string> defines;  ///< -D name=value as given
+    int width = 0, height = 0;
+    double time_budget = 0;  ///< equal-time budget per integrator (s)
+    int threads = 0;
+    uint64_t seed = 0;
+    double exposure = 0;     ///< PNG exposure in stops
+    double error_max = 1;    ///< relative error shown as the top of the false-colour map
+    std::vector<Crop> crops;
+    std::vector<int> crop_scales;  ///< enlargement factor of each crop's PNGs
+    ReferenceInfo reference;
+    std::vector<IntegratorResult> integrators;  ///< in command-line order
+
+    /// Indices into `integrators` by whole-image PSNR, best (highest) first; ties keep order.
+    std::vector<size_t> order_by_psnr() const;
+};
+
+/// JSON of the metrics (non-finite PSNR, e.g. identical images, becomes null).
+nlohmann::json metrics_json(const ImageMetrics& m);
+/// Every number of the report; integrators carry "rank" (1 = best PSNR).
+nlohmann::json report_json(const CompareReport& r);
+
+}  // namespace snell

@@ -1,0 +1,43 @@
+#include "report/image_ops.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace snell {
+
+Image crop_image(const Image& img, const Crop& crop_in) {
+    Crop c = crop_in;
+    if (c.w == 0) c = {0, 0, img.width, img.height};
+    if (c.x < 0 || c.y < 0 || c.w <= 0 || c.h <= 0 || c.x + c.w > img.width || c.y + c.h > img.height)
+        throw std::invalid_argument("crop " + std::to_string(c.x) + "," + std::to_string(c.y) + "," +
+                                    std::to_string(c.w) + "," + std::to_string(c.h) + " is outside the " +
+                                    std::to_string(img.width) + "x" + std::to_string(img.height) + " image");
+    Image out;
+    out.width = c.w;
+    out.height = c.h;
+    out.rgb.resize(size_t(c.w) * c.h * 3);
+    for (int y = 0; y < c.h; ++y)
+        for (int x = 0; x < c.w; ++x)
+            for (int ch = 0; ch < 3; ++ch) out.at(x, y, ch) = img.at(c.x + x, c.y + y, ch);
+    return out;
+}
+
+Image upscale_nearest(const Image& img, int factor) {
+    if (factor < 1) throw std::invalid_argument("upscale factor must be >= 1, got " + std::to_string(factor));
+    Image out;
+    out.width = img.width * factor;
+    out.height = img.height * factor;
+    out.rgb.resize(size_t(out.width) * out.height * 3);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            for (int ch = 0; ch < 3; ++ch) out.at(x, y, ch) = img.at(x / factor, y / factor, ch);
+    return out;
+}
+
+int enlargement_factor(int w, int h, int target) {
+    const int longer = std::max(1, std::max(w, h));
+    return std::clamp(target / longer, 1, 16);
+}
+
+}  // namespace snell
