@@ -16,11 +16,16 @@ PACKAGES=(
   nlohmann-json3-dev   # stats JSON
   libgtest-dev         # tests
   libbenchmark-dev     # make bench
+  chromium             # tests: opens the `snell compare` report page headless
+  nodejs npm           # build step: the Stanford bunny for scenes/bunny_sphere (npm package)
 )
 
 missing=()
 for p in "${PACKAGES[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    # node/npm from another source (e.g. a nodejs package that bundles npm) count as present:
+    # asking apt for Debian's npm beside it would conflict.
+    if { [ "$p" = nodejs ] || [ "$p" = npm ]; } && command -v "$p" >/dev/null 2>&1; then continue; fi
     missing+=("$p")
   fi
 done
