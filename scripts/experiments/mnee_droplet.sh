@@ -12,14 +12,15 @@ OUT=results/mnee_droplet
 mkdir -p "$OUT"
 [ -x "$SNELL" ] || make release >/dev/null
 SCENE=builtin:droplet
-CAUSTIC=250,250,140,90   # the plane under the droplet (640x480 film)
+CAUSTIC=230,190,190,110  # transmitted caustic under the droplet (640x480 film)
+REFLECTED=150,200,90,120 # faint reflected caustic at its left foot
 
 echo "== reference: mnee, ${REF_T}s"
 $SNELL render $SCENE -D integrator=mnee --time "$REF_T" --seed 999 -o "$OUT/reference.exr" -q
 for integ in nee mnee; do
   echo "== $integ, ${T}s"
   $SNELL render $SCENE -D integrator=$integ --time "$T" --seed 1 -o "$OUT/equal_time_$integ.exr" -q
-  $SNELL diff "$OUT/equal_time_$integ.exr" "$OUT/reference.exr" --crop $CAUSTIC | tee "$OUT/equal_time_$integ.txt"
+  $SNELL diff "$OUT/equal_time_$integ.exr" "$OUT/reference.exr" --crop $CAUSTIC --crop $REFLECTED | tee "$OUT/equal_time_$integ.txt"
   python3 -c "import json;d=json.load(open('$OUT/equal_time_$integ.json'));print('  spp reached', d['spp_reached'])"
 done
 
@@ -40,9 +41,9 @@ PY
 done
 cat "$OUT/table1.txt"
 
-echo "== caustic energy: unbiased mnee vs biased (outlier removal), 256 spp"
-$SNELL render $SCENE -D integrator=mnee --spp 256 --seed 5 -o "$OUT/share_unbiased.exr" -q
+echo "== caustic energy: unbiased mnee vs biased (outlier removal), 128 spp"
+$SNELL render $SCENE -D integrator=mnee --spp 128 --seed 5 -o "$OUT/share_unbiased.exr" -q
 sed 's|<integer name="max_depth" value="$max_depth"/>|<integer name="max_depth" value="$max_depth"/><boolean name="biased" value="true"/>|' \
   scenes/droplet/droplet.xml > "$OUT/droplet_biased.xml"
-$SNELL render "$OUT/droplet_biased.xml" --spp 256 --seed 5 -o "$OUT/share_biased.exr" -q
+$SNELL render "$OUT/droplet_biased.xml" --spp 128 --seed 5 -o "$OUT/share_biased.exr" -q
 $SNELL diff "$OUT/share_biased.exr" "$OUT/share_unbiased.exr" --crop $CAUSTIC | tee "$OUT/share.txt"
