@@ -35,12 +35,16 @@ namespace {
 struct Technique {
     std::string name, type;
     bool biased = false;
+    std::string sampler;  ///< inner sampler of Metropolis techniques ("nee", "mnee")
 };
 
 Technique parse_technique(const std::string& name) {
-    if (name == "path" || name == "nee" || name == "mnee") return {name, name, false};
-    if (name == "mnee-biased") return {name, "mnee", true};
-    throw std::runtime_error("unknown integrator '" + name + "' (known: path, nee, mnee, mnee-biased)");
+    if (name == "path" || name == "nee" || name == "mnee") return {name, name, false, ""};
+    if (name == "mnee-biased") return {name, "mnee", true, ""};
+    if (name == "pssmlt(nee)") return {name, "pssmlt", false, "nee"};
+    if (name == "pssmlt(mnee)") return {name, "pssmlt", false, "mnee"};
+    throw std::runtime_error("unknown integrator '" + name +
+                             "' (known: path, nee, mnee, mnee-biased, pssmlt(nee), pssmlt(mnee))");
 }
 
 // A loaded scene and the integrator to render it with.
@@ -79,8 +83,11 @@ Prepared prepare(const std::string& scene, const Defines& user_defines, const Te
         Props props("integrator", t.type, loc);
         if (xi)
             for (const XmlParam& prm : xi->params)
-                if (!dropped.count(prm.name) && !(t.biased && prm.name == "biased")) props.set(prm.name, prm.value, prm.loc);
+                if (!dropped.count(prm.name) && !(t.biased && prm.name == "biased") &&
+                    !(!t.sampler.empty() && prm.name == "sampler"))
+                    props.set(prm.name, prm.value, prm.loc);
         if (t.biased) props.set("biased", true, loc);
+        if (!t.sampler.empty()) props.set("sampler", t.sampler, loc);
         return create_integrator(props);
     };
     for (;;) {

@@ -3,6 +3,9 @@ snell_library(snell_integrators
   src/integrators/registry.cpp
   src/integrators/path/path_tracer.cpp
   src/integrators/mnee/mnee_integrator.cpp
+  src/integrators/bdpt/bdpt.cpp
+  src/integrators/pssmlt/primary_sample_sampler.cpp
+  src/integrators/pssmlt/pssmlt.cpp
   src/render/renderer.cpp
 )
 target_link_libraries(snell_integrators PUBLIC snell_manifold snell_geometry snell_bsdf snell_light snell_props TBB::tbb)
@@ -15,3 +18,5 @@ snell_test(test_mnee
   SOURCES tests/stat/test_mnee_agreement.cpp tests/stat/test_mnee_estimator.cpp
   LIBS ${SNELL_ALL_LIBS})
 snell_test(test_path_features SOURCES tests/stat/test_path_features.cpp LIBS ${SNELL_ALL_LIBS})
+snell_test(test_pssmlt SOURCES tests/stat/test_pssmlt.cpp LIBS ${SNELL_ALL_LIBS})
+snell_test(test_bdpt SOURCES tests/stat/test_bdpt_agreement.cpp LIBS ${SNELL_ALL_LIBS})

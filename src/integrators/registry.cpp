@@ -3,8 +3,10 @@
 
 #include "core/props.h"
 #include "integrators/integrator.h"
+#include "integrators/bdpt/bdpt.h"
 #include "integrators/mnee/mnee_integrator.h"
 #include "integrators/path/path_tracer.h"
+#include "integrators/pssmlt/pssmlt.h"
 
 namespace snell {
 
@@ -15,11 +17,13 @@ using Factory = std::function<std::shared_ptr<Integrator>(const Props&)>;
 // line (`snell compare --integrators ...`).
 const std::map<std::string, Factory>& registry() {
     static const std::map<std::string, Factory> r = {
+        {"bdpt", [](const Props& p) { return std::make_shared<BdptIntegrator>(PathSettings::from_props(p)); }},
         {"path", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), false); }},
         {"nee", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), true); }},
         {"mnee", [](const Props& p) {
              return std::make_shared<MneeIntegrator>(PathSettings::from_props(p), MneeIntegrator::settings_from_props(p));
          }},
+        {"pssmlt", [](const Props& p) { return std::make_shared<PssmltIntegrator>(PssmltSettings::from_props(p)); }},
     };
     return r;
 }

@@ -15,6 +15,7 @@
 #include "core/spectrum.h"
 #include "geometry/scene.h"
 #include "integrators/integrator.h"
+#include "integrators/pssmlt/pssmlt.h"
 
 namespace snell {
 
@@ -56,6 +57,9 @@ double sanitize(double L, Counters& c) {
 
 RenderResult render(const Scene& scene, const Integrator& integrator, const FilmSpec& spec,
                     const RenderOptions& opt, const std::atomic<bool>* cancel) {
+    // Metropolis places its samples anywhere on the film: it has its own render loop.
+    if (const auto* mlt = dynamic_cast<const PssmltIntegrator*>(&integrator))
+        return render_pssmlt(scene, mlt->settings(), spec, opt, cancel);
     using Clock = std::chrono::steady_clock;
     const PerspectiveCamera* camera = scene.camera();
     if (!camera) throw std::runtime_error("scene has no sensor");

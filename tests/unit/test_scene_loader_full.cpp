@@ -80,7 +80,7 @@ TEST(SceneLoaderFull, UnusedAndUnknownParametersNameTheirLine) {
                  "velvet");
     expect_error(scene_with("<shape type=\"torus\"/>"), "test.xml:3: <shape>", "torus");
     expect_error(scene_with("<emitter type=\"laser\"/>"), "test.xml:3: <emitter>", "laser");
-    expect_error(scene_with("<integrator type=\"bdpt\"/>"), "test.xml:3: <integrator>", "bdpt");
+    expect_error(scene_with("<integrator type=\"photonmapper\"/>"), "test.xml:3: <integrator>", "photonmapper");
     expect_error(scene_with("<shape type=\"sphere\">\n<float name=\"radius\" value=\"1\"/>\n<string name=\"radius2\" value=\"x\"/>\n</shape>"),
                  "test.xml:5: <shape>", "unused parameter 'radius2'");
     // Wrong type at the parameter's own line.

@@ -1,0 +1,343 @@
+#include "integrators/bdpt/bdpt.h"
+
+#include <cmath>
+#include <vector>
+
+#include "bsdf/bsdf.h"
+#include "core/medium_stack.h"
+#include "core/stats.h"
+#include "core/warp.h"
+#include "geometry/scene.h"
+#include "geometry/shape.h"
+#include "integrators/mis.h"
+#include "light/point.h"
+#include "light/spot.h"
+
+namespace snell {
+
+namespace {
+
+// With max_depth = -1 subpaths end by Russian roulette; this cap only bounds memory (a path
+// of this many vertices has a vanishing probability under roulette).
+constexpr int kUnboundedVertices = 128;
+
+enum class VertexType { Camera, Light, Surface };
+
+/// One subpath vertex. Densities are in area measure at this vertex: pdf_fwd as its own
+/// subpath sampled it, pdf_rev as the opposite subpath would (0 through delta lobes).
+struct Vertex {
+    VertexType type = VertexType::Surface;
+    SurfaceInteraction si;      // camera: p only; light: p and n (zero for point and spot)
+    const BSDF* bsdf = nullptr;
+    const Light* light = nullptr;  // light vertex: its light; surface vertex: the shape's emitter
+    double beta = 0;            // throughput of the subpath up to and including this vertex
+    double pdf_fwd = 0, pdf_rev = 0;
+    bool delta = false;         // scattered by a delta lobe on its own subpath
+    MediumStack media;          // medium on the side the subpath arrived from
+
+    bool has_normal() const { return length_squared(si.ng) > 0; }
+    bool connectible() const {
+        return type != VertexType::Surface || (bsdf && bsdf->is_smooth_sampled());
+    }
+};
+
+bool delta_position(const Light& l) { return l.kind() == LightKind::Point || l.kind() == LightKind::Spot; }
+
+// Solid-angle density at `from` of the direction to `to`, converted to area measure at `to`
+// (geometric normal: the area measure of the surface).
+double to_area(double pdf_dir, const Vertex& from, const Vertex& to) {
+    const Vec3 d = to.si.p - from.si.p;
+    const double d2 = length_squared(d);
+    if (!(d2 > 0)) return 0;
+    double pdf = pdf_dir / d2;
+    if (to.has_normal()) pdf *= std::abs(dot(to.si.ng, d)) / std::sqrt(d2);
+    return pdf;
+}
+
+// Area density at `next` with which a subpath continuing from `v` (reached from `prev`, which
+// for a light vertex is ignored) samples `next`; `mode` is the transport of that subpath.
+double pdf_area(const Vertex& v, const Vertex* prev, const Vertex& next, TransportMode mode, double lambda) {
+    const Vec3 wi = normalize(next.si.p - v.si.p);
+    if (v.type == VertexType::Light) {
+        if (delta_position(*v.light)) return to_area(kInv4Pi, v, next);
+        const double c = dot(v.si.n, wi);
+        return c > 0 ? to_area(c * kInvPi, v, next) : 0.0;
+    }
+    if (v.type != VertexType::Surface || !v.bsdf || !prev) return 0;
+    const Vec3 wo = normalize(prev->si.p - v.si.p);
+    const BSDFContext ctx{lambda, mode};
+    return to_area(v.bsdf->pdf(ctx, v.si.to_local(wo), v.si.to_local(wi)), v, next);
+}
+
+// Density of choosing the light point of `light` at the start of a light subpath.
+double light_origin_pdf(const Scene& scene, const Light& light) {
+    const double pmf = scene.light_sampler().pmf(&light);
+    if (delta_position(light)) return pmf;
+    return light.shape() ? pmf / light.shape()->area() : 0.0;
+}
+
+// Adjoint BSDF correction for shading normals (Veach's thesis, Sec. 5.3): in Importance mode
+// the throughput must use |wo.ng| |wi.ns| / ... swapped; 1 where ns = ng.
+double shading_correction(const SurfaceInteraction& si, const Vec3& wo, const Vec3& wi) {
+    const double num = std::abs(dot(wo, si.n)) * std::abs(dot(wi, si.ng));
+    const double den = std::abs(dot(wo, si.ng)) * std::abs(dot(wi, si.n));
+    return den > 0 ? num / den : 0.0;
+}
+
+/// Where a camera subpath escaped the scene (for lights at infinity).
+struct Escape {
+    bool escaped = false;
+    Vec3 d;
+    double beta = 0;
+    double pdf_dir = 0;  // solid-angle density of d at the last vertex (0 after a delta lobe)
+};
+
+// Extends `path` (holding its first vertex) by BSDF sampling until `max_vertices`, absorption
+// or roulette. `pdf_dir` is the density of `ray.d` at the first vertex.
+void random_walk(const Scene& scene, Ray ray, Sampler& sampler, double lambda, double beta, double pdf_dir,
+                 size_t max_vertices, int rr_depth, TransportMode mode, std::vector<Vertex>& path, Escape* escape) {
+    const BSDFContext ctx{lambda, mode};
+    const BSDFContext ctx_rev{lambda, mode == TransportMode::Radiance ? TransportMode::Importance : TransportMode::Radiance};
+    MediumStack media;
+    double eta_scale = 1;
+    while (path.size() < max_vertices) {
+        SurfaceInteraction si;
+        if (!scene.intersect(ray, &si)) {
+            if (escape) *escape = {true, ray.d, beta, pdf_dir};
+            break;
+        }
+        beta *= media.transmittance(si.t, lambda);
+        Vertex v;
+        v.si = si;
+        v.bsdf = si.bsdf();
+        v.light = si.emitter();
+        v.beta = beta;
+        v.media = media;
+        v.pdf_fwd = to_area(pdf_dir, path.back(), v);
+        path.push_back(v);
+        if (path.size() >= max_vertices || !v.bsdf) break;
+
+        Vertex& cur = path.back();
+        const Vec3 wo = si.to_local(si.wo);
+        const auto bs = cur.bsdf->sample(ctx, wo, sampler.next_1d(), sampler.next_2d());
+        if (!bs || !(bs->weight > 0)) break;
+        const Vec3 wi = si.to_world(bs->wi);
+        double pdf_rev_dir = 0;
+        if (bs->is_delta()) {
+            cur.delta = true;
+            pdf_dir = 0;
+        } else {
+            pdf_dir = bs->pdf;
+            pdf_rev_dir = cur.bsdf->pdf(ctx_rev, bs->wi, wo);
+        }
+        beta *= bs->weight;
+        if (mode == TransportMode::Importance) beta *= shading_correction(si, si.wo, wi);
+        path[path.size() - 2].pdf_rev = to_area(pdf_rev_dir, cur, path[path.size() - 2]);
+        if ((bs->lobe & kTransmission) && (bs->eta != 1.0 || cur.bsdf->interior_absorption()))
+            media.cross(cur.bsdf->interior_absorption(), dot(si.wo, si.ng) > 0);
+        if (mode == TransportMode::Radiance && (bs->lobe & kTransmission) && bs->eta != 1.0) eta_scale *= sqr(bs->eta);
+        ray = scene.spawn_ray(si, wi);
+        // Roulette after the same number of surface vertices as the path tracer.
+        if (int(path.size()) - 1 >= rr_depth) {
+            const double q = std::min(0.95, beta * eta_scale);
+            if (!(sampler.next_1d() < q)) break;
+            beta /= q;
+        }
+    }
+}
+
+// Samples y_0 on a finite light and walks the light subpath. Empty when the light sampler
+// picks a light at infinity (those are handled unidirectionally).
+void light_subpath(const Scene& scene, Sampler& sampler, double lambda, size_t max_vertices, int rr_depth,
+                   std::vector<Vertex>& path) {
+    path.clear();
+    double pmf = 0;
+    const Light* light = scene.light_sampler().sample(sampler.next_1d(), &pmf);
+    const Vec2 u_pos = sampler.next_2d(), u_dir = sampler.next_2d();
+    if (!light || !(pmf > 0) || light->is_infinite() || max_vertices == 0) return;
+    Vertex y0;
+    y0.type = VertexType::Light;
+    y0.light = light;
+    double pdf_pos = 1, pdf_dir = 0, le = 0;
+    Vec3 w;
+    if (delta_position(*light)) {
+        if (const auto* pl = dynamic_cast<const PointLight*>(light)) y0.si.p = pl->position();
+        else if (const auto* sl = dynamic_cast<const SpotLight*>(light)) y0.si.p = sl->position();
+        else return;
+        w = warp::square_to_uniform_sphere(u_dir);
+        pdf_dir = kInv4Pi;
+        le = light->emitted(y0.si.p, Vec3(), w, lambda);
+    } else {
+        const Shape* shape = light->shape();
+        if (!shape) return;
+        const ShapeSample ss = shape->sample_area(u_pos);
+        pdf_pos = ss.pdf;
+        y0.si.p = ss.p;
+        y0.si.n = y0.si.ng = ss.n;
+        y0.si.shading = Frame::from_normal(ss.n);
+        const Vec3 wl = warp::square_to_cosine_hemisphere(u_dir);
+        w = y0.si.to_world(wl);
+        pdf_dir = warp::square_to_cosine_hemisphere_pdf(wl);
+        le = light->le(ss.p, ss.n, w, lambda) * wl.z;
+    }
+    if (!(pdf_pos > 0)) return;
+    y0.pdf_fwd = pmf * pdf_pos;
+    y0.beta = 1.0 / (pmf * pdf_pos);  // emission is evaluated per connection (s = 1)
+    path.push_back(y0);
+    if (!(le > 0) || !(pdf_dir > 0)) return;
+    const Ray ray = y0.has_normal() ? scene.spawn_ray(y0.si, w) : Ray{y0.si.p, w};
+    random_walk(scene, ray, sampler, lambda, le / (pmf * pdf_pos * pdf_dir), pdf_dir, max_vertices, rr_depth,
+                TransportMode::Importance, path, nullptr);
+}
+
+double remap0(double x) { return x != 0 ? x : 1.0; }
+
+// Power-heuristic weight of strategy (s, t) among all strategies s' + t' = s + t with t' >= 2.
+// `pz_*` / `py_*` are the recomputed reverse densities of the connection's neighbourhood.
+double mis_weight(const Scene& scene, const std::vector<Vertex>& cam, const std::vector<Vertex>& lig, int s, int t,
+                  double lambda) {
+    if (s + t == 2) return 1.0;  // only (0, 2) and (1, 1); t = 1 is not a strategy here
+    thread_local std::vector<double> zr, zf, yr, yf;
+    thread_local std::vector<char> zd, yd;
+    zr.resize(size_t(t)); zf.resize(size_t(t)); zd.resize(size_t(t));
+    yr.resize(size_t(s)); yf.resize(size_t(s)); yd.resize(size_t(s));
+    for (int i = 0; i < t; ++i) zr[i] = cam[i].pdf_rev, zf[i] = cam[i].pdf_fwd, zd[i] = cam[i].delta;
+    for (int i = 0; i < s; ++i) yr[i] = lig[i].pdf_rev, yf[i] = lig[i].pdf_fwd, yd[i] = lig[i].delta;
+    const Vertex& z = cam[size_t(t - 1)];
+    const Vertex& zp = cam[size_t(t - 2)];
+    // The connection's endpoints scatter along the new edge, not along their sampled lobes.
+    zd[t - 1] = false;
+    bool light_delta = false;
+    if (s == 0) {
+        // z_{t-1} lies on an area light; seen as a light subpath it is y_0 and emits to z_{t-2}.
+        Vertex as_light = z;
+        as_light.type = VertexType::Light;
+        zr[t - 1] = light_origin_pdf(scene, *z.light);
+        zr[t - 2] = pdf_area(as_light, nullptr, zp, TransportMode::Importance, lambda);
+    } else {
+        const Vertex& y = lig[size_t(s - 1)];
+        yd[s - 1] = false;
+        light_delta = delta_position(*lig[0].light);
+        zr[t - 1] = pdf_area(y, s >= 2 ? &lig[size_t(s - 2)] : nullptr, z, TransportMode::Importance, lambda);
+        zr[t - 2] = pdf_area(z, &y, zp, TransportMode::Importance, lambda);
+        yr[s - 1] = pdf_area(z, &zp, y, TransportMode::Radiance, lambda);
+        if (s >= 2) yr[s - 2] = pdf_area(y, &z, lig[size_t(s - 2)], TransportMode::Radiance, lambda);
+    }
+    double sum = 0, r = 1;
+    // Camera vertices handed to the light subpath: strategies (s + t - i, i), i >= 2.
+    for (int i = t - 1; i >= 2; --i) {
+        r *= remap0(zr[i]) / remap0(zf[i]);
+        if (!zd[i] && !zd[i - 1]) sum += r * r;
+    }
+    r = 1;
+    // Light vertices handed to the camera subpath: strategies (i, s + t - i), i < s.
+    for (int i = s - 1; i >= 0; --i) {
+        r *= remap0(yr[i]) / remap0(yf[i]);
+        const bool prev_delta = i > 0 ? yd[i - 1] != 0 : light_delta;
+        if (!yd[i] && !prev_delta) sum += r * r;
+    }
+    return 1.0 / (1.0 + sum);
+}
+
+// Unweighted contribution of connecting light vertex y_{s-1} (s >= 1) with camera vertex z_{t-1}.
+double connect(const Scene& scene, const std::vector<Vertex>& cam, const std::vector<Vertex>& lig, int s, int t,
+               double lambda) {
+    const Vertex& z = cam[size_t(t - 1)];
+    const Vertex& y = lig[size_t(s - 1)];
+    if (!z.connectible() || !y.connectible()) return 0;
+    Vec3 d = y.si.p - z.si.p;
+    const double d2 = length_squared(d);
+    if (!(d2 > 0)) return 0;
+    const double dist = std::sqrt(d2);
+    d /= dist;
+    const double fz = z.bsdf->eval({lambda, TransportMode::Radiance}, z.si.to_local(z.si.wo), z.si.to_local(d)) *
+                      std::abs(dot(z.si.n, d));
+    if (!(fz > 0)) return 0;
+    double fy;
+    if (s == 1) {
+        fy = y.has_normal() ? y.light->le(y.si.p, y.si.n, -d, lambda) * std::abs(dot(y.si.n, d))
+                            : y.light->emitted(y.si.p, Vec3(), -d, lambda);
+    } else {
+        fy = y.bsdf->eval({lambda, TransportMode::Importance}, y.si.to_local(y.si.wo), y.si.to_local(-d)) *
+             std::abs(dot(y.si.n, d)) * shading_correction(y.si, y.si.wo, -d);
+    }
+    double c = z.beta * fz * fy * y.beta / d2;
+    if (!(c > 0)) return 0;
+    // The edge lies in one medium: z's, or the one behind z's interface when it refracts.
+    MediumStack media = z.media;
+    if (dot(z.si.wo, z.si.ng) * dot(d, z.si.ng) < 0 && (z.bsdf->eta(lambda) != 1.0 || z.bsdf->interior_absorption()))
+        media.cross(z.bsdf->interior_absorption(), dot(z.si.wo, z.si.ng) > 0);
+    c *= media.transmittance(dist, lambda);
+    if (scene.occluded(scene.spawn_ray_to(z.si, y.si.p))) return 0;
+    return c;
+}
+
+// Lights at infinity: the light-sampling strategy from camera vertex z (NEE-style, power
+// heuristic against the escaping camera path).
+double connect_infinite(const Scene& scene, const Vertex& z, Sampler& sampler, double lambda) {
+    double pmf = 0;
+    const Light* light = scene.light_sampler().sample(sampler.next_1d(), &pmf);
+    const Vec2 u = sampler.next_2d();
+    if (!light || !light->is_infinite() || !(pmf > 0) || !z.connectible()) return 0;
+    const auto ls = light->sample_li({z.si.p, z.si.n}, u, lambda);
+    if (!ls || !(ls->pdf > 0) || !(ls->Le > 0)) return 0;
+    const BSDFContext ctx{lambda, TransportMode::Radiance};
+    const Vec3 wo = z.si.to_local(z.si.wo), wi = z.si.to_local(ls->wi);
+    const double f = z.bsdf->eval(ctx, wo, wi) * std::abs(wi.z);
+    if (!(f > 0) || scene.occluded(scene.spawn_ray(z.si, ls->wi))) return 0;
+    const double w = ls->delta ? 1.0 : power_heuristic(pmf * ls->pdf, z.bsdf->pdf(ctx, wo, wi));
+    return z.beta * f * ls->Le * w / (pmf * ls->pdf);
+}
+
+}  // namespace
+
+double BdptIntegrator::li(const Ray& ray, const Scene& scene, Sampler& sampler, double lambda) const {
+    thread_counters().paths++;
+    const int md = m_settings.max_depth;
+    thread_local std::vector<Vertex> cam, lig;
+    cam.clear();
+    Vertex z0;
+    z0.type = VertexType::Camera;
+    z0.si.p = ray.o;
+    z0.beta = 1;
+    cam.push_back(z0);
+    Escape esc;
+    // max_depth counts segments: t <= max_depth + 1 and, as t >= 2, s <= max_depth - 1.
+    const size_t cam_max = md < 0 ? size_t(kUnboundedVertices) : size_t(md + 1);
+    const size_t light_max = md < 0 ? size_t(kUnboundedVertices) : size_t(md - 1);
+    random_walk(scene, ray, sampler, lambda, 1.0, 1.0, cam_max, m_settings.rr_depth, TransportMode::Radiance, cam, &esc);
+    light_subpath(scene, sampler, lambda, light_max, m_settings.rr_depth, lig);
+
+    double L = 0;
+    const int nc = int(cam.size()), nl = int(lig.size());
+    for (int t = 2; t <= nc; ++t) {
+        const Vertex& z = cam[size_t(t - 1)];
+        // s = 0: the camera subpath ends on an area light.
+        if (z.light && !(m_settings.hide_emitters && t == 2)) {
+            const double le = z.light->le(z.si.p, z.si.n, z.si.wo, lambda);
+            if (le > 0) L += z.beta * le * mis_weight(scene, cam, lig, 0, t, lambda);
+        }
+        for (int s = 1; s <= nl; ++s) {
+            if (md >= 0 && s + t - 1 > md) break;
+            const double c = connect(scene, cam, lig, s, t, lambda);
+            if (c > 0) L += c * mis_weight(scene, cam, lig, s, t, lambda);
+        }
+        if (!scene.infinite_lights().empty() && (md < 0 || t <= md)) L += connect_infinite(scene, z, sampler, lambda);
+    }
+    // Camera subpath escaping to lights at infinity (s = 0 against the light-sampling strategy).
+    if (esc.escaped && !(m_settings.hide_emitters && nc == 1)) {
+        const Vertex& last = cam.back();
+        for (const Light* light : scene.infinite_lights()) {
+            const double le = light->le_escaped(esc.d, lambda);
+            if (!(le > 0)) continue;
+            double w = 1;
+            if (nc > 1 && esc.pdf_dir > 0)
+                w = power_heuristic(esc.pdf_dir,
+                                    scene.light_sampler().pmf(light) * light->pdf_li({last.si.p, last.si.n}, Vec3(), Vec3(), esc.d));
+            L += esc.beta * le * w;
+        }
+    }
+    return L;
+}
+
+}  // namespace snell

@@ -1,0 +1,205 @@
+#include "integrators/pssmlt/pssmlt.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "core/distribution.h"
+#include "core/progress.h"
+#include "core/props.h"
+#include "core/spectrum.h"
+#include "geometry/scene.h"
+#include "integrators/mnee/mnee_integrator.h"
+#include "integrators/pssmlt/primary_sample_sampler.h"
+
+namespace snell {
+
+PssmltSettings PssmltSettings::from_props(const Props& props) {
+    PssmltSettings s;
+    s.sampler = props.get_string("sampler", s.sampler);
+    if (s.sampler != "nee" && s.sampler != "mnee")
+        props.raise("pssmlt: sampler must be 'nee' or 'mnee', not '" + s.sampler + "'");
+    s.large_step_probability = props.get_float("large_step_probability", s.large_step_probability);
+    if (!(s.large_step_probability >= 0 && s.large_step_probability <= 1))
+        props.raise("pssmlt: large_step_probability must lie in [0, 1]");
+    s.mutations_per_pixel = props.get_int("mutations_per_pixel", s.mutations_per_pixel);
+    s.bootstrap_samples = props.get_int("bootstrap_samples", s.bootstrap_samples);
+    if (s.bootstrap_samples < 1) props.raise("pssmlt: bootstrap_samples must be positive");
+    s.chains = int(props.get_int("chains", s.chains));
+    if (s.chains < 0 || s.mutations_per_pixel < 0) props.raise("pssmlt: chains and mutations_per_pixel must be >= 0");
+    s.path = PathSettings::from_props(props);
+    if (s.sampler == "mnee") s.mnee = MneeIntegrator::settings_from_props(props);
+    return s;
+}
+
+std::shared_ptr<Integrator> make_pssmlt_inner(const PssmltSettings& s) {
+    if (s.sampler == "mnee") return std::make_shared<MneeIntegrator>(s.path, s.mnee);
+    return std::make_shared<PathTracer>(s.path, true);
+}
+
+double PssmltIntegrator::li(const Ray&, const Scene&, Sampler&, double) const {
+    throw std::logic_error("pssmlt renders with render_pssmlt, not per pixel sample");
+}
+
+namespace {
+
+/// One evaluation of the inner estimator at the sampler's current primary sample.
+struct PathSample {
+    int x = 0, y = 0;  ///< output (crop) pixel
+    Vec3 xyz;          ///< contribution, as render() accumulates it
+    double target() const { return xyz.y; }  // luminance Y: the Metropolis target function
+};
+
+// Same conversion as render(): raster jitter (2D), then the wavelength (1D), then li().
+PathSample evaluate(const Scene& scene, const PerspectiveCamera& camera, const Integrator& inner, const FilmSpec& spec,
+                    Sampler& sampler) {
+    const int w = spec.out_width(), h = spec.out_height();
+    const Vec2 u = sampler.next_2d();
+    PathSample s;
+    s.x = std::min(w - 1, int(u.x * w));
+    s.y = std::min(h - 1, int(u.y * h));
+    const double u_lambda = sampler.next_1d();
+    const double lambda = sample_visible_wavelength(u_lambda);
+    const double pdf_lambda = visible_wavelength_pdf(lambda);
+    const Ray ray = camera.generate_ray(Vec2(spec.crop_x + u.x * w, spec.crop_y + u.y * h));
+    double L = inner.li(ray, scene, sampler, lambda);
+    // Invalid estimates stay off the film (as in render()), counted by kind.
+    Counters& c = thread_counters();
+    if (std::isnan(L)) c.discarded_nan++, L = 0;
+    else if (std::isinf(L)) c.discarded_inf++, L = 0;
+    else if (L < 0) c.discarded_negative++, L = 0;
+    if (L > 0 && pdf_lambda > 0) s.xyz = radiance_to_xyz(L, lambda, pdf_lambda);
+    return s;
+}
+
+// Stream identities: bootstrap path i and chain c never share a PCG32 stream.
+uint64_t bootstrap_seed(uint64_t seed, uint64_t i) { return mix_bits(mix_bits(seed) ^ (i * 2 + 1)); }
+uint64_t chain_seed(uint64_t seed, uint64_t c) { return mix_bits(mix_bits(seed + 0x632be59bd9b4e019ULL) ^ (c * 2)); }
+
+}  // namespace
+
+RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, const FilmSpec& spec,
+                           const RenderOptions& opt, const std::atomic<bool>* cancel) {
+    using Clock = std::chrono::steady_clock;
+    const PerspectiveCamera* camera = scene.camera();
+    if (!camera) throw std::runtime_error("scene has no sensor");
+    const auto start = Clock::now();
+    const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+    const bool timed = opt.time_limit > 0;
+    const int w = spec.out_width(), h = spec.out_height();
+    const size_t pixels = size_t(w) * size_t(h);
+    const auto inner = make_pssmlt_inner(settings);
+    const int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    const int n_chains = settings.chains > 0 ? settings.chains : threads;
+    const double p_large = settings.large_step_probability;
+    tbb::task_arena arena(threads);
+    reset_counters();
+
+    const auto stop_requested = [&] {
+        return (cancel && cancel->load(std::memory_order_relaxed)) || (timed && elapsed() >= opt.time_limit);
+    };
+
+    // Bootstrap: b = E[Y] over independent primary samples (an unbiased estimate of the
+    // normalisation), and the Y of each as the weight of its path as a chain seed.
+    const size_t n_boot = size_t(settings.bootstrap_samples);
+    std::vector<double> boot_y(n_boot, 0.0);
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n_boot, 256), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                PrimarySampleSampler sampler(bootstrap_seed(opt.seed, i), i, p_large, settings.s1, settings.s2);
+                boot_y[i] = evaluate(scene, *camera, *inner, spec, sampler).target();
+            }
+        });
+    });
+    double b = 0;
+    for (double y : boot_y) b += y;  // fixed order: deterministic
+    b /= double(n_boot);
+
+    RenderResult result;
+    result.film = Film(w, h);
+    if (b <= 0) {  // no bootstrap path carried light: an (estimated) black image
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) result.film.add_sum(x, y, Vec3(), 1);
+        result.seconds = elapsed();
+        result.counters = total_counters();
+        return result;
+    }
+    const Distribution1D seeds(boot_y);
+
+    // Mutations per chain: the total split as evenly as possible (equal-time: unbounded).
+    const uint64_t mpp = uint64_t(settings.mutations_per_pixel > 0 ? settings.mutations_per_pixel : opt.spp);
+    const uint64_t total = mpp * pixels;
+    std::vector<std::vector<Vec3>> films(static_cast<size_t>(n_chains));
+    std::vector<uint64_t> done(size_t(n_chains), 0);
+
+    std::unique_ptr<ProgressBar> bar;
+    if (opt.progress)
+        bar.reset(timed ? new ProgressBar(ProgressBar::for_time("pssmlt", opt.time_limit))
+                        : new ProgressBar("pssmlt", total));
+
+    arena.execute([&] {
+        tbb::parallel_for(0, n_chains, [&](int c) {
+            const uint64_t quota = total / uint64_t(n_chains) + (uint64_t(c) < total % uint64_t(n_chains) ? 1 : 0);
+            std::vector<Vec3>& film = films[size_t(c)];
+            film.assign(pixels, Vec3());
+            // Resample a bootstrap path proportionally to Y and reproduce it exactly (same
+            // stream, iteration 0 draws every dimension fresh), then give the chain its own stream.
+            PCG32 pick(chain_seed(opt.seed, uint64_t(c)), uint64_t(c) * 2 + 1);
+            const size_t i = seeds.sample_discrete(pick.next_double());
+            PrimarySampleSampler sampler(bootstrap_seed(opt.seed, i), i, p_large, settings.s1, settings.s2);
+            PathSample current = evaluate(scene, *camera, *inner, spec, sampler);
+            sampler.accept();
+            sampler.reseed(chain_seed(opt.seed, uint64_t(c)), uint64_t(c) * 2);
+
+            uint64_t m = 0;
+            const uint64_t kCheck = 1024;
+            for (; timed || m < quota; ++m) {
+                if (m % kCheck == 0 && m > 0) {
+                    if (bar && !timed) bar->add(kCheck);
+                    if (stop_requested()) break;
+                }
+                sampler.start_iteration();
+                const PathSample proposed = evaluate(scene, *camera, *inner, spec, sampler);
+                const double fc = current.target(), fp = proposed.target();
+                const double a = fc > 0 ? std::min(1.0, fp / fc) : 1.0;
+                // Expected-value accumulation: each state splats XYZ / Y with its probability
+                // of being the next state; the image scale b / (mutations per pixel) comes last.
+                if (a < 1 && fc > 0) film[size_t(current.y) * w + current.x] += current.xyz * ((1 - a) / fc);
+                if (a > 0 && fp > 0) film[size_t(proposed.y) * w + proposed.x] += proposed.xyz * (a / fp);
+                if (sampler.uniform() < a) {
+                    current = proposed;
+                    sampler.accept();
+                } else {
+                    sampler.reject();
+                }
+            }
+            done[size_t(c)] = m;
+        });
+    });
+    if (bar) bar->finish();
+
+    // Pixel value = b * (pixel count) / (mutations) * splat sum: the chains visit the film
+    // with density Y / b over the unit square of film positions, each pixel covering 1/pixels.
+    uint64_t mutations = 0;
+    for (uint64_t d : done) mutations += d;
+    const double scale = mutations > 0 ? b * double(pixels) / double(mutations) : 0.0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            Vec3 sum;
+            for (const auto& f : films) sum += f[size_t(y) * w + x];  // fixed chain order
+            result.film.add_sum(x, y, sum * scale, 1);
+        }
+    result.seconds = elapsed();
+    result.spp_mean = double(mutations) / double(pixels);
+    result.spp_completed = mutations / pixels;
+    result.interrupted = cancel && cancel->load() && (timed || mutations < total);
+    result.counters = total_counters();
+    return result;
+}
+
+}  // namespace snell

@@ -1,0 +1,59 @@
+#pragma once
+// `pssmlt`: primary-sample-space Metropolis light transport (Kelemen et al. 2002) driving an
+// ordinary per-sample estimator (`nee` or `mnee`) through a PrimarySampleSampler. Metropolis
+// places samples anywhere on the film, so it renders with its own function, render_pssmlt,
+// rather than through the per-pixel renderer.
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "integrators/integrator.h"
+#include "integrators/path/path_tracer.h"
+#include "manifold/mnee_settings.h"
+#include "render/renderer.h"
+
+namespace snell {
+
+/// Settings of `pssmlt` (scene-file names in parentheses).
+struct PssmltSettings {
+    std::string sampler = "nee";          ///< (sampler) inner estimator: "nee" or "mnee"
+    double large_step_probability = 0.3;  ///< (large_step_probability) Kelemen's p_large
+    /// (mutations_per_pixel) mutations in all chains together, per output pixel; 0: the
+    /// render options' spp. Ignored in equal-time mode (RenderOptions::time_limit > 0).
+    int64_t mutations_per_pixel = 0;
+    int64_t bootstrap_samples = 100000;   ///< (bootstrap_samples) independent paths estimating b
+    int chains = 0;                       ///< (chains) parallel Markov chains; 0: one per thread
+    double s1 = 1.0 / 1024, s2 = 1.0 / 64;  ///< small-step range (Kelemen's defaults, not in scene files)
+    PathSettings path;                    ///< (max_depth, rr_depth, hide_emitters) of the inner estimator
+    MneeSettings mnee;                    ///< MNEE parameters when sampler = "mnee"
+    static PssmltSettings from_props(const Props& props);
+};
+
+/// The inner per-sample estimator that the chains drive (`nee` or `mnee`).
+std::shared_ptr<Integrator> make_pssmlt_inner(const PssmltSettings& settings);
+
+/// Renders `film` with PSSMLT. The target function is the luminance Y of a sample's XYZ;
+/// the normalisation b = E[Y] comes from `bootstrap_samples` independent paths, from which
+/// the chain seeds are resampled proportionally to Y. Every proposal is splatted with the
+/// expected-value weights (current 1 - a, proposed a). The first two primary samples choose
+/// the film position over the output (crop) window, the third the wavelength, as in render().
+/// A pure function of (scene, settings, options.seed) when `chains` is fixed and no time
+/// limit is set: each chain owns its random stream and per-chain films are summed in order.
+RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, const FilmSpec& film,
+                           const RenderOptions& options, const std::atomic<bool>* cancel = nullptr);
+
+/// The scene-file object for `type="pssmlt"`; carries the settings for render_pssmlt. Its
+/// li() throws: a caller that finds a PssmltIntegrator must render with render_pssmlt.
+class PssmltIntegrator final : public Integrator {
+public:
+    explicit PssmltIntegrator(PssmltSettings settings) : m_settings(std::move(settings)) {}
+    double li(const Ray& ray, const Scene& scene, Sampler& sampler, double lambda) const override;
+    std::string name() const override { return m_settings.sampler == "mnee" ? "pssmlt(mnee)" : "pssmlt(nee)"; }
+    const PssmltSettings& settings() const { return m_settings; }
+
+private:
+    PssmltSettings m_settings;
+};
+
+}  // namespace snell

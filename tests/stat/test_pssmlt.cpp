@@ -1,0 +1,202 @@
+// `pssmlt` (Kelemen PSSMLT driving `nee`) estimates the same image as `nee`. Replicas with
+// different seeds are independent, so Welch's t-test over replicas is valid even though the
+// noise within one MLT image is correlated between pixels; coarse blocks keep each block's
+// estimate close to normal.
+#include <cmath>
+#include <cstdio>
+
+#include "integrators/pssmlt/primary_sample_sampler.h"
+#include "integrators/pssmlt/pssmlt.h"
+#include "stat/replica_stats.h"
+
+using namespace snell;
+using namespace snell::test;
+
+namespace {
+
+// The Cornell-like box of test_integrator_agreement.cpp at 16x16.
+const char* kScene = R"(<scene version="3.0.0">
+  <default name="integrator" value="nee"/>
+  <default name="radiance" value="6"/>
+  <integrator type="$integrator"><integer name="max_depth" value="6"/></integrator>
+  <sensor type="perspective">
+    <float name="fov" value="45"/>
+    <transform name="to_world"><lookat origin="0, 1, 3.4" target="0, 1, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/></film>
+  </sensor>
+  <bsdf type="diffuse" id="white"><rgb name="reflectance" value="0.7, 0.7, 0.7"/></bsdf>
+  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/></transform><ref id="white"/></shape>
+  <shape type="rectangle"><transform name="to_world"><translate z="-1"/><translate y="1"/></transform><ref id="white"/></shape>
+  <shape type="rectangle"><transform name="to_world"><rotate y="1" angle="90"/><translate x="-1" y="1"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.1, 0.1"/></bsdf></shape>
+  <shape type="rectangle"><transform name="to_world"><rotate y="1" angle="-90"/><translate x="1" y="1"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.1, 0.6, 0.1"/></bsdf></shape>
+  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="90"/><translate y="2"/></transform><ref id="white"/></shape>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="0.5"/><rotate x="1" angle="90"/><translate y="1.99"/></transform>
+    <emitter type="area"><rgb name="radiance" value="$radiance"/></emitter>
+  </shape>
+  <shape type="sphere"><point name="center" x="-0.45" y="0.35" z="-0.2"/><float name="radius" value="0.35"/>
+    <bsdf type="roughconductor"><string name="distribution" value="ggx"/><float name="alpha" value="0.3"/></bsdf></shape>
+  <shape type="sphere"><point name="center" x="0.45" y="0.35" z="0.2"/><float name="radius" value="0.35"/>
+    <bsdf type="roughdielectric"><float name="alpha" value="0.3"/><float name="int_ior" value="1.5"/></bsdf></shape>
+</scene>)";
+
+constexpr int kMutationsPerPixel = 256;
+constexpr int kBlock = 4;  // 4 x 4 blocks of 4 x 4 pixels
+constexpr int kReplicas = 20;
+
+PssmltSettings test_settings(const LoadedScene& ls, int chains = 8) {
+    PssmltSettings s = dynamic_cast<const PssmltIntegrator&>(*ls.scene->integrator()).settings();
+    s.mutations_per_pixel = kMutationsPerPixel;
+    s.bootstrap_samples = 65536;
+    s.chains = chains;
+    return s;
+}
+
+RenderResult render_once(const LoadedScene& ls, uint64_t seed, int threads = 0, int chains = 8) {
+    RenderOptions opt;
+    opt.seed = seed;
+    opt.progress = false;
+    opt.threads = threads;
+    return render_pssmlt(*ls.scene, test_settings(ls, chains), ls.film, opt);
+}
+
+/// replica_stats() for render_pssmlt: block and whole-image luminance over independent seeds.
+ReplicaStats pssmlt_replica_stats(const LoadedScene& ls, uint64_t seed_base) {
+    const int w = ls.film.out_width(), h = ls.film.out_height();
+    const int bw = (w + kBlock - 1) / kBlock, bh = (h + kBlock - 1) / kBlock;
+    std::vector<std::vector<double>> blocks(size_t(bw * bh));
+    std::vector<double> image;
+    for (int r = 0; r < kReplicas; ++r) {
+        const std::vector<float> rgb = render_once(ls, seed_base + uint64_t(r) * 7919).film.to_linear_srgb();
+        std::vector<double> bsum(blocks.size(), 0.0), bcnt(blocks.size(), 0.0);
+        double total = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const float* p = &rgb[(size_t(y) * w + x) * 3];
+                const double lum = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+                const size_t b = size_t((y / kBlock) * bw + x / kBlock);
+                bsum[b] += lum;
+                bcnt[b] += 1;
+                total += lum;
+            }
+        for (size_t b = 0; b < blocks.size(); ++b) blocks[b].push_back(bsum[b] / bcnt[b]);
+        image.push_back(total / double(w * h));
+    }
+    ReplicaStats s;
+    for (auto& v : blocks) s.blocks.push_back(estimate_of(v));
+    s.image = estimate_of(image);
+    return s;
+}
+
+}  // namespace
+
+// A rejected proposal restores the state bit for bit, including dimensions that the proposal
+// added, and an accepted one is kept.
+TEST(PrimarySampleSampler, RejectRestoresAndAcceptKeeps) {
+    PrimarySampleSampler s(1, 2, 0.3);
+    std::vector<double> state;
+    for (int i = 0; i < 5; ++i) state.push_back(s.next_1d());
+    s.accept();
+    for (int it = 0; it < 200; ++it) {
+        s.start_iteration();
+        std::vector<double> proposal;
+        for (int i = 0; i < 5 + it % 3; ++i) proposal.push_back(s.next_1d());
+        for (double u : proposal) ASSERT_TRUE(u >= 0 && u < 1);
+        if (it % 2) {
+            s.accept();
+            state.assign(proposal.begin(), proposal.begin() + 5);
+        } else {
+            s.reject();
+        }
+        // Reading the state again (a dimension-counter restart, no iteration) must give it back.
+        s.start_pixel_sample(0, 0, 0);
+        for (int i = 0; i < 5; ++i) ASSERT_EQ(s.next_1d(), state[size_t(i)]) << "iteration " << it;
+    }
+}
+
+// Small steps move each coordinate by a wrapped distance in [s1, s2]; large steps anywhere.
+TEST(PrimarySampleSampler, SmallStepsStayWithinKelemenRange) {
+    PrimarySampleSampler s(3, 4, 0.0);
+    double x = s.next_1d();
+    s.accept();
+    for (int it = 0; it < 1000; ++it) {
+        s.start_iteration();
+        const double y = s.next_1d();
+        double d = std::abs(y - x);
+        d = std::min(d, 1 - d);
+        ASSERT_GE(d, 1.0 / 1024 * (1 - 1e-9));
+        ASSERT_LE(d, 1.0 / 64 * (1 + 1e-9));
+        s.accept();
+        x = y;
+    }
+}
+
+// The image is a pure function of the seed for a fixed number of chains, whatever the thread
+// count, and different seeds give different images.
+TEST(Pssmlt, DeterministicForASeed) {
+    LoadedScene ls = load_xml(kScene, {{"integrator", "pssmlt"}});
+    const Film a = render_once(ls, 5, 1, 4).film, b = render_once(ls, 5, 2, 4).film, c = render_once(ls, 6, 2, 4).film;
+    bool differs = false;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            ASSERT_EQ(a.xyz(x, y).y, b.xyz(x, y).y);
+            differs |= a.xyz(x, y).y != c.xyz(x, y).y;
+        }
+    EXPECT_TRUE(differs);
+}
+
+// Agreement with `nee`: Welch per 4x4 block and for the whole image, Bonferroni-corrected at
+// family-wise level 0.01 (replica_stats.h). The whole-image mean of a PSSMLT render is its
+// bootstrap estimate b (every mutation splats total weight 1), so the blocks are what test
+// the chains. Power (measured by injecting bugs): a Metropolis target of Y^0.97 instead of Y
+// fails two blocks, Y^0.9 fails most of them; block standard errors are ~2% (pssmlt).
+TEST(Pssmlt, AgreesWithNeeInABox) {
+    LoadedScene mlt = load_xml(kScene, {{"integrator", "pssmlt"}});
+    LoadedScene nee = load_xml(kScene, {{"integrator", "nee"}});
+    expect_replicas_agree(pssmlt_replica_stats(mlt, 1000), replica_stats(nee, 256, kBlock, 2000, kReplicas),
+                          "pssmlt(nee) vs nee");
+}
+
+// Sensitivity: the comparison above must be able to fail. PSSMLT of a box whose light is 3%
+// brighter must be told apart from `nee` of the original box.
+TEST(Pssmlt, DetectsALightThreePercentBrighter) {
+    LoadedScene mlt = load_xml(kScene, {{"integrator", "pssmlt"}, {"radiance", "6.18"}});
+    LoadedScene nee = load_xml(kScene, {{"integrator", "nee"}});
+    const ReplicaStats a = pssmlt_replica_stats(mlt, 3000);
+    const ReplicaStats b = replica_stats(nee, 256, kBlock, 4000, kReplicas);
+    std::printf("brighter pssmlt %.5f +- %.5f vs nee %.5f +- %.5f\n", a.image.mean, a.image.stderr_, b.image.mean,
+                b.image.stderr_);
+    EXPECT_GT(disagreements(a, b, 0.01, false), 0);
+}
+
+// `sampler=mnee` builds MNEE as the inner estimator (its manifold walks run) and gives a
+// finite image; an unknown sampler is a scene error.
+TEST(Pssmlt, MneeSamplerRunsAndUnknownSamplerIsRejected) {
+    const std::string depth = R"(<integer name="max_depth" value="6"/>)";
+    std::string xml = kScene;
+    xml.replace(xml.find(depth), depth.size(), depth + R"(<string name="sampler" value="mnee"/>)");
+    LoadedScene ls = load_xml(xml, {{"integrator", "pssmlt"}});
+    const auto& integ = dynamic_cast<const PssmltIntegrator&>(*ls.scene->integrator());
+    EXPECT_EQ(integ.settings().sampler, "mnee");
+    EXPECT_THROW(integ.li(Ray(), *ls.scene, *IndependentSampler(0).clone(), 550.0), std::logic_error);
+    PssmltSettings s = integ.settings();
+    s.mutations_per_pixel = 16;
+    s.bootstrap_samples = 4096;
+    s.chains = 2;
+    RenderOptions opt;
+    opt.progress = false;
+    const RenderResult r = render_pssmlt(*ls.scene, s, ls.film, opt);
+    EXPECT_GT(r.counters.walks_started, 0u);
+    double sum = 0;
+    for (float v : r.film.to_linear_srgb()) {
+        ASSERT_TRUE(std::isfinite(v));
+        sum += v;
+    }
+    EXPECT_GT(sum, 0);
+
+    std::string bad = kScene;
+    bad.replace(bad.find(depth), depth.size(), depth + R"(<string name="sampler" value="bdpt"/>)");
+    EXPECT_ANY_THROW(load_xml(bad, {{"integrator", "pssmlt"}}));
+}
