@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
     CompareOptions cmp;
     uint64_t cmp_seed = 0;
     cmp_cmd->add_option("scene", cmp.scene, "scene file, or builtin:droplet")->required();
-    cmp_cmd->add_option("--integrators", cmp.integrators, "comma-separated: path, nee, mnee, mnee-biased, pssmlt(nee), pssmlt(mnee)")
+    cmp_cmd->add_option("--integrators", cmp.integrators, "comma-separated: path, nee, bdpt, mnee, mnee-biased, pssmlt(nee), pssmlt(mnee)")
         ->required()
         ->delimiter(',');
     cmp_cmd->add_option("--time", cmp.time, "wall-clock seconds per integrator")->required()->check(CLI::PositiveNumber);
