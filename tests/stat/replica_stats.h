@@ -4,6 +4,7 @@
 // confined to a region (one object, one light); the whole-image test catches small errors
 // spread over everything (a MIS weight a few percent off), which no single block resolves.
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,21 +34,16 @@ inline Estimate estimate_of(const std::vector<double>& v) {
     return {m, std::sqrt(var / double(v.size())), int(v.size())};
 }
 
-/// Renders `replicas` independent images (seeds seed_base + 7919 r) at `spp` and returns the
-/// replica statistics of block x block pixel means and of the image mean.
-inline ReplicaStats replica_stats(const LoadedScene& ls, int spp, int block, uint64_t seed_base,
-                                  int replicas = kAgreementReplicas) {
+/// Statistics of `replicas` independent images produced by render_seed(seed) for seeds
+/// seed_base + 7919 r: block x block pixel means and the image mean.
+inline ReplicaStats replica_stats_of(const LoadedScene& ls, int block, uint64_t seed_base, int replicas,
+                                     const std::function<RenderResult(uint64_t)>& render_seed) {
     const int w = ls.film.out_width(), h = ls.film.out_height();
     const int bw = (w + block - 1) / block, bh = (h + block - 1) / block;
     std::vector<std::vector<double>> blocks(size_t(bw * bh));
     std::vector<double> image;
     for (int r = 0; r < replicas; ++r) {
-        RenderOptions opt;
-        opt.spp = spp;
-        opt.seed = seed_base + uint64_t(r) * 7919;
-        opt.progress = false;
-        opt.tile_size = 8;  // enough tiles for every core on these small images
-        const std::vector<float> rgb = render(*ls.scene, *ls.scene->integrator(), ls.film, opt).film.to_linear_srgb();
+        const std::vector<float> rgb = render_seed(seed_base + uint64_t(r) * 7919).film.to_linear_srgb();
         std::vector<double> bsum(blocks.size(), 0.0), bcnt(blocks.size(), 0.0);
         double total = 0;
         for (int y = 0; y < h; ++y)
@@ -66,6 +62,19 @@ inline ReplicaStats replica_stats(const LoadedScene& ls, int spp, int block, uin
     for (auto& v : blocks) s.blocks.push_back(estimate_of(v));
     s.image = estimate_of(image);
     return s;
+}
+
+/// replica_stats_of() for the scene's own integrator at `spp` through the tiled renderer.
+inline ReplicaStats replica_stats(const LoadedScene& ls, int spp, int block, uint64_t seed_base,
+                                  int replicas = kAgreementReplicas) {
+    return replica_stats_of(ls, block, seed_base, replicas, [&](uint64_t seed) {
+        RenderOptions opt;
+        opt.spp = spp;
+        opt.seed = seed;
+        opt.progress = false;
+        opt.tile_size = 8;  // enough tiles for every core on these small images
+        return render(*ls.scene, *ls.scene->integrator(), ls.film, opt);
+    });
 }
 
 /// Welch's t-test per block and for the whole image, Bonferroni-corrected over all of them at

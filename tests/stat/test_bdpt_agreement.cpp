@@ -6,41 +6,12 @@
 #include <string>
 
 #include "stat/render_stats.h"
+#include "stat/box_scene.h"
 
 using namespace snell;
 using namespace snell::test;
 
 namespace {
-
-// The Cornell-box-like scene of test_integrator_agreement.cpp: a large light, a rough
-// conductor sphere and a rough glass sphere. $light_scale shrinks the light (keeping its power).
-const char* kBox = R"(<scene version="3.0.0">
-  <default name="integrator" value="nee"/>
-  <default name="radiance" value="6"/>
-  <default name="light_scale" value="0.5"/>
-  <integrator type="$integrator"><integer name="max_depth" value="6"/></integrator>
-  <sensor type="perspective">
-    <float name="fov" value="45"/>
-    <transform name="to_world"><lookat origin="0, 1, 3.4" target="0, 1, 0" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="32"/></film>
-  </sensor>
-  <bsdf type="diffuse" id="white"><rgb name="reflectance" value="0.7, 0.7, 0.7"/></bsdf>
-  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/></transform><ref id="white"/></shape>
-  <shape type="rectangle"><transform name="to_world"><translate z="-1"/><translate y="1"/></transform><ref id="white"/></shape>
-  <shape type="rectangle"><transform name="to_world"><rotate y="1" angle="90"/><translate x="-1" y="1"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.1, 0.1"/></bsdf></shape>
-  <shape type="rectangle"><transform name="to_world"><rotate y="1" angle="-90"/><translate x="1" y="1"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.1, 0.6, 0.1"/></bsdf></shape>
-  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="90"/><translate y="2"/></transform><ref id="white"/></shape>
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="$light_scale"/><rotate x="1" angle="90"/><translate y="1.99"/></transform>
-    <emitter type="area"><rgb name="radiance" value="$radiance"/></emitter>
-  </shape>
-  <shape type="sphere"><point name="center" x="-0.45" y="0.35" z="-0.2"/><float name="radius" value="0.35"/>
-    <bsdf type="roughconductor"><string name="distribution" value="ggx"/><float name="alpha" value="0.3"/></bsdf></shape>
-  <shape type="sphere"><point name="center" x="0.45" y="0.35" z="0.2"/><float name="radius" value="0.35"/>
-    <bsdf type="roughdielectric"><float name="alpha" value="0.3"/><float name="int_ior" value="1.5"/></bsdf></shape>
-</scene>)";
 
 // Delta lights: a point light and a spot light in an open box with a rough glass sphere.
 const char* kDeltaLights = R"(<scene version="3.0.0">
@@ -144,14 +115,14 @@ void expect_bdpt_and_nee_agree(const char* xml, const Defines& d, int spp_bdpt, 
 }  // namespace
 
 // Large light, rough BSDFs: NEE converges well, so this checks BDPT's connections and weights.
-TEST(BdptAgreement, MatchesNeeInABox) { expect_bdpt_and_nee_agree(kBox, {}, 32, 64, 12, 8, "box"); }
+TEST(BdptAgreement, MatchesNeeInABox) { expect_bdpt_and_nee_agree(kCornellBox, {}, 32, 64, 12, 8, "box"); }
 
 // A light of 1/10 the side (same power) and a smooth glass sphere: light subpaths carry the
 // light the small emitter sends through the delta refractions onto diffuse surfaces seen
 // indirectly, and the deltas' MIS bookkeeping is exercised. (The caustic seen directly needs
 // light tracing, t = 1, which is not implemented: there bdpt is as noisy as nee, ~4%.)
 TEST(BdptAgreement, MatchesNeeWithASmallLightAndSmoothGlass) {
-    std::string xml = kBox;
+    std::string xml = kCornellBox;
     const std::string rough = R"(<bsdf type="roughdielectric"><float name="alpha" value="0.3"/>)";
     xml.replace(xml.find(rough), rough.size(), R"(<bsdf type="dielectric">)");
     expect_bdpt_and_nee_agree(xml.c_str(), {{"light_scale", "0.05"}, {"radiance", "600"}}, 32, 128, 12, 8, "small light");
@@ -172,8 +143,8 @@ TEST(BdptAgreement, MatchesNeeWithAnEnvironmentAndHiddenEmitters) {
 
 // Sensitivity: the same comparison must reject a light 3% brighter (bdpt on the brighter scene).
 TEST(BdptAgreement, DetectsALightThreePercentBrighter) {
-    const LoadedScene b = load_xml(kBox, {{"integrator", "bdpt"}, {"radiance", "6.18"}});
-    const LoadedScene n = load_xml(kBox, {{"integrator", "nee"}});
+    const LoadedScene b = load_xml(kCornellBox, {{"integrator", "bdpt"}, {"radiance", "6.18"}});
+    const LoadedScene n = load_xml(kCornellBox, {{"integrator", "nee"}});
     const auto eb = block_estimates(b, *b.scene->integrator(), 32, 12, 8, 3000);
     const auto en = block_estimates(n, *n.scene->integrator(), 64, 12, 8, 4000);
     EXPECT_GT(count_disagreements(eb, en, 0.01), 0);

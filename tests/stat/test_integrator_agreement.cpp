@@ -3,43 +3,15 @@
 // a region: a light that leaks, a BSDF on one object) and in whole-image luminance (small
 // errors spread over everything: a MIS weight a few percent off, a wrong light pdf).
 #include "stat/replica_stats.h"
+#include "stat/box_scene.h"
 
 using namespace snell;
 using namespace snell::test;
 
 namespace {
 
-// A Cornell-box-like scene with a large light, a rough conductor sphere and a rough glass
-// sphere: both estimators converge here, and every BSDF family is on some path.
-const char* kScene = R"(<scene version="3.0.0">
-  <default name="integrator" value="nee"/>
-  <default name="radiance" value="6"/>
-  <integrator type="$integrator"><integer name="max_depth" value="6"/></integrator>
-  <sensor type="perspective">
-    <float name="fov" value="45"/>
-    <transform name="to_world"><lookat origin="0, 1, 3.4" target="0, 1, 0" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="32"/></film>
-  </sensor>
-  <bsdf type="diffuse" id="white"><rgb name="reflectance" value="0.7, 0.7, 0.7"/></bsdf>
-  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/></transform><ref id="white"/></shape>
-  <shape type="rectangle"><transform name="to_world"><translate z="-1"/><translate y="1"/></transform><ref id="white"/></shape>
-  <shape type="rectangle"><transform name="to_world"><rotate y="1" angle="90"/><translate x="-1" y="1"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.1, 0.1"/></bsdf></shape>
-  <shape type="rectangle"><transform name="to_world"><rotate y="1" angle="-90"/><translate x="1" y="1"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.1, 0.6, 0.1"/></bsdf></shape>
-  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="90"/><translate y="2"/></transform><ref id="white"/></shape>
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="0.5"/><rotate x="1" angle="90"/><translate y="1.99"/></transform>
-    <emitter type="area"><rgb name="radiance" value="$radiance"/></emitter>
-  </shape>
-  <shape type="sphere"><point name="center" x="-0.45" y="0.35" z="-0.2"/><float name="radius" value="0.35"/>
-    <bsdf type="roughconductor"><string name="distribution" value="ggx"/><float name="alpha" value="0.3"/></bsdf></shape>
-  <shape type="sphere"><point name="center" x="0.45" y="0.35" z="0.2"/><float name="radius" value="0.35"/>
-    <bsdf type="roughdielectric"><float name="alpha" value="0.3"/><float name="int_ior" value="1.5"/></bsdf></shape>
-</scene>)";
-
 // A glossy (GGX, alpha 0.15) metal floor reflecting a large light, direct lighting only: BSDF
-// sampling carries most of the estimate here, light sampling most of it in the box above, so
+// sampling carries most of the estimate here, light sampling most of it in the box (stat/box_scene.h), so
 // an error in either MIS weight shows in one of the two scenes.
 const char* kGlossy = R"(<scene version="3.0.0">
   <default name="integrator" value="nee"/>
@@ -69,7 +41,7 @@ void expect_path_and_nee_agree(const char* xml, int spp_path, int spp_nee, int b
 // relative standard error of ~0.25% (path) and ~0.3% (nee) here, so the Bonferroni threshold
 // (alpha 0.01 over 17 tests, |t| > ~3.9 at ~20 dof) flags shifts of ~1.6% and above. Light-side
 // MIS weights 5% too small shift this image by 2.3%; a missing cosine in NEE by ~30%.
-TEST(IntegratorAgreement, PathAndNeeAgreeInABox) { expect_path_and_nee_agree(kScene, 128, 64, 8); }
+TEST(IntegratorAgreement, PathAndNeeAgreeInABox) { expect_path_and_nee_agree(kCornellBox, 128, 64, 8); }
 
 // Here BSDF-side MIS weights 5% too small shift the image by 2.3% (in the box only by 0.06%:
 // light sampling owns that image); the relative standard error of the difference is ~0.33%.
@@ -78,8 +50,8 @@ TEST(IntegratorAgreement, PathAndNeeAgreeOnAGlossyReflection) { expect_path_and_
 // Sensitivity check: the tests above must be able to fail. A light 3% brighter, with the same
 // estimator and the same sample counts, must be detected.
 TEST(IntegratorAgreement, DetectsALightThreePercentBrighter) {
-    LoadedScene base = load_xml(kScene, {{"integrator", "nee"}});
-    LoadedScene brighter = load_xml(kScene, {{"integrator", "nee"}, {"radiance", "6.18"}});
+    LoadedScene base = load_xml(kCornellBox, {{"integrator", "nee"}});
+    LoadedScene brighter = load_xml(kCornellBox, {{"integrator", "nee"}, {"radiance", "6.18"}});
     const ReplicaStats a = replica_stats(base, 64, 8, 3000);
     const ReplicaStats b = replica_stats(brighter, 64, 8, 4000);
     EXPECT_GT(disagreements(a, b, 0.01, false), 0);

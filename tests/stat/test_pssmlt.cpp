@@ -8,39 +8,12 @@
 #include "integrators/pssmlt/primary_sample_sampler.h"
 #include "integrators/pssmlt/pssmlt.h"
 #include "stat/replica_stats.h"
+#include "stat/box_scene.h"
 
 using namespace snell;
 using namespace snell::test;
 
 namespace {
-
-// The Cornell-like box of test_integrator_agreement.cpp at 16x16.
-const char* kScene = R"(<scene version="3.0.0">
-  <default name="integrator" value="nee"/>
-  <default name="radiance" value="6"/>
-  <integrator type="$integrator"><integer name="max_depth" value="6"/></integrator>
-  <sensor type="perspective">
-    <float name="fov" value="45"/>
-    <transform name="to_world"><lookat origin="0, 1, 3.4" target="0, 1, 0" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/></film>
-  </sensor>
-  <bsdf type="diffuse" id="white"><rgb name="reflectance" value="0.7, 0.7, 0.7"/></bsdf>
-  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/></transform><ref id="white"/></shape>
-  <shape type="rectangle"><transform name="to_world"><translate z="-1"/><translate y="1"/></transform><ref id="white"/></shape>
-  <shape type="rectangle"><transform name="to_world"><rotate y="1" angle="90"/><translate x="-1" y="1"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.1, 0.1"/></bsdf></shape>
-  <shape type="rectangle"><transform name="to_world"><rotate y="1" angle="-90"/><translate x="1" y="1"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.1, 0.6, 0.1"/></bsdf></shape>
-  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="90"/><translate y="2"/></transform><ref id="white"/></shape>
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="0.5"/><rotate x="1" angle="90"/><translate y="1.99"/></transform>
-    <emitter type="area"><rgb name="radiance" value="$radiance"/></emitter>
-  </shape>
-  <shape type="sphere"><point name="center" x="-0.45" y="0.35" z="-0.2"/><float name="radius" value="0.35"/>
-    <bsdf type="roughconductor"><string name="distribution" value="ggx"/><float name="alpha" value="0.3"/></bsdf></shape>
-  <shape type="sphere"><point name="center" x="0.45" y="0.35" z="0.2"/><float name="radius" value="0.35"/>
-    <bsdf type="roughdielectric"><float name="alpha" value="0.3"/><float name="int_ior" value="1.5"/></bsdf></shape>
-</scene>)";
 
 constexpr int kMutationsPerPixel = 256;
 constexpr int kBlock = 4;  // 4 x 4 blocks of 4 x 4 pixels
@@ -62,32 +35,9 @@ RenderResult render_once(const LoadedScene& ls, uint64_t seed, int threads = 0, 
     return render_pssmlt(*ls.scene, test_settings(ls, chains), ls.film, opt);
 }
 
-/// replica_stats() for render_pssmlt: block and whole-image luminance over independent seeds.
+/// Replica statistics of render_pssmlt over independent seeds.
 ReplicaStats pssmlt_replica_stats(const LoadedScene& ls, uint64_t seed_base) {
-    const int w = ls.film.out_width(), h = ls.film.out_height();
-    const int bw = (w + kBlock - 1) / kBlock, bh = (h + kBlock - 1) / kBlock;
-    std::vector<std::vector<double>> blocks(size_t(bw * bh));
-    std::vector<double> image;
-    for (int r = 0; r < kReplicas; ++r) {
-        const std::vector<float> rgb = render_once(ls, seed_base + uint64_t(r) * 7919).film.to_linear_srgb();
-        std::vector<double> bsum(blocks.size(), 0.0), bcnt(blocks.size(), 0.0);
-        double total = 0;
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) {
-                const float* p = &rgb[(size_t(y) * w + x) * 3];
-                const double lum = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
-                const size_t b = size_t((y / kBlock) * bw + x / kBlock);
-                bsum[b] += lum;
-                bcnt[b] += 1;
-                total += lum;
-            }
-        for (size_t b = 0; b < blocks.size(); ++b) blocks[b].push_back(bsum[b] / bcnt[b]);
-        image.push_back(total / double(w * h));
-    }
-    ReplicaStats s;
-    for (auto& v : blocks) s.blocks.push_back(estimate_of(v));
-    s.image = estimate_of(image);
-    return s;
+    return replica_stats_of(ls, kBlock, seed_base, kReplicas, [&](uint64_t seed) { return render_once(ls, seed); });
 }
 
 }  // namespace
@@ -136,7 +86,7 @@ TEST(PrimarySampleSampler, SmallStepsStayWithinKelemenRange) {
 // The image is a pure function of the seed for a fixed number of chains, whatever the thread
 // count, and different seeds give different images.
 TEST(Pssmlt, DeterministicForASeed) {
-    LoadedScene ls = load_xml(kScene, {{"integrator", "pssmlt"}});
+    LoadedScene ls = load_xml(kCornellBox, {{"integrator", "pssmlt"}, {"res", "16"}});
     const Film a = render_once(ls, 5, 1, 4).film, b = render_once(ls, 5, 2, 4).film, c = render_once(ls, 6, 2, 4).film;
     bool differs = false;
     for (int y = 0; y < a.height(); ++y)
@@ -153,8 +103,8 @@ TEST(Pssmlt, DeterministicForASeed) {
 // the chains. Power (measured by injecting bugs): a Metropolis target of Y^0.97 instead of Y
 // fails two blocks, Y^0.9 fails most of them; block standard errors are ~2% (pssmlt).
 TEST(Pssmlt, AgreesWithNeeInABox) {
-    LoadedScene mlt = load_xml(kScene, {{"integrator", "pssmlt"}});
-    LoadedScene nee = load_xml(kScene, {{"integrator", "nee"}});
+    LoadedScene mlt = load_xml(kCornellBox, {{"integrator", "pssmlt"}, {"res", "16"}});
+    LoadedScene nee = load_xml(kCornellBox, {{"integrator", "nee"}, {"res", "16"}});
     expect_replicas_agree(pssmlt_replica_stats(mlt, 1000), replica_stats(nee, 256, kBlock, 2000, kReplicas),
                           "pssmlt(nee) vs nee");
 }
@@ -162,8 +112,8 @@ TEST(Pssmlt, AgreesWithNeeInABox) {
 // Sensitivity: the comparison above must be able to fail. PSSMLT of a box whose light is 3%
 // brighter must be told apart from `nee` of the original box.
 TEST(Pssmlt, DetectsALightThreePercentBrighter) {
-    LoadedScene mlt = load_xml(kScene, {{"integrator", "pssmlt"}, {"radiance", "6.18"}});
-    LoadedScene nee = load_xml(kScene, {{"integrator", "nee"}});
+    LoadedScene mlt = load_xml(kCornellBox, {{"integrator", "pssmlt"}, {"radiance", "6.18"}, {"res", "16"}});
+    LoadedScene nee = load_xml(kCornellBox, {{"integrator", "nee"}, {"res", "16"}});
     const ReplicaStats a = pssmlt_replica_stats(mlt, 3000);
     const ReplicaStats b = replica_stats(nee, 256, kBlock, 4000, kReplicas);
     std::printf("brighter pssmlt %.5f +- %.5f vs nee %.5f +- %.5f\n", a.image.mean, a.image.stderr_, b.image.mean,
@@ -175,9 +125,9 @@ TEST(Pssmlt, DetectsALightThreePercentBrighter) {
 // finite image; an unknown sampler is a scene error.
 TEST(Pssmlt, MneeSamplerRunsAndUnknownSamplerIsRejected) {
     const std::string depth = R"(<integer name="max_depth" value="6"/>)";
-    std::string xml = kScene;
+    std::string xml = kCornellBox;
     xml.replace(xml.find(depth), depth.size(), depth + R"(<string name="sampler" value="mnee"/>)");
-    LoadedScene ls = load_xml(xml, {{"integrator", "pssmlt"}});
+    LoadedScene ls = load_xml(xml, {{"integrator", "pssmlt"}, {"res", "16"}});
     const auto& integ = dynamic_cast<const PssmltIntegrator&>(*ls.scene->integrator());
     EXPECT_EQ(integ.settings().sampler, "mnee");
     EXPECT_THROW(integ.li(Ray(), *ls.scene, *IndependentSampler(0).clone(), 550.0), std::logic_error);
@@ -196,7 +146,7 @@ TEST(Pssmlt, MneeSamplerRunsAndUnknownSamplerIsRejected) {
     }
     EXPECT_GT(sum, 0);
 
-    std::string bad = kScene;
+    std::string bad = kCornellBox;
     bad.replace(bad.find(depth), depth.size(), depth + R"(<string name="sampler" value="bdpt"/>)");
-    EXPECT_ANY_THROW(load_xml(bad, {{"integrator", "pssmlt"}}));
+    EXPECT_ANY_THROW(load_xml(bad, {{"integrator", "pssmlt"}, {"res", "16"}}));
 }
