@@ -58,11 +58,11 @@ Defines parse_defines(const std::vector<std::string>& items) {
     return d;
 }
 
-Image film_to_image(const Film& film) {
+Image film_to_image(const Film& film, int layer) {
     Image img;
     img.width = film.width();
     img.height = film.height();
-    img.rgb = film.to_linear_srgb();
+    img.rgb = film.to_linear_srgb(layer);
     return img;
 }
 

@@ -24,6 +24,6 @@ std::shared_ptr<XmlObject> parse_scene_arg(const std::string& scene_arg, const D
 /// Parses -D items "name=value"; throws CLI::ValidationError on a malformed item.
 Defines parse_defines(const std::vector<std::string>& items);
 /// The film's linear sRGB pixels as an Image.
-Image film_to_image(const Film& film);
+Image film_to_image(const Film& film, int layer = 0);
 
 }  // namespace snell

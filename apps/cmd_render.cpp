@@ -19,7 +19,7 @@ namespace snell {
 
 int cmd_render(const std::string& scene_arg, std::string out, int spp, double time_limit, int threads,
                std::optional<uint64_t> seed_arg, double exposure, std::string stats_path, bool quiet,
-               const std::vector<std::string>& define_items) {
+               const std::vector<std::string>& define_items, bool strategies) {
     const Defines defines = parse_defines(define_items);
     LoadedScene ls = load_scene_arg(scene_arg, defines);
     const Integrator* integ = ls.scene->integrator().get();
@@ -32,6 +32,7 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
     const uint64_t seed = seed_arg ? *seed_arg : ls.seed;  // --seed overrides the scene's <sampler> seed
     opt.seed = seed;
     opt.progress = !quiet;
+    opt.debug_layers = strategies;
 
     if (out.empty()) out = "out.exr";
     fs::path out_path(out);
@@ -62,6 +63,19 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
     const Image img = film_to_image(r.film);
     write_exr(out_path.string(), img);
     write_png(png_path.string(), img, exposure);
+    if (strategies) {
+        const std::vector<std::string> layers = integ->layer_names();
+        if (layers.empty() && !quiet)
+            std::fprintf(stderr, "snell: --strategies: integrator %s has no per-strategy images\n", integ->name().c_str());
+        for (size_t k = 0; k < layers.size(); ++k) {
+            fs::path p = out_path;
+            p.replace_filename(out_path.stem().string() + "_" + layers[k] + ".exr");
+            write_exr(p.string(), film_to_image(r.film, int(k) + 1));
+        }
+        if (!layers.empty() && !quiet)
+            std::fprintf(stderr, "snell: wrote %zu strategy images %s_<d_s_t>.exr\n", layers.size(),
+                         (out_path.parent_path() / out_path.stem()).c_str());
+    }
 
     RenderReport rep;
     rep.scene = ls.path;

@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
     int spp = 0, threads = 0;
     double time_limit = 0, exposure = 0;
     uint64_t seed = 0;
-    bool quiet = false;
+    bool quiet = false, strategies = false;
     std::vector<std::string> defines;
     render_cmd->add_option("scene", scene_arg, "scene file, or builtin:droplet")->required();
     render_cmd->add_option("-o,--output", out, "output EXR (a PNG and a stats JSON are written beside it)");
@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
     render_cmd->add_option("--stats", stats_path, "stats JSON path (default: beside the EXR)");
     render_cmd->add_option("-D,--define", defines, "override a scene <default>: -D name=value")->allow_extra_args(false);
     render_cmd->add_flag("-q,--quiet", quiet, "no progress bar or summary");
+    render_cmd->add_flag("--strategies", strategies,
+                         "bdpt: also write each strategy's weighted contribution, OUT_d<k>_s<s>_t<t>.exr");
 
     CLI::App* diff_cmd = app.add_subcommand("diff", "error metrics of an image against a reference (both EXR)");
     std::string diff_a, diff_b;
@@ -85,7 +87,7 @@ int main(int argc, char** argv) {
         if (render_cmd->parsed())
             return cmd_render(scene_arg, out, spp, time_limit, threads,
                               seed_opt->count() ? std::optional<uint64_t>(seed) : std::nullopt, exposure,
-                              stats_path, quiet, defines);
+                              stats_path, quiet, defines, strategies);
         if (cmp_cmd->parsed()) {
             if (cmp_seed_opt->count()) cmp.seed = cmp_seed;
             if (cmp.reference_file.empty() && cmp.reference_spp == 0 && cmp.reference_time == 0)

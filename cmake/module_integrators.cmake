@@ -6,6 +6,10 @@ snell_library(snell_integrators
   src/integrators/bdpt/bdpt.cpp
   src/integrators/pssmlt/primary_sample_sampler.cpp
   src/integrators/pssmlt/pssmlt.cpp
+  src/integrators/pssmlt/path_sample.cpp
+  src/integrators/erpt/erpt.cpp
+  src/integrators/erpt/energy_redistribution.cpp
+  src/integrators/erpt/shape_watch.cpp
   src/render/renderer.cpp
 )
 target_link_libraries(snell_integrators PUBLIC snell_manifold snell_geometry snell_bsdf snell_light snell_props TBB::tbb)
@@ -19,4 +23,5 @@ snell_test(test_mnee
   LIBS ${SNELL_ALL_LIBS})
 snell_test(test_path_features SOURCES tests/stat/test_path_features.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_pssmlt SOURCES tests/stat/test_pssmlt.cpp LIBS ${SNELL_ALL_LIBS})
-snell_test(test_bdpt SOURCES tests/stat/test_bdpt_agreement.cpp LIBS ${SNELL_ALL_LIBS})
+snell_test(test_bdpt SOURCES tests/stat/test_bdpt_agreement.cpp tests/stat/test_bdpt_light_tracing.cpp LIBS ${SNELL_ALL_LIBS})
+snell_test(test_erpt SOURCES tests/stat/test_erpt.cpp LIBS ${SNELL_ALL_LIBS})

@@ -24,6 +24,14 @@ public:
     const FilmSpec& film() const { return m_film; }
     const Transform& to_world() const { return m_to_world; }
     Vec3 position() const { return m_to_world.point(Vec3(0, 0, 0)); }
+    /// Unit optical axis in world space.
+    Vec3 forward() const { return normalize(m_to_world.vector(Vec3(0, 0, 1))); }
+    /// Full-film raster position at which world point `p` is seen (the inverse of
+    /// generate_ray); false when p lies behind the camera, outside the film or the clip range.
+    /// `cos_theta` receives the cosine between the direction to p and the optical axis.
+    bool raster_of(const Vec3& p, Vec2* raster, double* cos_theta) const;
+    /// Area, on the image plane at unit distance, of one pixel.
+    double pixel_plane_area() const { return 4.0 * m_tx * m_ty / (double(m_film.width) * double(m_film.height)); }
     /// Tangent of half the horizontal / vertical field of view.
     double tan_half_x() const { return m_tx; }
     double tan_half_y() const { return m_ty; }

@@ -4,13 +4,13 @@
 
 namespace snell {
 
-std::vector<float> Film::to_linear_srgb() const {
+std::vector<float> Film::to_linear_srgb(int layer) const {
     std::vector<float> rgb(size_t(m_w) * m_h * 3);
     for (int y = 0; y < m_h; ++y) {
         for (int x = 0; x < m_w; ++x) {
             // Convert the mean, not the sum: the XYZ -> sRGB map is linear, so this equals the
             // mean of per-sample sRGB while keeping unreached pixels at exactly zero.
-            const Vec3 c = xyz_to_linear_srgb(xyz(x, y));
+            const Vec3 c = xyz_to_linear_srgb(layer == 0 ? xyz(x, y) : layer_xyz(layer, x, y));
             const size_t i = (size_t(y) * m_w + x) * 3;
             rgb[i + 0] = float(c.x);
             rgb[i + 1] = float(c.y);

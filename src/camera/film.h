@@ -9,6 +9,10 @@ namespace snell {
 /// Accumulates XYZ per pixel (box filter: each sample lands in the pixel it was taken in).
 /// Sample weights are counted per pixel so a partially rendered (interrupted or time-limited)
 /// film still resolves to an unbiased average for the pixels it reached.
+/// A second, unnormalised layer holds splats (contributions of light paths that reach the
+/// film anywhere: BDPT's light tracing, ERPT's deposits); it is scaled by `splat_scale`
+/// (1 / camera samples per pixel) and added to the pixel mean. Further splat layers are debug
+/// images (BDPT's per-strategy contributions) that are not part of the image.
 class Film {
 public:
     Film(int width, int height) : m_w(width), m_h(height), m_xyz(size_t(width) * height), m_n(size_t(width) * height, 0) {}
@@ -26,18 +30,38 @@ public:
         m_n[i] += count;
     }
     uint64_t samples(int x, int y) const { return m_n[size_t(y) * m_w + x]; }
-    /// Mean XYZ of the pixel (zero if it has no samples).
+    /// Adds a splat to `layer` (0: the image, k > 0: debug layer k).
+    void add_splat(int x, int y, const Vec3& xyz, int layer = 0) {
+        if (size_t(layer) >= m_splats.size()) m_splats.resize(size_t(layer) + 1);
+        auto& s = m_splats[size_t(layer)];
+        if (s.empty()) s.resize(m_xyz.size());
+        s[size_t(y) * m_w + x] += xyz;
+    }
+    void set_splat_scale(double scale) { m_splat_scale = scale; }
+    double splat_scale() const { return m_splat_scale; }
+    /// Number of splat layers (the image's included) that received anything.
+    int splat_layers() const { return int(m_splats.size()); }
+    /// Pixel value: mean XYZ of the pixel's own samples (zero if none) plus its scaled splats.
     Vec3 xyz(int x, int y) const {
         const size_t i = size_t(y) * m_w + x;
-        return m_n[i] ? m_xyz[i] / double(m_n[i]) : Vec3();
+        Vec3 v = m_n[i] ? m_xyz[i] / double(m_n[i]) : Vec3();
+        if (!m_splats.empty() && !m_splats[0].empty()) v += m_splats[0][i] * m_splat_scale;
+        return v;
     }
-    /// Linear sRGB image, row-major, 3 floats per pixel.
-    std::vector<float> to_linear_srgb() const;
+    /// Scaled splats of debug layer `layer` (>= 1).
+    Vec3 layer_xyz(int layer, int x, int y) const {
+        if (size_t(layer) >= m_splats.size() || m_splats[size_t(layer)].empty()) return Vec3();
+        return m_splats[size_t(layer)][size_t(y) * m_w + x] * m_splat_scale;
+    }
+    /// Linear sRGB image, row-major, 3 floats per pixel (layer 0: the image).
+    std::vector<float> to_linear_srgb(int layer = 0) const;
 
 private:
     int m_w, m_h;
     std::vector<Vec3> m_xyz;
     std::vector<uint64_t> m_n;
+    std::vector<std::vector<Vec3>> m_splats;  // per layer; empty until first splat
+    double m_splat_scale = 0;
 };
 
 }  // namespace snell

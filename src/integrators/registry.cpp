@@ -4,6 +4,7 @@
 #include "core/props.h"
 #include "integrators/integrator.h"
 #include "integrators/bdpt/bdpt.h"
+#include "integrators/erpt/erpt.h"
 #include "integrators/mnee/mnee_integrator.h"
 #include "integrators/path/path_tracer.h"
 #include "integrators/pssmlt/pssmlt.h"
@@ -18,6 +19,7 @@ using Factory = std::function<std::shared_ptr<Integrator>(const Props&)>;
 const std::map<std::string, Factory>& registry() {
     static const std::map<std::string, Factory> r = {
         {"bdpt", [](const Props& p) { return std::make_shared<BdptIntegrator>(PathSettings::from_props(p)); }},
+        {"erpt", [](const Props& p) { return std::make_shared<ErptIntegrator>(ErptSettings::from_props(p)); }},
         {"path", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), false); }},
         {"nee", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), true); }},
         {"mnee", [](const Props& p) {

@@ -86,6 +86,27 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Film
         return (cancel && cancel->load(std::memory_order_relaxed)) || (timed && elapsed() >= opt.time_limit);
     };
 
+    // Splats may land on any pixel: each tile collects its own, and they are added to the film
+    // in tile order after every group of tiles, so the image does not depend on scheduling.
+    // Groups bound the memory the buffers take; without splats one group holds every tile.
+    const bool splatting = integrator.splats();
+    const size_t group = splatting ? std::max<size_t>(64, size_t(threads) * 8) : tiles.size();
+    std::vector<SplatList> tile_splats(splatting ? std::min(group, tiles.size()) : 0);
+    Counters splat_counters;
+    const auto merge_splats = [&](size_t n) {
+        for (size_t k = 0; k < n; ++k) {
+            for (const FilmSplat& sp : tile_splats[k]) {
+                const int x = int(std::floor(sp.raster.x)) - spec.crop_x, y = int(std::floor(sp.raster.y)) - spec.crop_y;
+                if (x < 0 || y < 0 || x >= w || y >= h) continue;
+                // One count per invalid splat; XYZ of a non-negative radiance is non-negative.
+                const double c = sanitize(sp.xyz.x + sp.xyz.y + sp.xyz.z, splat_counters);
+                if (c > 0 && sp.xyz.x >= 0 && sp.xyz.y >= 0 && sp.xyz.z >= 0) result.film.add_splat(x, y, sp.xyz, sp.layer);
+            }
+            tile_splats[k].clear();
+        }
+    };
+
+    integrator.prepare(scene, spec, opt);
     uint64_t done_spp = 0;
     for (int pass = 0; !stop_requested(); ++pass) {
         uint64_t n = pass_size(pass);
@@ -95,39 +116,50 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Film
         }
         const uint64_t s0 = done_spp, s1 = done_spp + n;
         std::atomic<bool> pass_complete{true};
-        arena.execute([&] {
-            tbb::parallel_for(size_t(0), tiles.size(), [&](size_t ti) {
-                if (stop_requested()) {
-                    pass_complete = false;
-                    return;
-                }
-                const Tile& t = tiles[ti];
-                auto sampler = prototype.clone();
-                Counters& counters = thread_counters();
-                for (int y = t.y0; y < t.y1; ++y) {
-                    if (y > t.y0 && cancel && cancel->load(std::memory_order_relaxed)) {
+        for (size_t g0 = 0; g0 < tiles.size() && pass_complete; g0 += group) {
+            const size_t g1 = std::min(tiles.size(), g0 + group);
+            arena.execute([&] {
+                tbb::parallel_for(g0, g1, [&](size_t ti) {
+                    if (stop_requested()) {
                         pass_complete = false;
                         return;
                     }
-                    for (int x = t.x0; x < t.x1; ++x) {
-                        const int fx = x + spec.crop_x, fy = y + spec.crop_y;  // full-film pixel
-                        Vec3 sum;
-                        for (uint64_t s = s0; s < s1; ++s) {
-                            sampler->start_pixel_sample(fx, fy, s);
-                            const Vec2 jitter = sampler->next_2d();
-                            const double u_lambda = sampler->next_1d();
-                            const double lambda = sample_visible_wavelength(u_lambda);
-                            const double pdf_lambda = visible_wavelength_pdf(lambda);
-                            const Ray ray = camera->generate_ray(Vec2(fx + jitter.x, fy + jitter.y));
-                            const double L = sanitize(integrator.li(ray, scene, *sampler, lambda), counters);
-                            if (L > 0 && pdf_lambda > 0) sum += radiance_to_xyz(L, lambda, pdf_lambda);
+                    const Tile& t = tiles[ti];
+                    auto sampler = prototype.clone();
+                    Counters& counters = thread_counters();
+                    SplatList dummy;
+                    SplatList& splats = splatting ? tile_splats[ti - g0] : dummy;
+                    for (int y = t.y0; y < t.y1; ++y) {
+                        if (y > t.y0 && cancel && cancel->load(std::memory_order_relaxed)) {
+                            pass_complete = false;
+                            return;
                         }
-                        result.film.add_sum(x, y, sum, s1 - s0);
+                        for (int x = t.x0; x < t.x1; ++x) {
+                            const int fx = x + spec.crop_x, fy = y + spec.crop_y;  // full-film pixel
+                            Vec3 sum;
+                            for (uint64_t s = s0; s < s1; ++s) {
+                                sampler->start_pixel_sample(fx, fy, s);
+                                const Vec2 jitter = sampler->next_2d();
+                                CameraSample cs;
+                                cs.raster = Vec2(fx + jitter.x, fy + jitter.y);
+                                cs.u_lambda = sampler->next_1d();
+                                cs.lambda = sample_visible_wavelength(cs.u_lambda);
+                                cs.pdf_lambda = visible_wavelength_pdf(cs.lambda);
+                                const Ray ray = camera->generate_ray(cs.raster);
+                                const double L =
+                                    sanitize(integrator.li_splat(cs, ray, scene, *sampler, splats), counters);
+                                if (L > 0 && cs.pdf_lambda > 0) sum += radiance_to_xyz(L, cs.lambda, cs.pdf_lambda);
+                            }
+                            result.film.add_sum(x, y, sum, s1 - s0);
+                        }
                     }
-                }
-                if (bar) bar->add(timed ? 0 : (s1 - s0) * uint64_t(t.x1 - t.x0) * uint64_t(t.y1 - t.y0));
+                    if (bar) bar->add(timed ? 0 : (s1 - s0) * uint64_t(t.x1 - t.x0) * uint64_t(t.y1 - t.y0));
+                });
             });
-        });
+            // Splats of rows cut short by Ctrl-C are kept: the samples they came from were
+            // taken, and the scale below counts samples, not passes.
+            if (splatting) merge_splats(g1 - g0);
+        }
         if (!pass_complete) break;
         done_spp = s1;
         if (bar && timed) bar->update();
@@ -140,8 +172,13 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Film
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) total += result.film.samples(x, y);
     result.spp_mean = double(total) / double(std::max(1, w * h));
+    // Splat estimators divide by the camera samples each pixel received (total / pixels).
+    result.film.set_splat_scale(total > 0 ? double(w) * double(h) / double(total) : 0.0);
     result.interrupted = cancel && cancel->load() && (timed || done_spp < uint64_t(opt.spp));
     result.counters = total_counters();
+    result.counters.discarded_nan += splat_counters.discarded_nan;
+    result.counters.discarded_inf += splat_counters.discarded_inf;
+    result.counters.discarded_negative += splat_counters.discarded_negative;
     return result;
 }
 

@@ -18,6 +18,7 @@ struct RenderOptions {
     uint64_t seed = 0;         ///< sampler seed; the image is a pure function of (scene, seed, spp)
     bool progress = true;      ///< progress bar on a terminal
     int tile_size = 16;
+    bool debug_layers = false;  ///< integrators fill their debug layers (BDPT: per-strategy images)
 };
 
 struct RenderResult {

@@ -66,4 +66,9 @@ check "stats JSON says interrupted" "grep -q '\"interrupted\": true' $TMP/int.js
 "$SNELL" render builtin:droplet -o "$TMP/d.exr" -D res_x=32 -D res_y=24 -D spp=1 -q; rc=$?
 check "-D override renders" "[ $rc -eq 0 ] && grep -q '\"width\": 32' $TMP/d.json"
 
+# 8. --strategies: bdpt writes one image per strategy (lengths 1..max_depth=2: 1 + 3 images).
+"$SNELL" render builtin:droplet -o "$TMP/s.exr" -D integrator=bdpt -D max_depth=2 -D res_x=32 -D res_y=24 -D spp=1 --strategies -q; rc=$?
+check "--strategies renders" "[ $rc -eq 0 ]"
+check "--strategies writes per-strategy EXRs" "[ -s $TMP/s_d1_s0_t2.exr ] && [ -s $TMP/s_d2_s2_t1.exr ] && [ \$(ls $TMP/s_d*.exr | wc -l) -eq 4 ]"
+
 exit $fail

@@ -4,6 +4,7 @@
 // estimate close to normal.
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "integrators/pssmlt/primary_sample_sampler.h"
 #include "integrators/pssmlt/pssmlt.h"
@@ -98,15 +99,27 @@ TEST(Pssmlt, DeterministicForASeed) {
 }
 
 // Agreement with `nee`: Welch per 4x4 block and for the whole image, Bonferroni-corrected at
-// family-wise level 0.01 (replica_stats.h). The whole-image mean of a PSSMLT render is its
-// bootstrap estimate b (every mutation splats total weight 1), so the blocks are what test
-// the chains. Power (measured by injecting bugs): a Metropolis target of Y^0.97 instead of Y
+// family-wise level 0.01 (replica_stats.h). Without Kelemen's weights the whole-image mean of
+// a PSSMLT render is its bootstrap estimate b (every mutation splats total weight 1), so the
+// blocks are what test the chains. Power (measured by injecting bugs): a Metropolis target of Y^0.97 instead of Y
 // fails two blocks, Y^0.9 fails most of them; block standard errors are ~2% (pssmlt).
 TEST(Pssmlt, AgreesWithNeeInABox) {
     LoadedScene mlt = load_xml(kCornellBox, {{"integrator", "pssmlt"}, {"res", "16"}});
     LoadedScene nee = load_xml(kCornellBox, {{"integrator", "nee"}, {"res", "16"}});
     expect_replicas_agree(pssmlt_replica_stats(mlt, 1000), replica_stats(nee, 256, kBlock, 2000, kReplicas),
                           "pssmlt(nee) vs nee");
+}
+
+// The plain expected-value estimator (kelemen_weights=false) converges to the same image.
+TEST(Pssmlt, AgreesWithNeeWithoutKelemenWeights) {
+    std::string xml = kCornellBox;
+    const std::string depth = R"(<integer name="max_depth" value="6"/>)";
+    xml.replace(xml.find(depth), depth.size(), std::string(depth) + R"(<boolean name="kelemen_weights" value="false"/>)");
+    LoadedScene mlt = load_xml(xml, {{"integrator", "pssmlt"}, {"res", "16"}});
+    ASSERT_FALSE(dynamic_cast<const PssmltIntegrator&>(*mlt.scene->integrator()).settings().kelemen_weights);
+    LoadedScene nee = load_xml(kCornellBox, {{"integrator", "nee"}, {"res", "16"}});
+    expect_replicas_agree(pssmlt_replica_stats(mlt, 5000), replica_stats(nee, 256, kBlock, 6000, kReplicas),
+                          "pssmlt(nee), plain weights, vs nee");
 }
 
 // Sensitivity: the comparison above must be able to fail. PSSMLT of a box whose light is 3%

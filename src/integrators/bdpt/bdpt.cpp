@@ -4,6 +4,8 @@
 #include <vector>
 
 #include "bsdf/bsdf.h"
+#include "camera/camera.h"
+#include "core/spectrum.h"
 #include "core/medium_stack.h"
 #include "core/stats.h"
 #include "core/warp.h"
@@ -12,6 +14,7 @@
 #include "integrators/mis.h"
 #include "light/point.h"
 #include "light/spot.h"
+#include "render/renderer.h"
 
 namespace snell {
 
@@ -22,6 +25,28 @@ namespace {
 constexpr int kUnboundedVertices = 128;
 
 enum class VertexType { Camera, Light, Surface };
+
+/// The pinhole z_0 as a vertex. Camera rays are spread uniformly over the output window of
+/// the image plane (at unit distance, area A), so a ray at angle theta to the optical axis has
+/// solid-angle density 1 / (A cos^3 theta); the importance of the window that makes light
+/// tracing estimate the same pixel means is W_e = 1 / (A cos^4 theta) (Veach's thesis,
+/// Sec. 10.3.4; pbrt-v3 Sec. 16.1 uses the whole film where we use the crop window).
+struct Pinhole {
+    const PerspectiveCamera* camera = nullptr;
+    FilmSpec window;
+    double area = 0;  // A
+
+    Pinhole(const PerspectiveCamera& cam, const FilmSpec& spec)
+        : camera(&cam), window(spec), area(cam.pixel_plane_area() * double(spec.out_width()) * double(spec.out_height())) {}
+    /// Raster position (full film) at which p is seen, when inside the output window.
+    bool raster(const Vec3& p, Vec2* r, double* cos_theta) const {
+        if (!camera->raster_of(p, r, cos_theta)) return false;
+        return r->x >= window.crop_x && r->x < window.crop_x + window.out_width() && r->y >= window.crop_y &&
+               r->y < window.crop_y + window.out_height();
+    }
+    double pdf_dir(double cos_theta) const { return cos_theta > 0 ? 1.0 / (area * cos_theta * cos_theta * cos_theta) : 0.0; }
+    double importance(double cos_theta) const { return cos_theta > 0 ? pdf_dir(cos_theta) / cos_theta : 0.0; }
+};
 
 /// One subpath vertex. Densities are in area measure at this vertex: pdf_fwd as its own
 /// subpath sampled it, pdf_rev as the opposite subpath would (0 through delta lobes).
@@ -34,6 +59,7 @@ struct Vertex {
     double pdf_fwd = 0, pdf_rev = 0;
     bool delta = false;         // scattered by a delta lobe on its own subpath
     MediumStack media;          // medium on the side the subpath arrived from
+    const Pinhole* pinhole = nullptr;  // camera vertex only
 
     bool has_normal() const { return length_squared(si.ng) > 0; }
     bool connectible() const {
@@ -58,6 +84,11 @@ double to_area(double pdf_dir, const Vertex& from, const Vertex& to) {
 // for a light vertex is ignored) samples `next`; `mode` is the transport of that subpath.
 double pdf_area(const Vertex& v, const Vertex* prev, const Vertex& next, TransportMode mode, double lambda) {
     const Vec3 wi = normalize(next.si.p - v.si.p);
+    if (v.type == VertexType::Camera) {
+        Vec2 r;
+        double cos_theta = 0;
+        return v.pinhole->raster(next.si.p, &r, &cos_theta) ? to_area(v.pinhole->pdf_dir(cos_theta), v, next) : 0.0;
+    }
     if (v.type == VertexType::Light) {
         if (delta_position(*v.light)) return to_area(kInv4Pi, v, next);
         const double c = dot(v.si.n, wi);
@@ -192,11 +223,12 @@ void light_subpath(const Scene& scene, Sampler& sampler, double lambda, size_t m
 
 double remap0(double x) { return x != 0 ? x : 1.0; }
 
-// Power-heuristic weight of strategy (s, t) among all strategies s' + t' = s + t with t' >= 2.
-// `pz_*` / `py_*` are the recomputed reverse densities of the connection's neighbourhood.
+// Power-heuristic weight of strategy (s, t) among all strategies s' + t' = s + t with t' >= 1
+// (Veach's thesis, Sec. 10.2): the ratios of each alternative's density to this one's follow
+// from per-vertex forward and reverse densities, recomputed around the connection.
 double mis_weight(const Scene& scene, const std::vector<Vertex>& cam, const std::vector<Vertex>& lig, int s, int t,
                   double lambda) {
-    if (s + t == 2) return 1.0;  // only (0, 2) and (1, 1); t = 1 is not a strategy here
+    if (s + t == 2) return 1.0;  // (0, 2) only: light vertex to pinhole, (1, 1), is not taken
     thread_local std::vector<double> zr, zf, yr, yf;
     thread_local std::vector<char> zd, yd;
     zr.resize(size_t(t)); zf.resize(size_t(t)); zd.resize(size_t(t));
@@ -204,7 +236,6 @@ double mis_weight(const Scene& scene, const std::vector<Vertex>& cam, const std:
     for (int i = 0; i < t; ++i) zr[i] = cam[i].pdf_rev, zf[i] = cam[i].pdf_fwd, zd[i] = cam[i].delta;
     for (int i = 0; i < s; ++i) yr[i] = lig[i].pdf_rev, yf[i] = lig[i].pdf_fwd, yd[i] = lig[i].delta;
     const Vertex& z = cam[size_t(t - 1)];
-    const Vertex& zp = cam[size_t(t - 2)];
     // The connection's endpoints scatter along the new edge, not along their sampled lobes.
     zd[t - 1] = false;
     bool light_delta = false;
@@ -213,19 +244,23 @@ double mis_weight(const Scene& scene, const std::vector<Vertex>& cam, const std:
         Vertex as_light = z;
         as_light.type = VertexType::Light;
         zr[t - 1] = light_origin_pdf(scene, *z.light);
-        zr[t - 2] = pdf_area(as_light, nullptr, zp, TransportMode::Importance, lambda);
+        zr[t - 2] = pdf_area(as_light, nullptr, cam[size_t(t - 2)], TransportMode::Importance, lambda);
     } else {
         const Vertex& y = lig[size_t(s - 1)];
+        const Vertex* zp = t >= 2 ? &cam[size_t(t - 2)] : nullptr;
         yd[s - 1] = false;
         light_delta = delta_position(*lig[0].light);
-        zr[t - 1] = pdf_area(y, s >= 2 ? &lig[size_t(s - 2)] : nullptr, z, TransportMode::Importance, lambda);
-        zr[t - 2] = pdf_area(z, &y, zp, TransportMode::Importance, lambda);
-        yr[s - 1] = pdf_area(z, &zp, y, TransportMode::Radiance, lambda);
+        if (t >= 2) {
+            zr[t - 1] = pdf_area(y, s >= 2 ? &lig[size_t(s - 2)] : nullptr, z, TransportMode::Importance, lambda);
+            zr[t - 2] = pdf_area(z, &y, *zp, TransportMode::Importance, lambda);
+        }
+        yr[s - 1] = pdf_area(z, zp, y, TransportMode::Radiance, lambda);  // t = 1: the pinhole's density
         if (s >= 2) yr[s - 2] = pdf_area(y, &z, lig[size_t(s - 2)], TransportMode::Radiance, lambda);
     }
     double sum = 0, r = 1;
-    // Camera vertices handed to the light subpath: strategies (s + t - i, i), i >= 2.
-    for (int i = t - 1; i >= 2; --i) {
+    // Camera vertices handed to the light subpath: strategies (s + t - i, i), i >= 1 (the
+    // pinhole z_0 cannot be hit, so t' = 0 does not exist).
+    for (int i = t - 1; i >= 1; --i) {
         r *= remap0(zr[i]) / remap0(zf[i]);
         if (!zd[i] && !zd[i - 1]) sum += r * r;
     }
@@ -272,6 +307,31 @@ double connect(const Scene& scene, const std::vector<Vertex>& cam, const std::ve
     return c;
 }
 
+// Unweighted contribution of the light-tracing strategy t = 1: light vertex y_{s-1} (s >= 2)
+// seen by the pinhole at raster position `raster`. W_e cos(theta) / d^2 stands for the camera's
+// factor of the connection, as f |cos| / d^2 does for a surface.
+double connect_camera(const Scene& scene, const Vertex& z0, const Vertex& y, double lambda, Vec2* raster) {
+    if (!y.connectible() || y.type != VertexType::Surface) return 0;
+    double cos_theta = 0;
+    if (!z0.pinhole->raster(y.si.p, raster, &cos_theta)) return 0;
+    Vec3 d = z0.si.p - y.si.p;
+    const double d2 = length_squared(d);
+    if (!(d2 > 0)) return 0;
+    const double dist = std::sqrt(d2);
+    d /= dist;
+    const double fy = y.bsdf->eval({lambda, TransportMode::Importance}, y.si.to_local(y.si.wo), y.si.to_local(d)) *
+                      std::abs(dot(y.si.n, d)) * shading_correction(y.si, y.si.wo, d);
+    double c = y.beta * fy * z0.pinhole->importance(cos_theta) * cos_theta / d2;
+    if (!(c > 0)) return 0;
+    // The edge lies in y's medium, or the one behind y's interface when it refracts.
+    MediumStack media = y.media;
+    if (dot(y.si.wo, y.si.ng) * dot(d, y.si.ng) < 0 && (y.bsdf->eta(lambda) != 1.0 || y.bsdf->interior_absorption()))
+        media.cross(y.bsdf->interior_absorption(), dot(y.si.wo, y.si.ng) > 0);
+    c *= media.transmittance(dist, lambda);
+    if (scene.occluded(scene.spawn_ray_to(y.si, z0.si.p))) return 0;
+    return c;
+}
+
 // Lights at infinity: the light-sampling strategy from camera vertex z (NEE-style, power
 // heuristic against the escaping camera path).
 double connect_infinite(const Scene& scene, const Vertex& z, Sampler& sampler, double lambda) {
@@ -291,21 +351,73 @@ double connect_infinite(const Scene& scene, const Vertex& z, Sampler& sampler, d
 
 }  // namespace
 
-double BdptIntegrator::li(const Ray& ray, const Scene& scene, Sampler& sampler, double lambda) const {
+int BdptIntegrator::max_layer_depth() const {
+    return m_settings.max_depth > 0 ? std::min(m_settings.max_depth, kMaxLayerDepth) : kMaxLayerDepth;
+}
+
+int BdptIntegrator::layer_of(int s, int t) const {
+    // Lengths k = 1, 2, ... in order; within one, s = 0 .. k (t = k + 1 - s >= 1), without (1, 1).
+    int index = 1;
+    for (int k = 1; k <= max_layer_depth(); ++k)
+        for (int si = 0; si <= k; ++si) {
+            if (si == 1 && k == 1) continue;
+            if (si == s && k + 1 - si == t) return index;
+            ++index;
+        }
+    return -1;
+}
+
+std::vector<std::string> BdptIntegrator::layer_names() const {
+    std::vector<std::string> names;
+    if (!m_layers) return names;
+    for (int k = 1; k <= max_layer_depth(); ++k)
+        for (int s = 0; s <= k; ++s) {
+            const int t = k + 1 - s;
+            if (s == 1 && t == 1) continue;
+            names.push_back("d" + std::to_string(k) + "_s" + std::to_string(s) + "_t" + std::to_string(t));
+        }
+    return names;
+}
+
+void BdptIntegrator::prepare(const Scene& /*scene*/, const FilmSpec& film, const RenderOptions& options) const {
+    m_window = film;
+    m_prepared = true;
+    m_layers = options.debug_layers;
+}
+
+double BdptIntegrator::li(const Ray&, const Scene&, Sampler&, double) const {
+    throw std::logic_error("bdpt splats its light-tracing strategy onto the film: render it with render()");
+}
+
+double BdptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+                                SplatList& splats) const {
     thread_counters().paths++;
+    const double lambda = cs.lambda;
     const int md = m_settings.max_depth;
+    const PerspectiveCamera& camera = *scene.camera();
+    const Pinhole pinhole(camera, m_prepared ? m_window : camera.film());
+    // Debug layers: each strategy's weighted contribution, at the pixel it reaches.
+    const auto record = [&](int s, int t, double c, const Vec2& raster) {
+        if (!m_layers) return;
+        const int layer = layer_of(s, t);
+        if (layer > 0 && c > 0) splats.push_back({raster, radiance_to_xyz(c, lambda, cs.pdf_lambda), layer});
+    };
+
     thread_local std::vector<Vertex> cam, lig;
     cam.clear();
     Vertex z0;
     z0.type = VertexType::Camera;
     z0.si.p = ray.o;
     z0.beta = 1;
+    z0.pinhole = &pinhole;
     cam.push_back(z0);
     Escape esc;
-    // max_depth counts segments: t <= max_depth + 1 and, as t >= 2, s <= max_depth - 1.
+    // max_depth counts segments: t <= max_depth + 1 (s = 0) and s <= max_depth (t = 1).
     const size_t cam_max = md < 0 ? size_t(kUnboundedVertices) : size_t(md + 1);
-    const size_t light_max = md < 0 ? size_t(kUnboundedVertices) : size_t(md - 1);
-    random_walk(scene, ray, sampler, lambda, 1.0, 1.0, cam_max, m_settings.rr_depth, TransportMode::Radiance, cam, &esc);
+    const size_t light_max = md < 0 ? size_t(kUnboundedVertices) : size_t(md);
+    const double pdf_primary = pinhole.pdf_dir(dot(ray.d, camera.forward()));
+    random_walk(scene, ray, sampler, lambda, 1.0, pdf_primary, cam_max, m_settings.rr_depth, TransportMode::Radiance,
+                cam, &esc);
     light_subpath(scene, sampler, lambda, light_max, m_settings.rr_depth, lig);
 
     double L = 0;
@@ -315,14 +427,36 @@ double BdptIntegrator::li(const Ray& ray, const Scene& scene, Sampler& sampler, 
         // s = 0: the camera subpath ends on an area light.
         if (z.light && !(m_settings.hide_emitters && t == 2)) {
             const double le = z.light->le(z.si.p, z.si.n, z.si.wo, lambda);
-            if (le > 0) L += z.beta * le * mis_weight(scene, cam, lig, 0, t, lambda);
+            if (le > 0) {
+                const double c = z.beta * le * mis_weight(scene, cam, lig, 0, t, lambda);
+                L += c;
+                record(0, t, c, cs.raster);
+            }
         }
         for (int s = 1; s <= nl; ++s) {
             if (md >= 0 && s + t - 1 > md) break;
-            const double c = connect(scene, cam, lig, s, t, lambda);
-            if (c > 0) L += c * mis_weight(scene, cam, lig, s, t, lambda);
+            double c = connect(scene, cam, lig, s, t, lambda);
+            if (c > 0) {
+                c *= mis_weight(scene, cam, lig, s, t, lambda);
+                L += c;
+                record(s, t, c, cs.raster);
+            }
         }
-        if (!scene.infinite_lights().empty() && (md < 0 || t <= md)) L += connect_infinite(scene, z, sampler, lambda);
+        if (!scene.infinite_lights().empty() && (md < 0 || t <= md)) {
+            const double c = connect_infinite(scene, z, sampler, lambda);
+            L += c;
+            record(1, t, c, cs.raster);
+        }
+    }
+    // t = 1: light tracing. Each light vertex seen by the pinhole lands on its own pixel.
+    for (int s = 2; s <= nl; ++s) {
+        if (md >= 0 && s > md) break;
+        Vec2 raster;
+        double c = connect_camera(scene, cam[0], lig[size_t(s - 1)], lambda, &raster);
+        if (!(c > 0)) continue;
+        c *= mis_weight(scene, cam, lig, s, 1, lambda);
+        if (c > 0 && cs.pdf_lambda > 0) splats.push_back({raster, radiance_to_xyz(c, lambda, cs.pdf_lambda), 0});
+        record(s, 1, c, raster);
     }
     // Camera subpath escaping to lights at infinity (s = 0 against the light-sampling strategy).
     if (esc.escaped && !(m_settings.hide_emitters && nc == 1)) {
@@ -335,6 +469,7 @@ double BdptIntegrator::li(const Ray& ray, const Scene& scene, Sampler& sampler, 
                 w = power_heuristic(esc.pdf_dir,
                                     scene.light_sampler().pmf(light) * light->pdf_li({last.si.p, last.si.n}, Vec3(), Vec3(), esc.d));
             L += esc.beta * le * w;
+            record(0, nc + 1, esc.beta * le * w, cs.raster);
         }
     }
     return L;

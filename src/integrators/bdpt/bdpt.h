@@ -1,5 +1,6 @@
 #pragma once
 #include "integrators/integrator.h"
+#include "camera/camera.h"
 #include "integrators/path/path_tracer.h"
 
 namespace snell {
@@ -7,24 +8,41 @@ namespace snell {
 /// Bidirectional path tracing (Veach & Guibas 1994; Veach's thesis ch. 10). Per camera sample
 /// it traces a camera subpath z_0..z_{t-1} (z_0 the pinhole) in Radiance mode and a light
 /// subpath y_0..y_{s-1} (y_0 on a finite light: area, point or spot) in Importance mode, and
-/// sums every connection strategy (s >= 0, t >= 2) weighted by the power heuristic over all
-/// strategies of the same path length, from per-vertex forward/reverse area densities.
+/// sums every connection strategy (s >= 0, t >= 1; not (1, 1), which only a light seen
+/// directly would use and (0, 2) covers) weighted by the power heuristic over all strategies
+/// of the same path length, from per-vertex forward/reverse area densities. The light-tracing
+/// strategy t = 1 connects light vertices to the pinhole and splats them onto the film.
 ///
-/// Not implemented (weights are consistent with what is): the light-tracing strategy t = 1
-/// (it needs film splatting, which the renderer lacks) is excluded from every MIS sum.
 /// Lights at infinity (envmap, constant, directional) do not start light subpaths; paths ending
 /// on them are estimated by the two unidirectional strategies only, s = 0 (escaping camera path)
 /// and s = 1 (light sample from the last camera vertex), combined by the power heuristic as
-/// `nee` does. Settings: max_depth (segments, -1 unbounded), rr_depth, hide_emitters.
+/// `nee` does. Settings: max_depth (segments, -1 unbounded), rr_depth, hide_emitters. With
+/// RenderOptions::debug_layers (`snell render --strategies`) each strategy's weighted
+/// contribution also goes to its own film layer d<k>_s<s>_t<t> (path length k <= 6).
 class BdptIntegrator : public Integrator {
 public:
     explicit BdptIntegrator(const PathSettings& settings) : m_settings(settings) {}
+    /// Throws: light tracing needs the film, so bdpt renders only through li_splat().
     double li(const Ray& ray, const Scene& scene, Sampler& sampler, double lambda) const override;
+    double li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+                    SplatList& splats) const override;
+    bool splats() const override { return true; }
+    std::vector<std::string> layer_names() const override;
+    void prepare(const Scene& scene, const FilmSpec& film, const RenderOptions& options) const override;
     std::string name() const override { return "bdpt"; }
     const PathSettings& settings() const { return m_settings; }
 
 private:
+    static constexpr int kMaxLayerDepth = 6;
+    int max_layer_depth() const;
+    /// Debug layer of strategy (s, t); -1 when it has none.
+    int layer_of(int s, int t) const;
+
     PathSettings m_settings;
+    // Set by prepare() for one render: the output window (camera importance) and debug layers.
+    mutable FilmSpec m_window;
+    mutable bool m_prepared = false;
+    mutable bool m_layers = false;
 };
 
 }  // namespace snell

@@ -60,4 +60,17 @@ void PrimarySampleSampler::reject() {
     --m_iteration;
 }
 
+void PrimarySampleSampler::set_state(const std::vector<double>& values) {
+    m_dims.assign(values.size(), Dim());
+    for (size_t i = 0; i < values.size(); ++i) {
+        m_dims[i].value = m_dims[i].backup = values[i];
+        m_dims[i].modified = m_dims[i].modified_backup = m_iteration;
+    }
+    // Marking the state as a just-accepted large step makes update() draw every dimension
+    // not in `values` fresh, and small-step the others from here on.
+    m_last_large_step = m_iteration;
+    m_large_step = false;
+    m_next = 0;
+}
+
 }  // namespace snell

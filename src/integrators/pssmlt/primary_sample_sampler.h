@@ -44,6 +44,11 @@ public:
     void reseed(uint64_t seed, uint64_t stream) { m_rng.seed(seed, stream); }
     /// Uniform number from the chain's own stream (acceptance tests), not a state dimension.
     double uniform() { return m_rng.next_double(); }
+    /// Makes `values` the current, accepted state (dimension i holds values[i]), as if the
+    /// chain had arrived there: ERPT starts its chains at a path that an ordinary sampler
+    /// produced. Dimensions beyond `values` are drawn fresh on first use, as unused dimensions
+    /// of any state are independent uniform numbers.
+    void set_state(const std::vector<double>& values);
 
 private:
     struct Dim {

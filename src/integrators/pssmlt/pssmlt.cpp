@@ -15,6 +15,7 @@
 #include "core/spectrum.h"
 #include "geometry/scene.h"
 #include "integrators/mnee/mnee_integrator.h"
+#include "integrators/pssmlt/path_sample.h"
 #include "integrators/pssmlt/primary_sample_sampler.h"
 
 namespace snell {
@@ -27,6 +28,7 @@ PssmltSettings PssmltSettings::from_props(const Props& props) {
     s.large_step_probability = props.get_float("large_step_probability", s.large_step_probability);
     if (!(s.large_step_probability >= 0 && s.large_step_probability <= 1))
         props.raise("pssmlt: large_step_probability must lie in [0, 1]");
+    s.kelemen_weights = props.get_bool("kelemen_weights", s.kelemen_weights);
     s.mutations_per_pixel = props.get_int("mutations_per_pixel", s.mutations_per_pixel);
     s.bootstrap_samples = props.get_int("bootstrap_samples", s.bootstrap_samples);
     if (s.bootstrap_samples < 1) props.raise("pssmlt: bootstrap_samples must be positive");
@@ -47,35 +49,6 @@ double PssmltIntegrator::li(const Ray&, const Scene&, Sampler&, double) const {
 }
 
 namespace {
-
-/// One evaluation of the inner estimator at the sampler's current primary sample.
-struct PathSample {
-    int x = 0, y = 0;  ///< output (crop) pixel
-    Vec3 xyz;          ///< contribution, as render() accumulates it
-    double target() const { return xyz.y; }  // luminance Y: the Metropolis target function
-};
-
-// Same conversion as render(): raster jitter (2D), then the wavelength (1D), then li().
-PathSample evaluate(const Scene& scene, const PerspectiveCamera& camera, const Integrator& inner, const FilmSpec& spec,
-                    Sampler& sampler) {
-    const int w = spec.out_width(), h = spec.out_height();
-    const Vec2 u = sampler.next_2d();
-    PathSample s;
-    s.x = std::min(w - 1, int(u.x * w));
-    s.y = std::min(h - 1, int(u.y * h));
-    const double u_lambda = sampler.next_1d();
-    const double lambda = sample_visible_wavelength(u_lambda);
-    const double pdf_lambda = visible_wavelength_pdf(lambda);
-    const Ray ray = camera.generate_ray(Vec2(spec.crop_x + u.x * w, spec.crop_y + u.y * h));
-    double L = inner.li(ray, scene, sampler, lambda);
-    // Invalid estimates stay off the film (as in render()), counted by kind.
-    Counters& c = thread_counters();
-    if (std::isnan(L)) c.discarded_nan++, L = 0;
-    else if (std::isinf(L)) c.discarded_inf++, L = 0;
-    else if (L < 0) c.discarded_negative++, L = 0;
-    if (L > 0 && pdf_lambda > 0) s.xyz = radiance_to_xyz(L, lambda, pdf_lambda);
-    return s;
-}
 
 // Stream identities: bootstrap path i and chain c never share a PCG32 stream.
 uint64_t bootstrap_seed(uint64_t seed, uint64_t i) { return mix_bits(mix_bits(seed) ^ (i * 2 + 1)); }
@@ -169,8 +142,15 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, c
                 const double a = fc > 0 ? std::min(1.0, fp / fc) : 1.0;
                 // Expected-value accumulation: each state splats XYZ / Y with its probability
                 // of being the next state; the image scale b / (mutations per pixel) comes last.
-                if (a < 1 && fc > 0) film[size_t(current.y) * w + current.x] += current.xyz * ((1 - a) / fc);
-                if (a > 0 && fp > 0) film[size_t(proposed.y) * w + proposed.x] += proposed.xyz * (a / fp);
+                // Kelemen et al. (2002, Sec. 4) also count a large step as an independent
+                // sample of density 1 and combine both by the balance heuristic: Y / b becomes
+                // Y / b + p_large and a large-step proposal earns one more unit of weight.
+                const bool large = sampler.large_step();
+                const double pk = settings.kelemen_weights ? p_large : 0.0;
+                const double wc = (1 - a) / (fc / b + pk);
+                const double wp = (a + (settings.kelemen_weights && large ? 1.0 : 0.0)) / (fp / b + pk);
+                if (wc > 0 && fc > 0) film[size_t(current.y) * w + current.x] += current.xyz * wc;
+                if (wp > 0 && fp > 0) film[size_t(proposed.y) * w + proposed.x] += proposed.xyz * wp;
                 if (sampler.uniform() < a) {
                     current = proposed;
                     sampler.accept();
@@ -187,7 +167,7 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, c
     // with density Y / b over the unit square of film positions, each pixel covering 1/pixels.
     uint64_t mutations = 0;
     for (uint64_t d : done) mutations += d;
-    const double scale = mutations > 0 ? b * double(pixels) / double(mutations) : 0.0;
+    const double scale = mutations > 0 ? double(pixels) / double(mutations) : 0.0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             Vec3 sum;

@@ -19,6 +19,9 @@ namespace snell {
 struct PssmltSettings {
     std::string sampler = "nee";          ///< (sampler) inner estimator: "nee" or "mnee"
     double large_step_probability = 0.3;  ///< (large_step_probability) Kelemen's p_large
+    /// (kelemen_weights) combine large steps as independent samples by the balance heuristic
+    /// (Kelemen et al. 2002, Sec. 4); false: plain expected-value splats.
+    bool kelemen_weights = true;
     /// (mutations_per_pixel) mutations in all chains together, per output pixel; 0: the
     /// render options' spp. Ignored in equal-time mode (RenderOptions::time_limit > 0).
     int64_t mutations_per_pixel = 0;
@@ -36,7 +39,8 @@ std::shared_ptr<Integrator> make_pssmlt_inner(const PssmltSettings& settings);
 /// Renders `film` with PSSMLT. The target function is the luminance Y of a sample's XYZ;
 /// the normalisation b = E[Y] comes from `bootstrap_samples` independent paths, from which
 /// the chain seeds are resampled proportionally to Y. Every proposal is splatted with the
-/// expected-value weights (current 1 - a, proposed a). The first two primary samples choose
+/// expected-value weights (current 1 - a, proposed a); with kelemen_weights a large step also
+/// counts as an independent sample (balance heuristic). The first two primary samples choose
 /// the film position over the output (crop) window, the third the wavelength, as in render().
 /// A pure function of (scene, settings, options.seed) when `chains` is fixed and no time
 /// limit is set: each chain owns its random stream and per-chain films are summed in order.

@@ -1,0 +1,149 @@
+// BDPT's light-tracing strategy (t = 1): light vertices connected to the pinhole and splatted
+// onto the film. A caustic seen directly (light -> smooth glass -> diffuse floor -> camera) is
+// reached only by BSDF sampling from the floor (`path`) or by light tracing: BDPT must agree
+// with `path` there. Splats are merged in a fixed order (thread-independent images), normalised
+// over the output window (a crop renders the same pixels as the whole film does), and the
+// per-strategy debug layers sum to the image.
+#include <string>
+
+#include "camera/film.h"
+#include "stat/box_scene.h"
+#include "stat/render_stats.h"
+
+using namespace snell;
+using namespace snell::test;
+
+namespace {
+
+// The box with a smooth glass sphere and a light 2/5 of the default side at the same power:
+// the sphere's caustic on the floor is seen directly by the camera. (Smaller lights make
+// light tracing matter even more but `path` too noisy to test against in seconds.)
+std::string caustic_box() {
+    std::string xml = kCornellBox;
+    const std::string rough = R"(<bsdf type="roughdielectric"><float name="alpha" value="0.3"/>)";
+    xml.replace(xml.find(rough), rough.size(), R"(<bsdf type="dielectric">)");
+    return xml;
+}
+const Defines kSmallLight = {{"light_scale", "0.2"}, {"radiance", "37.5"}, {"res", "24"}};
+
+RenderResult render_once(const LoadedScene& ls, const FilmSpec& spec, int spp, uint64_t seed, int threads = 0,
+                         bool layers = false) {
+    RenderOptions opt;
+    opt.spp = spp;
+    opt.seed = seed;
+    opt.threads = threads;
+    opt.progress = false;
+    opt.debug_layers = layers;
+    return render(*ls.scene, *ls.scene->integrator(), spec, opt);
+}
+
+}  // namespace
+
+// `path` at 2048 spp (per-block errors ~0.6%), shared by the agreement and sensitivity tests.
+const std::vector<Estimate>& path_reference() {
+    static const std::vector<Estimate> e = [] {
+        Defines d = kSmallLight;
+        d["integrator"] = "path";
+        const LoadedScene p = load_xml(caustic_box(), d);
+        return block_estimates(p, *p.scene->integrator(), 2048, 12, 12, 6000);
+    }();
+    return e;
+}
+
+std::vector<Estimate> bdpt_blocks(const std::string& radiance) {
+    Defines d = kSmallLight;
+    d["integrator"] = "bdpt";
+    d["radiance"] = radiance;
+    const LoadedScene b = load_xml(caustic_box(), d);
+    return block_estimates(b, *b.scene->integrator(), 128, 12, 12, 5000);
+}
+
+TEST(BdptLightTracing, MatchesPathOnADirectlySeenCaustic) {
+    expect_agreement(bdpt_blocks("37.5"), path_reference(), 0.01, "caustic box: bdpt vs path");
+}
+
+// The same comparison must reject a light 3% brighter.
+TEST(BdptLightTracing, DetectsALightThreePercentBrighter) {
+    EXPECT_GT(count_disagreements(bdpt_blocks("38.625"), path_reference(), 0.01), 0);
+}
+
+TEST(BdptLightTracing, ImageDoesNotDependOnThreadCount) {
+    Defines d = kSmallLight;
+    d["integrator"] = "bdpt";
+    d["res"] = "40";  // several tile groups of splats
+    const LoadedScene ls = load_xml(caustic_box(), d);
+    const RenderResult a = render_once(ls, ls.film, 2, 11, 1), c = render_once(ls, ls.film, 2, 11, 2);
+    for (int y = 0; y < a.film.height(); ++y)
+        for (int x = 0; x < a.film.width(); ++x) ASSERT_EQ(a.film.xyz(x, y).y, c.film.xyz(x, y).y) << x << "," << y;
+}
+
+// Camera importance is normalised over the output window: a crop renders the crop's pixels of
+// the whole film (same expectation), although only the crop's camera rays are traced.
+TEST(BdptLightTracing, CropWindowMatchesTheWholeFilm) {
+    Defines d = kSmallLight;
+    d["integrator"] = "bdpt";
+    const LoadedScene ls = load_xml(caustic_box(), d);
+    FilmSpec crop = ls.film;
+    crop.crop_x = 6, crop.crop_y = 12, crop.crop_w = 12, crop.crop_h = 12;
+    const int replicas = 12, block = 6;
+    std::vector<std::vector<double>> full(4), part(4);
+    for (int r = 0; r < replicas; ++r) {
+        const RenderResult f = render_once(ls, ls.film, 16, 100 + uint64_t(r));
+        const RenderResult c = render_once(ls, crop, 16, 900 + uint64_t(r));
+        for (int b = 0; b < 4; ++b) {
+            double sf = 0, sc = 0;
+            for (int y = 0; y < block; ++y)
+                for (int x = 0; x < block; ++x) {
+                    const int cx = (b % 2) * block + x, cy = (b / 2) * block + y;
+                    sc += c.film.xyz(cx, cy).y;
+                    sf += f.film.xyz(cx + crop.crop_x, cy + crop.crop_y).y;
+                }
+            full[size_t(b)].push_back(sf), part[size_t(b)].push_back(sc);
+        }
+    }
+    const auto estimate = [](const std::vector<double>& v) {
+        double m = 0, var = 0;
+        for (double x : v) m += x;
+        m /= double(v.size());
+        for (double x : v) var += (x - m) * (x - m);
+        return Estimate{m, std::sqrt(var / double(v.size() - 1) / double(v.size())), int(v.size())};
+    };
+    std::vector<Estimate> ef, ec;
+    for (int b = 0; b < 4; ++b) ef.push_back(estimate(full[size_t(b)])), ec.push_back(estimate(part[size_t(b)]));
+    expect_agreement(ef, ec, 0.01, "crop vs whole film");
+}
+
+// `snell render --strategies`: the weighted contributions of all strategies of the lengths the
+// layers cover add up to the image (max_depth 3 <= the 6 lengths the layers hold).
+TEST(BdptLightTracing, StrategyLayersSumToTheImage) {
+    std::string xml = caustic_box();
+    const std::string depth = R"(<integer name="max_depth" value="6"/>)";
+    xml.replace(xml.find(depth), depth.size(), R"(<integer name="max_depth" value="3"/>)");
+    Defines d = kSmallLight;
+    d["integrator"] = "bdpt";
+    d["res"] = "16";
+    const LoadedScene ls = load_xml(xml, d);
+    const auto names = [&] {
+        RenderOptions opt;
+        opt.debug_layers = true;
+        ls.scene->integrator()->prepare(*ls.scene, ls.film, opt);
+        return ls.scene->integrator()->layer_names();
+    }();
+    ASSERT_EQ(names.size(), 1u + 3u + 4u);  // lengths 1..3: (0,2); (0,3) (1,2) (2,1); (0,4) ... (3,1)
+    EXPECT_EQ(names.front(), "d1_s0_t2");
+    EXPECT_EQ(names.back(), "d3_s3_t1");
+    const RenderResult r = render_once(ls, ls.film, 4, 5, 0, true);
+    double image = 0, layers = 0;
+    for (int y = 0; y < r.film.height(); ++y)
+        for (int x = 0; x < r.film.width(); ++x) {
+            image += r.film.xyz(x, y).y;
+            for (int k = 1; k <= int(names.size()); ++k) layers += r.film.layer_xyz(k, x, y).y;
+        }
+    EXPECT_GT(image, 0);
+    EXPECT_NEAR(layers, image, 1e-9 * image);
+    // Light tracing reaches the caustic: its layers are not empty.
+    double t1 = 0;
+    for (int y = 0; y < r.film.height(); ++y)
+        for (int x = 0; x < r.film.width(); ++x) t1 += r.film.layer_xyz(int(names.size()), x, y).y;
+    EXPECT_GT(t1, 0);
+}
