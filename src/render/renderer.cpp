@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -109,7 +110,13 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Film
     integrator.prepare(scene, spec, opt);
     uint64_t done_spp = 0;
     for (int pass = 0; !stop_requested(); ++pass) {
-        uint64_t n = pass_size(pass);
+        // Splats need whole passes: a chain's deposits stay near its seed (ERPT), so a pass cut
+        // short would brighten the tiles it reached against the film-wide normalisation. Such
+        // a pass is dropped (unless it is the only one), and equal-time renders use passes of
+        // one sample so that little time is lost.
+        uint64_t n = splatting && timed ? 1 : pass_size(pass);
+        std::optional<Film> before_pass;
+        if (splatting && done_spp > 0) before_pass = result.film;
         if (!timed) {
             if (done_spp >= uint64_t(opt.spp)) break;
             n = std::min<uint64_t>(n, uint64_t(opt.spp) - done_spp);
@@ -160,7 +167,10 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Film
             // taken, and the scale below counts samples, not passes.
             if (splatting) merge_splats(g1 - g0);
         }
-        if (!pass_complete) break;
+        if (!pass_complete) {
+            if (before_pass) result.film = std::move(*before_pass);
+            break;
+        }
         done_spp = s1;
         if (bar && timed) bar->update();
     }

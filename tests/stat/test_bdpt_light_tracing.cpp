@@ -147,3 +147,19 @@ TEST(BdptLightTracing, StrategyLayersSumToTheImage) {
         for (int x = 0; x < r.film.width(); ++x) t1 += r.film.layer_xyz(int(names.size()), x, y).y;
     EXPECT_GT(t1, 0);
 }
+
+// An equal-time render of a splatting integrator keeps whole passes only: every pixel has the
+// same number of samples, which the splat normalisation assumes.
+TEST(BdptLightTracing, TimedRenderKeepsWholePasses) {
+    Defines d = kSmallLight;
+    d["integrator"] = "bdpt";
+    const LoadedScene ls = load_xml(caustic_box(), d);
+    RenderOptions opt;
+    opt.time_limit = 0.3;
+    opt.progress = false;
+    const RenderResult r = render(*ls.scene, *ls.scene->integrator(), ls.film, opt);
+    ASSERT_GT(r.spp_completed, 0u);
+    for (int y = 0; y < r.film.height(); ++y)
+        for (int x = 0; x < r.film.width(); ++x) ASSERT_EQ(r.film.samples(x, y), r.spp_completed) << x << "," << y;
+    EXPECT_DOUBLE_EQ(r.spp_mean, double(r.spp_completed));
+}
