@@ -58,9 +58,9 @@ const char* kLightInGlass = R"(<scene version="3.0.0">
     <emitter type="area"><rgb name="radiance" value="4"/></emitter></shape>
 </scene>)";
 
-// A constant environment (a light at infinity: only s = 0 and s = 1 reach it) together with a
-// finite area light (whose light subpaths start only when the light sampler picks it), with
-// hide_emitters: the sky and the directly seen light are black in both estimators.
+// A constant environment (a light at infinity: light subpaths start on a disk facing the
+// sampled direction) together with a finite area light, with hide_emitters: the sky and the
+// directly seen light are black in both estimators.
 const char* kEnvironment = R"(<scene version="3.0.0">
   <default name="integrator" value="nee"/>
   <integrator type="$integrator"><integer name="max_depth" value="4"/><boolean name="hide_emitters" value="true"/></integrator>

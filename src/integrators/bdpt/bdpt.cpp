@@ -60,6 +60,11 @@ struct Vertex {
     bool delta = false;         // scattered by a delta lobe on its own subpath
     MediumStack media;          // medium on the side the subpath arrived from
     const Pinhole* pinhole = nullptr;  // camera vertex only
+    // A vertex at infinity (the start of a light subpath from an environment or directional
+    // light, or where a camera subpath escapes): `dir` points from the scene towards it, and
+    // its densities are solid-angle densities of that direction (Veach's thesis, Sec. 10.3.5).
+    bool infinite = false;
+    Vec3 dir;
 
     bool has_normal() const { return length_squared(si.ng) > 0; }
     bool connectible() const {
@@ -68,10 +73,38 @@ struct Vertex {
 };
 
 bool delta_position(const Light& l) { return l.kind() == LightKind::Point || l.kind() == LightKind::Spot; }
+// Lights no camera subpath can hit: a delta position, or the directional light's delta direction.
+bool delta_origin(const Light& l) { return delta_position(l) || l.kind() == LightKind::Directional; }
+
+// Unit direction from vertex `from` towards vertex `to` (which may lie at infinity).
+Vec3 direction(const Vertex& from, const Vertex& to) {
+    if (to.infinite) return to.dir;
+    if (from.infinite) return -from.dir;
+    return normalize(to.si.p - from.si.p);
+}
+
+/// Light subpaths from lights at infinity start on a disk of the scene's bounding-sphere radius
+/// R facing the sampled direction: area density 1 / (pi R^2) across the beam.
+struct SceneDisk {
+    Vec3 center;
+    double radius = 1;
+    explicit SceneDisk(const Bounds3& b) {
+        if (b.valid()) {
+            center = b.center();
+            radius = 0.5 * length(b.extent());
+        }
+        if (!(radius > 0)) radius = 1;
+    }
+    double pdf() const { return 1.0 / (kPi * radius * radius); }
+};
 
 // Solid-angle density at `from` of the direction to `to`, converted to area measure at `to`
-// (geometric normal: the area measure of the surface).
+// (geometric normal: the area measure of the surface). Towards a vertex at infinity the
+// density stays a solid-angle density; from one, `pdf_dir` is the planar density across the
+// beam (SceneDisk), projected onto the surface at `to`.
 double to_area(double pdf_dir, const Vertex& from, const Vertex& to) {
+    if (to.infinite) return pdf_dir;
+    if (from.infinite) return to.has_normal() ? pdf_dir * std::abs(dot(to.si.ng, from.dir)) : pdf_dir;
     const Vec3 d = to.si.p - from.si.p;
     const double d2 = length_squared(d);
     if (!(d2 > 0)) return 0;
@@ -82,27 +115,32 @@ double to_area(double pdf_dir, const Vertex& from, const Vertex& to) {
 
 // Area density at `next` with which a subpath continuing from `v` (reached from `prev`, which
 // for a light vertex is ignored) samples `next`; `mode` is the transport of that subpath.
-double pdf_area(const Vertex& v, const Vertex* prev, const Vertex& next, TransportMode mode, double lambda) {
-    const Vec3 wi = normalize(next.si.p - v.si.p);
+double pdf_area(const Vertex& v, const Vertex* prev, const Vertex& next, TransportMode mode, double lambda,
+                const SceneDisk& disk) {
+    const Vec3 wi = direction(v, next);
     if (v.type == VertexType::Camera) {
         Vec2 r;
         double cos_theta = 0;
         return v.pinhole->raster(next.si.p, &r, &cos_theta) ? to_area(v.pinhole->pdf_dir(cos_theta), v, next) : 0.0;
     }
     if (v.type == VertexType::Light) {
+        if (v.infinite) return to_area(disk.pdf(), v, next);
         if (delta_position(*v.light)) return to_area(kInv4Pi, v, next);
         const double c = dot(v.si.n, wi);
         return c > 0 ? to_area(c * kInvPi, v, next) : 0.0;
     }
     if (v.type != VertexType::Surface || !v.bsdf || !prev) return 0;
-    const Vec3 wo = normalize(prev->si.p - v.si.p);
+    const Vec3 wo = direction(v, *prev);
     const BSDFContext ctx{lambda, mode};
     return to_area(v.bsdf->pdf(ctx, v.si.to_local(wo), v.si.to_local(wi)), v, next);
 }
 
-// Density of choosing the light point of `light` at the start of a light subpath.
-double light_origin_pdf(const Scene& scene, const Light& light) {
+// Density of choosing light vertex `v` (on v.light) as the start of a light subpath: of its
+// point (area measure) or, at infinity, of its direction (solid angle).
+double light_origin_pdf(const Scene& scene, const Vertex& v) {
+    const Light& light = *v.light;
     const double pmf = scene.light_sampler().pmf(&light);
+    if (v.infinite) return pmf * light.pdf_li({}, Vec3(), Vec3(), v.dir);
     if (delta_position(light)) return pmf;
     return light.shape() ? pmf / light.shape()->area() : 0.0;
 }
@@ -177,18 +215,35 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, double lambda, d
     }
 }
 
-// Samples y_0 on a finite light and walks the light subpath. Empty when the light sampler
-// picks a light at infinity (those are handled unidirectionally).
-void light_subpath(const Scene& scene, Sampler& sampler, double lambda, size_t max_vertices, int rr_depth,
-                   std::vector<Vertex>& path) {
+// Samples y_0 on a light and walks the light subpath. A finite light gives a point and a
+// cosine-weighted (area) or uniform (point, spot) direction; a light at infinity gives a
+// direction d towards it (its own sample_li distribution) and a point on the scene disk facing
+// d, from which the subpath travels along -d.
+void light_subpath(const Scene& scene, const SceneDisk& disk, Sampler& sampler, double lambda, size_t max_vertices,
+                   int rr_depth, std::vector<Vertex>& path) {
     path.clear();
     double pmf = 0;
     const Light* light = scene.light_sampler().sample(sampler.next_1d(), &pmf);
     const Vec2 u_pos = sampler.next_2d(), u_dir = sampler.next_2d();
-    if (!light || !(pmf > 0) || light->is_infinite() || max_vertices == 0) return;
+    if (!light || !(pmf > 0) || max_vertices == 0) return;
     Vertex y0;
     y0.type = VertexType::Light;
     y0.light = light;
+    if (light->is_infinite()) {
+        const auto ls = light->sample_li({disk.center, Vec3()}, u_dir, lambda);
+        if (!ls || !(ls->pdf > 0) || !(ls->Le > 0)) return;
+        y0.infinite = true;
+        y0.dir = ls->wi;
+        y0.pdf_fwd = pmf * ls->pdf;
+        y0.beta = 1.0 / (pmf * ls->pdf);  // radiance (irradiance) is evaluated per connection
+        const Frame f = Frame::from_normal(ls->wi);
+        const Vec2 q = warp::square_to_uniform_disk_concentric(u_pos) * disk.radius;
+        y0.si.p = disk.center + ls->wi * disk.radius + f.s * q.x + f.t * q.y;
+        path.push_back(y0);
+        random_walk(scene, Ray{y0.si.p, -ls->wi}, sampler, lambda, ls->Le / (pmf * ls->pdf * disk.pdf()), disk.pdf(),
+                    max_vertices, rr_depth, TransportMode::Importance, path, nullptr);
+        return;
+    }
     double pdf_pos = 1, pdf_dir = 0, le = 0;
     Vec3 w;
     if (delta_position(*light)) {
@@ -226,8 +281,8 @@ double remap0(double x) { return x != 0 ? x : 1.0; }
 // Power-heuristic weight of strategy (s, t) among all strategies s' + t' = s + t with t' >= 1
 // (Veach's thesis, Sec. 10.2): the ratios of each alternative's density to this one's follow
 // from per-vertex forward and reverse densities, recomputed around the connection.
-double mis_weight(const Scene& scene, const std::vector<Vertex>& cam, const std::vector<Vertex>& lig, int s, int t,
-                  double lambda) {
+double mis_weight(const Scene& scene, const SceneDisk& disk, const std::vector<Vertex>& cam,
+                  const std::vector<Vertex>& lig, int s, int t, double lambda) {
     if (s + t == 2) return 1.0;  // (0, 2) only: light vertex to pinhole, (1, 1), is not taken
     thread_local std::vector<double> zr, zf, yr, yf;
     thread_local std::vector<char> zd, yd;
@@ -240,22 +295,23 @@ double mis_weight(const Scene& scene, const std::vector<Vertex>& cam, const std:
     zd[t - 1] = false;
     bool light_delta = false;
     if (s == 0) {
-        // z_{t-1} lies on an area light; seen as a light subpath it is y_0 and emits to z_{t-2}.
+        // z_{t-1} lies on an area light (or at infinity); seen as a light subpath it is y_0 and
+        // emits to z_{t-2}.
         Vertex as_light = z;
         as_light.type = VertexType::Light;
-        zr[t - 1] = light_origin_pdf(scene, *z.light);
-        zr[t - 2] = pdf_area(as_light, nullptr, cam[size_t(t - 2)], TransportMode::Importance, lambda);
+        zr[t - 1] = light_origin_pdf(scene, z);
+        zr[t - 2] = pdf_area(as_light, nullptr, cam[size_t(t - 2)], TransportMode::Importance, lambda, disk);
     } else {
         const Vertex& y = lig[size_t(s - 1)];
         const Vertex* zp = t >= 2 ? &cam[size_t(t - 2)] : nullptr;
         yd[s - 1] = false;
-        light_delta = delta_position(*lig[0].light);
+        light_delta = delta_origin(*lig[0].light);
         if (t >= 2) {
-            zr[t - 1] = pdf_area(y, s >= 2 ? &lig[size_t(s - 2)] : nullptr, z, TransportMode::Importance, lambda);
-            zr[t - 2] = pdf_area(z, &y, *zp, TransportMode::Importance, lambda);
+            zr[t - 1] = pdf_area(y, s >= 2 ? &lig[size_t(s - 2)] : nullptr, z, TransportMode::Importance, lambda, disk);
+            zr[t - 2] = pdf_area(z, &y, *zp, TransportMode::Importance, lambda, disk);
         }
-        yr[s - 1] = pdf_area(z, zp, y, TransportMode::Radiance, lambda);  // t = 1: the pinhole's density
-        if (s >= 2) yr[s - 2] = pdf_area(y, &z, lig[size_t(s - 2)], TransportMode::Radiance, lambda);
+        yr[s - 1] = pdf_area(z, zp, y, TransportMode::Radiance, lambda, disk);  // t = 1: the pinhole's density
+        if (s >= 2) yr[s - 2] = pdf_area(y, &z, lig[size_t(s - 2)], TransportMode::Radiance, lambda, disk);
     }
     double sum = 0, r = 1;
     // Camera vertices handed to the light subpath: strategies (s + t - i, i), i >= 1 (the
@@ -280,6 +336,16 @@ double connect(const Scene& scene, const std::vector<Vertex>& cam, const std::ve
     const Vertex& z = cam[size_t(t - 1)];
     const Vertex& y = lig[size_t(s - 1)];
     if (!z.connectible() || !y.connectible()) return 0;
+    if (y.infinite) {
+        // A light at infinity: the "edge" is the direction y.dir; its geometry term is the
+        // cosine at z alone. The shadow ray must escape; a camera vertex inside an absorbing
+        // medium cannot see the sky without crossing the medium's boundary, which occludes it.
+        const double fz = z.bsdf->eval({lambda, TransportMode::Radiance}, z.si.to_local(z.si.wo), z.si.to_local(y.dir)) *
+                          std::abs(dot(z.si.n, y.dir));
+        const double c = z.beta * fz * y.light->emitted(Vec3(), Vec3(), -y.dir, lambda) * y.beta;
+        if (!(c > 0) || scene.occluded(scene.spawn_ray(z.si, y.dir))) return 0;
+        return c;
+    }
     Vec3 d = y.si.p - z.si.p;
     const double d2 = length_squared(d);
     if (!(d2 > 0)) return 0;
@@ -330,23 +396,6 @@ double connect_camera(const Scene& scene, const Vertex& z0, const Vertex& y, dou
     c *= media.transmittance(dist, lambda);
     if (scene.occluded(scene.spawn_ray_to(y.si, z0.si.p))) return 0;
     return c;
-}
-
-// Lights at infinity: the light-sampling strategy from camera vertex z (NEE-style, power
-// heuristic against the escaping camera path).
-double connect_infinite(const Scene& scene, const Vertex& z, Sampler& sampler, double lambda) {
-    double pmf = 0;
-    const Light* light = scene.light_sampler().sample(sampler.next_1d(), &pmf);
-    const Vec2 u = sampler.next_2d();
-    if (!light || !light->is_infinite() || !(pmf > 0) || !z.connectible()) return 0;
-    const auto ls = light->sample_li({z.si.p, z.si.n}, u, lambda);
-    if (!ls || !(ls->pdf > 0) || !(ls->Le > 0)) return 0;
-    const BSDFContext ctx{lambda, TransportMode::Radiance};
-    const Vec3 wo = z.si.to_local(z.si.wo), wi = z.si.to_local(ls->wi);
-    const double f = z.bsdf->eval(ctx, wo, wi) * std::abs(wi.z);
-    if (!(f > 0) || scene.occluded(scene.spawn_ray(z.si, ls->wi))) return 0;
-    const double w = ls->delta ? 1.0 : power_heuristic(pmf * ls->pdf, z.bsdf->pdf(ctx, wo, wi));
-    return z.beta * f * ls->Le * w / (pmf * ls->pdf);
 }
 
 }  // namespace
@@ -418,7 +467,8 @@ double BdptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Sc
     const double pdf_primary = pinhole.pdf_dir(dot(ray.d, camera.forward()));
     random_walk(scene, ray, sampler, lambda, 1.0, pdf_primary, cam_max, m_settings.rr_depth, TransportMode::Radiance,
                 cam, &esc);
-    light_subpath(scene, sampler, lambda, light_max, m_settings.rr_depth, lig);
+    const SceneDisk disk(scene.bounds());
+    light_subpath(scene, disk, sampler, lambda, light_max, m_settings.rr_depth, lig);
 
     double L = 0;
     const int nc = int(cam.size()), nl = int(lig.size());
@@ -428,7 +478,7 @@ double BdptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Sc
         if (z.light && !(m_settings.hide_emitters && t == 2)) {
             const double le = z.light->le(z.si.p, z.si.n, z.si.wo, lambda);
             if (le > 0) {
-                const double c = z.beta * le * mis_weight(scene, cam, lig, 0, t, lambda);
+                const double c = z.beta * le * mis_weight(scene, disk, cam, lig, 0, t, lambda);
                 L += c;
                 record(0, t, c, cs.raster);
             }
@@ -437,15 +487,10 @@ double BdptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Sc
             if (md >= 0 && s + t - 1 > md) break;
             double c = connect(scene, cam, lig, s, t, lambda);
             if (c > 0) {
-                c *= mis_weight(scene, cam, lig, s, t, lambda);
+                c *= mis_weight(scene, disk, cam, lig, s, t, lambda);
                 L += c;
                 record(s, t, c, cs.raster);
             }
-        }
-        if (!scene.infinite_lights().empty() && (md < 0 || t <= md)) {
-            const double c = connect_infinite(scene, z, sampler, lambda);
-            L += c;
-            record(1, t, c, cs.raster);
         }
     }
     // t = 1: light tracing. Each light vertex seen by the pinhole lands on its own pixel.
@@ -454,22 +499,28 @@ double BdptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Sc
         Vec2 raster;
         double c = connect_camera(scene, cam[0], lig[size_t(s - 1)], lambda, &raster);
         if (!(c > 0)) continue;
-        c *= mis_weight(scene, cam, lig, s, 1, lambda);
+        c *= mis_weight(scene, disk, cam, lig, s, 1, lambda);
         if (c > 0 && cs.pdf_lambda > 0) splats.push_back({raster, radiance_to_xyz(c, lambda, cs.pdf_lambda), 0});
         record(s, 1, c, raster);
     }
-    // Camera subpath escaping to lights at infinity (s = 0 against the light-sampling strategy).
+    // s = 0 at infinity: the camera subpath escaped; its end is a vertex at infinity on each
+    // light there, weighted against every strategy that could have built the same path.
     if (esc.escaped && !(m_settings.hide_emitters && nc == 1)) {
-        const Vertex& last = cam.back();
+        Vertex end;
+        end.type = VertexType::Surface;
+        end.infinite = true;
+        end.dir = esc.d;
+        end.beta = esc.beta;
+        end.pdf_fwd = esc.pdf_dir;
         for (const Light* light : scene.infinite_lights()) {
             const double le = light->le_escaped(esc.d, lambda);
             if (!(le > 0)) continue;
-            double w = 1;
-            if (nc > 1 && esc.pdf_dir > 0)
-                w = power_heuristic(esc.pdf_dir,
-                                    scene.light_sampler().pmf(light) * light->pdf_li({last.si.p, last.si.n}, Vec3(), Vec3(), esc.d));
-            L += esc.beta * le * w;
-            record(0, nc + 1, esc.beta * le * w, cs.raster);
+            end.light = light;
+            cam.push_back(end);
+            const double c = esc.beta * le * mis_weight(scene, disk, cam, lig, 0, nc + 1, lambda);
+            cam.pop_back();
+            L += c;
+            record(0, nc + 1, c, cs.raster);
         }
     }
     return L;

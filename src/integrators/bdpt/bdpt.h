@@ -7,16 +7,16 @@ namespace snell {
 
 /// Bidirectional path tracing (Veach & Guibas 1994; Veach's thesis ch. 10). Per camera sample
 /// it traces a camera subpath z_0..z_{t-1} (z_0 the pinhole) in Radiance mode and a light
-/// subpath y_0..y_{s-1} (y_0 on a finite light: area, point or spot) in Importance mode, and
+/// subpath y_0..y_{s-1} (y_0 on any light, picked by power) in Importance mode, and
 /// sums every connection strategy (s >= 0, t >= 1; not (1, 1), which only a light seen
 /// directly would use and (0, 2) covers) weighted by the power heuristic over all strategies
 /// of the same path length, from per-vertex forward/reverse area densities. The light-tracing
 /// strategy t = 1 connects light vertices to the pinhole and splats them onto the film.
 ///
-/// Lights at infinity (envmap, constant, directional) do not start light subpaths; paths ending
-/// on them are estimated by the two unidirectional strategies only, s = 0 (escaping camera path)
-/// and s = 1 (light sample from the last camera vertex), combined by the power heuristic as
-/// `nee` does. Settings: max_depth (segments, -1 unbounded), rr_depth, hide_emitters. With
+/// Lights at infinity (envmap, constant, directional) start light subpaths from a disk facing
+/// the sampled direction; their vertices carry solid-angle densities, so escaping camera paths
+/// and light samples of them are weighted against light subpaths like any other strategies.
+/// Settings: max_depth (segments, -1 unbounded), rr_depth, hide_emitters. With
 /// RenderOptions::debug_layers (`snell render --strategies`) each strategy's weighted
 /// contribution also goes to its own film layer d<k>_s<s>_t<t> (path length k <= 6).
 class BdptIntegrator : public Integrator {
