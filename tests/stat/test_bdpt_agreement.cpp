@@ -3,6 +3,8 @@
 // Bonferroni correction over blocks, tests/stat/render_stats.h). The scenes put every BDPT
 // strategy family on some path: connections through rough and smooth dielectrics, rough
 // conductors, delta lights, a light inside glass and lights at infinity.
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "stat/render_stats.h"
@@ -112,6 +114,38 @@ void expect_bdpt_and_nee_agree(const char* xml, const Defines& d, int spp_bdpt, 
                                            << in.mean << " +- " << in.stderr_;
 }
 
+std::string replace_once(std::string xml, const std::string& from, const std::string& to) {
+    const size_t at = xml.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? xml : xml.replace(at, from.size(), to);
+}
+
+const std::string kFloor =
+    R"(<shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/></transform><ref id="white"/></shape>)";
+
+// A small light inside a glass sphere ($glass: dielectric or roughdielectric) in an open box,
+// the whole scene scaled by $s: every path crosses the glass.
+const char* kLightInGlassScaled = R"(<scene version="3.0.0">
+  <default name="integrator" value="nee"/>
+  <default name="s" value="1"/>
+  <default name="glass" value="roughdielectric"/>
+  <integrator type="$integrator"><integer name="max_depth" value="5"/></integrator>
+  <sensor type="perspective"><float name="fov" value="45"/>
+    <transform name="to_world"><lookat origin="0, 1, 3.4" target="0, 1, 0" up="0, 1, 0"/><scale value="$s"/></transform>
+    <film type="hdrfilm"><integer name="width" value="24"/><integer name="height" value="24"/></film></sensor>
+  <bsdf type="diffuse" id="white"><rgb name="reflectance" value="0.7, 0.7, 0.7"/></bsdf>
+  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><scale value="$s"/></transform><ref id="white"/></shape>
+  <shape type="rectangle"><transform name="to_world"><translate z="-1"/><translate y="1"/><scale value="$s"/></transform><ref id="white"/></shape>
+  <shape type="rectangle"><transform name="to_world"><rotate y="1" angle="90"/><translate x="-1" y="1"/><scale value="$s"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.1, 0.1"/></bsdf></shape>
+  <shape type="sphere"><point name="center" x="0" y="0.8" z="0"/><float name="radius" value="0.45"/>
+    <transform name="to_world"><scale value="$s"/></transform>
+    <bsdf type="$glass"><float name="alpha" value="0.2"/><float name="int_ior" value="1.5"/></bsdf></shape>
+  <shape type="sphere"><point name="center" x="0" y="0.8" z="0"/><float name="radius" value="0.3"/>
+    <transform name="to_world"><scale value="$s"/></transform>
+    <emitter type="area"><rgb name="radiance" value="4"/></emitter></shape>
+</scene>)";
+
 }  // namespace
 
 // Large light, rough BSDFs: NEE converges well, so this checks BDPT's connections and weights.
@@ -141,4 +175,59 @@ TEST(BdptAgreement, DetectsALightThreePercentBrighter) {
     const auto eb = block_estimates(b, *b.scene->integrator(), 32, 12, 8, 3000);
     const auto en = block_estimates(n, *n.scene->integrator(), 64, 12, 8, 4000);
     EXPECT_GT(count_disagreements(eb, en, 0.01), 0);
+}
+
+// The floor as an OBJ quad with interpolated normals leaning ~35 degrees: light subpaths that
+// scatter on it need the adjoint shading-normal correction (Veach's thesis, Sec. 5.3) in their
+// connections, light tracing included.
+TEST(BdptAgreement, MatchesNeeWithShadingNormals) {
+    const auto obj = std::filesystem::temp_directory_path() / "snell_bdpt_tilted_floor.obj";
+    std::ofstream(obj) << "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\n"
+                          "vn 0 1 0.7\nvn 0 1 0.7\nvn 0 1 0.7\nvn 0 1 0.7\n"
+                          "f 1//1 3//3 2//2\nf 1//1 4//4 3//3\n";
+    const std::string xml = replace_once(kCornellBox, kFloor,
+                                         R"(<shape type="obj"><string name="filename" value=")" + obj.string() +
+                                             R"("/><ref id="white"/></shape>)");
+    expect_bdpt_and_nee_agree(xml.c_str(), {{"res", "24"}}, 32, 64, 12, 8, "shading normals");
+}
+
+// Wide angle (fov 100, camera inside the box): the camera importance's 1/cos^4 falloff and the
+// pinhole's 1/cos^3 density are far from 1 at the edges of the window.
+TEST(BdptAgreement, MatchesNeeAtAWideAngle) {
+    std::string xml = replace_once(kCornellBox, R"(<float name="fov" value="45"/>)", R"(<float name="fov" value="100"/>)");
+    xml = replace_once(xml, R"(origin="0, 1, 3.4")", R"(origin="0, 1, 0.95")");
+    expect_bdpt_and_nee_agree(xml.c_str(), {{"res", "24"}}, 32, 64, 12, 8, "wide angle");
+}
+
+// Beer-Lambert absorption on connection edges: a large absorbing rough glass sphere in front of
+// the camera (camera subpaths inside it connect out through its surface).
+TEST(BdptAgreement, MatchesNeeThroughALargeAbsorbingRoughDielectric) {
+    std::string xml = replace_once(kCornellBox,
+                                   R"(<point name="center" x="0.45" y="0.35" z="0.2"/><float name="radius" value="0.35"/>)",
+                                   R"(<point name="center" x="0.2" y="0.6" z="0.3"/><float name="radius" value="0.6"/>)");
+    xml = replace_once(xml, R"(<float name="int_ior" value="1.5"/>)",
+                       R"(<float name="int_ior" value="1.5"/><rgb name="sigma_a" value="1, 1, 1"/>)");
+    expect_bdpt_and_nee_agree(xml.c_str(), {{"res", "24"}}, 32, 64, 12, 8, "large absorbing rough glass");
+}
+
+// Every path crosses a rough refraction, so its reverse densities enter every MIS weight.
+TEST(BdptAgreement, MatchesNeeWithALightInsideRoughGlass) {
+    expect_bdpt_and_nee_agree(kLightInGlassScaled, {}, 32, 64, 12, 8, "light in rough glass");
+}
+
+// A light inside absorbing glass: its light subpaths start inside the medium and must be
+// attenuated up to their first exit (they learn the medium there).
+TEST(BdptAgreement, MatchesNeeWithALightInsideAbsorbingRoughGlass) {
+    const std::string xml = replace_once(kLightInGlassScaled, R"(<float name="int_ior" value="1.5"/>)",
+                                         R"(<float name="int_ior" value="1.5"/><rgb name="sigma_a" value="1.5, 1.5, 1.5"/>)");
+    expect_bdpt_and_nee_agree(xml.c_str(), {}, 32, 64, 12, 8, "light in absorbing rough glass");
+}
+
+// MIS ratios compare densities of one measure, so the weights cannot depend on the scene's
+// scale: the smooth-glass light shrunk tenfold (a ratio of an area density to a remapped 1
+// would change the image by ~30% here).
+TEST(BdptAgreement, MatchesNeeWithALightInsideSmoothGlassAtScaleOneTenth) {
+    const std::string xml = replace_once(kLightInGlassScaled, R"(<float name="alpha" value="0.2"/>)", "");
+    expect_bdpt_and_nee_agree(xml.c_str(), {{"glass", "dielectric"}, {"s", "0.1"}}, 32, 64, 12, 8,
+                              "light in smooth glass, scale 0.1");
 }

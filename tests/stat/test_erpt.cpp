@@ -265,6 +265,21 @@ TEST(Erpt, AgreesWithNeeWhenRestrictedToAShape) {
     expect_replicas_agree(a, replica_stats(nee, kNeeSpp, kBlock, 4000, kReplicas), "erpt(shapes=glass) vs nee");
 }
 
+// Long restricted chains travel far from their seeds: a chain that started among paths touching
+// the glass must stay among them (a proposal outside the set has target 0), or energy the image
+// already holds as plain `nee` would be deposited twice. 4096 mutations at 0.005 chains per
+// sample cost about as much as the short chains above.
+TEST(Erpt, LongRestrictedChainsAgreeWithNee) {
+    const LoadedScene erpt = load_xml(box_xml(R"(<integer name="mutations" value="4096"/>)"
+                                              R"(<float name="chains_per_sample" value="0.005"/>)"
+                                              R"(<integer name="bootstrap_samples" value="4096"/>)"
+                                              R"(<string name="shapes" value="glass"/>)"),
+                                      {{"integrator", "erpt"}, {"res", "16"}});
+    const LoadedScene nee = load_xml(kCornellBox, {{"integrator", "nee"}, {"res", "16"}});
+    expect_replicas_agree(erpt_replica_stats(erpt, 5000), replica_stats(nee, kNeeSpp, kBlock, 6000, kReplicas),
+                          "erpt(shapes=glass, 4096 mutations) vs nee");
+}
+
 // Sensitivity: the comparison must be able to fail. ERPT of a box whose light is 3% brighter
 // must be told apart from `nee` of the original box.
 TEST(Erpt, DetectsALightThreePercentBrighter) {

@@ -175,6 +175,13 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, double lambda, d
             if (escape) *escape = {true, ray.d, beta, pdf_dir};
             break;
         }
+        // A light subpath may start inside a dielectric (a light in coloured glass): it finds
+        // out when it leaves an interface from the inside with nothing on its stack, and the
+        // segment it just travelled lay in that interior. (Camera subpaths start outside.)
+        if (mode == TransportMode::Importance && !media.inside() && dot(ray.d, si.ng) > 0) {
+            const BSDF* b = si.bsdf();
+            if (b && (b->eta(lambda) != 1.0 || b->interior_absorption())) media.cross(b->interior_absorption(), true);
+        }
         beta *= media.transmittance(si.t, lambda);
         Vertex v;
         v.si = si;
