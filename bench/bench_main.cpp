@@ -82,6 +82,8 @@ void render_bench(benchmark::State& state, const char* integrator) {
 }
 void BM_RenderPath(benchmark::State& s) { render_bench(s, "path"); }
 void BM_RenderNEE(benchmark::State& s) { render_bench(s, "nee"); }
+void BM_RenderMNEE(benchmark::State& s) { render_bench(s, "mnee"); }
+void BM_RenderBDPT(benchmark::State& s) { render_bench(s, "bdpt"); }
 
 /// One closest-hit query straight to Embree (no differential geometry, no shading).
 bool embree_closest_hit(RTCScene scene, const Ray& ray) {
@@ -204,4 +206,6 @@ BENCHMARK(BM_EmbreeRawRendererRays)->Unit(benchmark::kMillisecond)->UseRealTime(
 BENCHMARK(BM_SceneIntersectRendererRays)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_RenderPath)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 BENCHMARK(BM_RenderNEE)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+BENCHMARK(BM_RenderMNEE)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+BENCHMARK(BM_RenderBDPT)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 BENCHMARK_MAIN();
