@@ -4,6 +4,10 @@ snell_library(snell_integrators
   src/integrators/path/path_tracer.cpp
   src/integrators/mnee/mnee_integrator.cpp
   src/integrators/bdpt/bdpt.cpp
+  src/integrators/bdpt/vertex.cpp
+  src/integrators/bdpt/subpath.cpp
+  src/integrators/bdpt/mis_weight.cpp
+  src/integrators/bdpt/connect.cpp
   src/integrators/pssmlt/primary_sample_sampler.cpp
   src/integrators/pssmlt/pssmlt.cpp
   src/integrators/pssmlt/path_sample.cpp
@@ -25,3 +29,4 @@ snell_test(test_path_features SOURCES tests/stat/test_path_features.cpp LIBS ${S
 snell_test(test_pssmlt SOURCES tests/stat/test_pssmlt.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_bdpt SOURCES tests/stat/test_bdpt_agreement.cpp tests/stat/test_bdpt_light_tracing.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_erpt SOURCES tests/stat/test_erpt.cpp LIBS ${SNELL_ALL_LIBS})
+snell_test(test_bdpt_vertices SOURCES tests/unit/test_bdpt_vertices.cpp LIBS ${SNELL_ALL_LIBS})
