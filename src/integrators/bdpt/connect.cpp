@@ -6,6 +6,26 @@
 
 namespace snell::bdpt {
 
+namespace {
+
+// Light-subpath vertex y scattering towards unit direction d: the adjoint BSDF times the
+// shading cosine, with the shading-normal correction of Importance transport.
+double adjoint_f(const Vertex& y, const Vec3& d, double lambda) {
+    return y.bsdf->eval({lambda, TransportMode::Importance}, y.si.to_local(y.si.wo), y.si.to_local(d)) *
+           std::abs(dot(y.si.n, d)) * shading_correction(y.si, y.si.wo, d);
+}
+
+// Beer-Lambert transmittance of a connection edge of length `dist` leaving vertex v along d:
+// the edge lies in v's medium, or the one behind v's interface when it refracts there.
+double edge_transmittance(const Vertex& v, const Vec3& d, double dist, double lambda) {
+    MediumStack media = v.media;
+    if (dot(v.si.wo, v.si.ng) * dot(d, v.si.ng) < 0 && (v.bsdf->eta(lambda) != 1.0 || v.bsdf->interior_absorption()))
+        media.cross(v.bsdf->interior_absorption(), dot(v.si.wo, v.si.ng) > 0);
+    return media.transmittance(dist, lambda);
+}
+
+}  // namespace
+
 double connect(const Scene& scene, const std::vector<Vertex>& cam, const std::vector<Vertex>& lig, int s, int t,
                double lambda) {
     const Vertex& z = cam[size_t(t - 1)];
@@ -34,16 +54,11 @@ double connect(const Scene& scene, const std::vector<Vertex>& cam, const std::ve
         fy = y.has_normal() ? y.light->le(y.si.p, y.si.n, -d, lambda) * std::abs(dot(y.si.n, d))
                             : y.light->emitted(y.si.p, Vec3(), -d, lambda);
     } else {
-        fy = y.bsdf->eval({lambda, TransportMode::Importance}, y.si.to_local(y.si.wo), y.si.to_local(-d)) *
-             std::abs(dot(y.si.n, d)) * shading_correction(y.si, y.si.wo, -d);
+        fy = adjoint_f(y, -d, lambda);
     }
     double c = z.beta * fz * fy * y.beta / d2;
     if (!(c > 0)) return 0;
-    // The edge lies in one medium: z's, or the one behind z's interface when it refracts.
-    MediumStack media = z.media;
-    if (dot(z.si.wo, z.si.ng) * dot(d, z.si.ng) < 0 && (z.bsdf->eta(lambda) != 1.0 || z.bsdf->interior_absorption()))
-        media.cross(z.bsdf->interior_absorption(), dot(z.si.wo, z.si.ng) > 0);
-    c *= media.transmittance(dist, lambda);
+    c *= edge_transmittance(z, d, dist, lambda);
     if (scene.occluded(scene.spawn_ray_to(z.si, y.si.p))) return 0;
     return c;
 }
@@ -57,15 +72,9 @@ double connect_camera(const Scene& scene, const Vertex& z0, const Vertex& y, dou
     if (!(d2 > 0)) return 0;
     const double dist = std::sqrt(d2);
     d /= dist;
-    const double fy = y.bsdf->eval({lambda, TransportMode::Importance}, y.si.to_local(y.si.wo), y.si.to_local(d)) *
-                      std::abs(dot(y.si.n, d)) * shading_correction(y.si, y.si.wo, d);
-    double c = y.beta * fy * z0.pinhole->importance(cos_theta) * cos_theta / d2;
+    double c = y.beta * adjoint_f(y, d, lambda) * z0.pinhole->importance(cos_theta) * cos_theta / d2;
     if (!(c > 0)) return 0;
-    // The edge lies in y's medium, or the one behind y's interface when it refracts.
-    MediumStack media = y.media;
-    if (dot(y.si.wo, y.si.ng) * dot(d, y.si.ng) < 0 && (y.bsdf->eta(lambda) != 1.0 || y.bsdf->interior_absorption()))
-        media.cross(y.bsdf->interior_absorption(), dot(y.si.wo, y.si.ng) > 0);
-    c *= media.transmittance(dist, lambda);
+    c *= edge_transmittance(y, d, dist, lambda);
     if (scene.occluded(scene.spawn_ray_to(y.si, z0.si.p))) return 0;
     return c;
 }
