@@ -8,7 +8,7 @@ namespace snell {
 PerspectiveCamera::PerspectiveCamera(const Transform& to_world, double fov_deg,
                                      const std::string& fov_axis, const FilmSpec& film,
                                      double near_clip, double far_clip)
-    : m_to_world(to_world), m_film(film), m_near(near_clip), m_far(far_clip) {
+    : m_to_world(to_world), m_to_camera(to_world.inverse()), m_film(film), m_near(near_clip), m_far(far_clip) {
     const double aspect = double(film.width) / double(film.height);
     const double t = std::tan(0.5 * fov_deg * kPi / 180.0);
     std::string axis = fov_axis;
@@ -44,7 +44,7 @@ Ray PerspectiveCamera::generate_ray(const Vec2& raster) const {
 }
 
 bool PerspectiveCamera::raster_of(const Vec3& p, Vec2* raster, double* cos_theta) const {
-    const Vec3 v = m_to_world.inverse().point(p);  // camera space
+    const Vec3 v = m_to_camera.point(p);
     const double len = length(v);
     if (!(v.z > 0) || !(len > 0)) return false;
     if (v.z < m_near || v.z > m_far) return false;  // clip planes are distances along the axis

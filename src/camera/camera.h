@@ -37,7 +37,7 @@ public:
     double tan_half_y() const { return m_ty; }
 
 private:
-    Transform m_to_world;
+    Transform m_to_world, m_to_camera;  // to_world and its inverse (light tracing projects points)
     FilmSpec m_film;
     double m_tx, m_ty, m_near, m_far;
 };

@@ -38,9 +38,6 @@ public:
         s[size_t(y) * m_w + x] += xyz;
     }
     void set_splat_scale(double scale) { m_splat_scale = scale; }
-    double splat_scale() const { return m_splat_scale; }
-    /// Number of splat layers (the image's included) that received anything.
-    int splat_layers() const { return int(m_splats.size()); }
     /// Pixel value: mean XYZ of the pixel's own samples (zero if none) plus its scaled splats.
     Vec3 xyz(int x, int y) const {
         const size_t i = size_t(y) * m_w + x;

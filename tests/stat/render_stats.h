@@ -20,6 +20,16 @@ inline LoadedScene load_xml(const std::string& xml, const Defines& d = {}) {
     return load_scene_string(xml, "test-scene", SNELL_SOURCE_DIR, d);
 }
 
+/// Every value of the film's image is finite and the image is not black.
+inline void expect_finite_and_lit(const Film& film) {
+    double sum = 0;
+    for (float v : film.to_linear_srgb()) {
+        ASSERT_TRUE(std::isfinite(v));
+        sum += v;
+    }
+    EXPECT_GT(sum, 0);
+}
+
 /// Mean and standard error of a quantity over independent replicas.
 struct Estimate {
     double mean = 0, stderr_ = 0;

@@ -38,28 +38,6 @@ const char* kDeltaLights = R"(<scene version="3.0.0">
   </emitter>
 </scene>)";
 
-// A spherical light inside a smooth glass sphere in the box: light subpaths start inside the
-// dielectric and refract out once, so the adjoint (Importance) BSDFs' missing 1/eta^2 matters
-// (the Radiance-mode factor would make indirect light from light subpaths 2.25x too bright).
-const char* kLightInGlass = R"(<scene version="3.0.0">
-  <default name="integrator" value="nee"/>
-  <integrator type="$integrator"><integer name="max_depth" value="5"/></integrator>
-  <sensor type="perspective">
-    <float name="fov" value="45"/>
-    <transform name="to_world"><lookat origin="0, 1, 3.4" target="0, 1, 0" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="24"/><integer name="height" value="24"/></film>
-  </sensor>
-  <bsdf type="diffuse" id="white"><rgb name="reflectance" value="0.7, 0.7, 0.7"/></bsdf>
-  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/></transform><ref id="white"/></shape>
-  <shape type="rectangle"><transform name="to_world"><translate z="-1"/><translate y="1"/></transform><ref id="white"/></shape>
-  <shape type="rectangle"><transform name="to_world"><rotate y="1" angle="90"/><translate x="-1" y="1"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.1, 0.1"/></bsdf></shape>
-  <shape type="sphere"><point name="center" x="0" y="0.8" z="0"/><float name="radius" value="0.45"/>
-    <bsdf type="dielectric"><float name="int_ior" value="1.5"/></bsdf></shape>
-  <shape type="sphere"><point name="center" x="0" y="0.8" z="0"/><float name="radius" value="0.3"/>
-    <emitter type="area"><rgb name="radiance" value="4"/></emitter></shape>
-</scene>)";
-
 // A constant environment (a light at infinity: light subpaths start on a disk facing the
 // sampled direction) together with a finite area light, with hide_emitters: the sky and the
 // directly seen light are black in both estimators.
@@ -123,9 +101,11 @@ std::string replace_once(std::string xml, const std::string& from, const std::st
 const std::string kFloor =
     R"(<shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/></transform><ref id="white"/></shape>)";
 
-// A small light inside a glass sphere ($glass: dielectric or roughdielectric) in an open box,
-// the whole scene scaled by $s: every path crosses the glass.
-const char* kLightInGlassScaled = R"(<scene version="3.0.0">
+// A spherical light inside a glass sphere ($glass: dielectric or roughdielectric) in an open
+// box, the whole scene scaled by $s: every path crosses the glass. Light subpaths start inside
+// the dielectric and refract out, so the adjoint (Importance) BSDFs' missing 1/eta^2 matters
+// (the Radiance-mode factor would make indirect light from light subpaths 2.25x too bright).
+const char* kLightInGlass = R"(<scene version="3.0.0">
   <default name="integrator" value="nee"/>
   <default name="s" value="1"/>
   <default name="glass" value="roughdielectric"/>
@@ -146,6 +126,11 @@ const char* kLightInGlassScaled = R"(<scene version="3.0.0">
     <emitter type="area"><rgb name="radiance" value="4"/></emitter></shape>
 </scene>)";
 
+// The same with smooth glass (dielectric takes no alpha).
+std::string smooth_light_in_glass() {
+    return replace_once(kLightInGlass, R"(<float name="alpha" value="0.2"/>)", "");
+}
+
 }  // namespace
 
 // Large light, rough BSDFs: NEE converges well, so this checks BDPT's connections and weights.
@@ -161,7 +146,8 @@ TEST(BdptAgreement, MatchesNeeWithDeltaLights) {
 }
 
 TEST(BdptAgreement, MatchesNeeWithALightInsideGlass) {
-    expect_bdpt_and_nee_agree(kLightInGlass, {}, 32, 128, 12, 6, "light in glass");
+    expect_bdpt_and_nee_agree(smooth_light_in_glass().c_str(), {{"glass", "dielectric"}}, 32, 128, 12, 6,
+                              "light in glass");
 }
 
 TEST(BdptAgreement, MatchesNeeWithAnEnvironmentAndHiddenEmitters) {
@@ -212,13 +198,13 @@ TEST(BdptAgreement, MatchesNeeThroughALargeAbsorbingRoughDielectric) {
 
 // Every path crosses a rough refraction, so its reverse densities enter every MIS weight.
 TEST(BdptAgreement, MatchesNeeWithALightInsideRoughGlass) {
-    expect_bdpt_and_nee_agree(kLightInGlassScaled, {}, 32, 64, 12, 8, "light in rough glass");
+    expect_bdpt_and_nee_agree(kLightInGlass, {}, 32, 64, 12, 8, "light in rough glass");
 }
 
 // A light inside absorbing glass: its light subpaths start inside the medium and must be
 // attenuated up to their first exit (they learn the medium there).
 TEST(BdptAgreement, MatchesNeeWithALightInsideAbsorbingRoughGlass) {
-    const std::string xml = replace_once(kLightInGlassScaled, R"(<float name="int_ior" value="1.5"/>)",
+    const std::string xml = replace_once(kLightInGlass, R"(<float name="int_ior" value="1.5"/>)",
                                          R"(<float name="int_ior" value="1.5"/><rgb name="sigma_a" value="1.5, 1.5, 1.5"/>)");
     expect_bdpt_and_nee_agree(xml.c_str(), {}, 32, 64, 12, 8, "light in absorbing rough glass");
 }
@@ -227,7 +213,6 @@ TEST(BdptAgreement, MatchesNeeWithALightInsideAbsorbingRoughGlass) {
 // scale: the smooth-glass light shrunk tenfold (a ratio of an area density to a remapped 1
 // would change the image by ~30% here).
 TEST(BdptAgreement, MatchesNeeWithALightInsideSmoothGlassAtScaleOneTenth) {
-    const std::string xml = replace_once(kLightInGlassScaled, R"(<float name="alpha" value="0.2"/>)", "");
-    expect_bdpt_and_nee_agree(xml.c_str(), {{"glass", "dielectric"}, {"s", "0.1"}}, 32, 64, 12, 8,
+    expect_bdpt_and_nee_agree(smooth_light_in_glass().c_str(), {{"glass", "dielectric"}, {"s", "0.1"}}, 32, 64, 12, 8,
                               "light in smooth glass, scale 0.1");
 }

@@ -9,6 +9,7 @@
 #include "geometry/interaction.h"
 #include "integrators/bdpt/pinhole.h"
 #include "light/light.h"
+#include "light/scene_sphere.h"
 
 namespace snell {
 class Scene;
@@ -55,18 +56,11 @@ inline Vec3 direction(const Vertex& from, const Vertex& to) {
 
 /// Light subpaths from lights at infinity start on a disk of the scene's bounding-sphere radius
 /// R facing the sampled direction: area density 1 / (pi R^2) across the beam.
-struct SceneDisk {
-    Vec3 center;
-    double radius = 1;
-    explicit SceneDisk(const Bounds3& b) {
-        if (b.valid()) {
-            center = b.center();
-            radius = 0.5 * length(b.extent());
-        }
-        if (!(radius > 0)) radius = 1;
-    }
+struct SceneDisk : SceneSphere {
+    explicit SceneDisk(const Bounds3& b) { set(b); }
     double pdf() const { return 1.0 / (kPi * radius * radius); }
 };
+
 // Solid-angle density at `from` of the direction to `to`, converted to area measure at `to`
 // (geometric normal: the area measure of the surface). Towards a vertex at infinity the
 // density stays a solid-angle density; from one, `pdf_dir` is the planar density across the
