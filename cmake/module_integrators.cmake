@@ -1,6 +1,7 @@
 # Integrators (path, nee; later mnee and the baselines) and the tile renderer.
 snell_library(snell_integrators
   src/integrators/registry.cpp
+  src/integrators/camera_sample.cpp
   src/integrators/path/path_tracer.cpp
   src/integrators/mnee/mnee_integrator.cpp
   src/integrators/bdpt/bdpt.cpp

@@ -4,7 +4,8 @@
 //    wo towards the previous path vertex (camera side), wi towards the next (light side);
 //  - eval returns f_r(wo, wi) without the cosine factor;
 //  - pdf is in solid angle of wi; deltas have eval = pdf = 0 and are only sampled;
-//  - one wavelength per path, so values are plain doubles at ctx.lambda.
+//  - values are SampledSpectrum at the path's wavelengths ctx.wl; directions, pdfs and lobe
+//    choices belong to the hero wavelength ctx.wl.hero() (Wilkie et al. 2014).
 #include <cstdint>
 #include <optional>
 
@@ -28,22 +29,28 @@ enum BSDFFlags : uint32_t {
 };
 
 struct BSDFContext {
-    double lambda = 550.0;  ///< nm
+    SampledWavelengths wl = SampledWavelengths::single(550.0);  ///< the path's wavelengths (nm)
     TransportMode mode = TransportMode::Radiance;
+    double hero() const { return wl.hero(); }
 };
 
 struct BSDFSample {
     Vec3 wi;             ///< sampled direction (local)
-    double weight = 0;   ///< f * |cos theta_i| / pdf (for deltas: the discrete weight)
+    SampledSpectrum weight;  ///< f * |cos theta_i| / pdf per wavelength (for deltas: the discrete weight)
     double pdf = 0;      ///< solid angle density; for deltas the discrete lobe probability
     double eta = 1;      ///< relative IOR across the sampled transmission (1 for reflection)
     uint32_t lobe = 0;   ///< BSDFFlags of the sampled lobe
+    /// The direction exists for the hero wavelength only (refraction through a dispersive
+    /// interface): `weight` holds the hero's value, the integrator drops the others
+    /// (SampledWavelengths::hero_only) once per path.
+    bool hero_only = false;
     bool is_delta() const { return (lobe & kSpecular) != 0; }
 };
 
 class BSDF : public Object {
 public:
-    virtual double eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const = 0;
+    virtual SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const = 0;
+    /// Solid-angle density of sample() at the hero wavelength.
     virtual double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const = 0;
     /// `uc` picks a lobe, `u` samples it.
     virtual std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc,
@@ -59,8 +66,11 @@ public:
     /// Paper Eq. 9: the value kappa of a delta lobe in delta-half-vector measure for a pair
     /// (wo, wi) that obeys the specular law -- Fresnel R for reflection, (1 - F) with the
     /// radiance scaling for refraction, times the specular factors. 0 without delta lobes.
-    virtual double eval_delta(const BSDFContext& /*ctx*/, const Vec3& /*wo*/, const Vec3& /*wi*/) const { return 0; }
-    /// Discrete probability with which sample() picks the delta lobe connecting wo to wi.
+    /// Evaluated per wavelength for the given (hero) geometry.
+    virtual SampledSpectrum eval_delta(const BSDFContext& /*ctx*/, const Vec3& /*wo*/, const Vec3& /*wi*/) const {
+        return {};
+    }
+    /// Discrete probability with which sample() picks the delta lobe connecting wo to wi (hero).
     virtual double pdf_delta(const BSDFContext& /*ctx*/, const Vec3& /*wo*/, const Vec3& /*wi*/) const { return 0; }
     /// The microfacet distribution of a rough interface (MNEE samples its half vectors from
     /// it, paper Sec. 3.2), or nullptr.
@@ -68,6 +78,8 @@ public:
 
     /// Interior over exterior IOR at lambda (1 for non-dielectrics). Used by MNEE's constraints.
     virtual double eta(double /*lambda*/) const { return 1.0; }
+    /// eta depends on the wavelength (Abbe number > 0): refracted directions are the hero's.
+    virtual bool dispersive() const { return false; }
     /// Beer-Lambert absorption coefficient of the enclosed medium (1/scene unit), or nullptr.
     virtual const Spectrum* interior_absorption() const { return nullptr; }
 };

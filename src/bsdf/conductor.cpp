@@ -7,13 +7,14 @@ namespace snell {
 ConductorBSDF::ConductorBSDF(std::optional<ConductorIOR> ior, Spectrum specular_reflectance)
     : m_ior(std::move(ior)), m_specular_reflectance(std::move(specular_reflectance)) {}
 
-double ConductorBSDF::eval(const BSDFContext&, const Vec3&, const Vec3&) const { return 0; }
+SampledSpectrum ConductorBSDF::eval(const BSDFContext&, const Vec3&, const Vec3&) const { return {}; }
 double ConductorBSDF::pdf(const BSDFContext&, const Vec3&, const Vec3&) const { return 0; }
 
-double ConductorBSDF::reflectance(double lambda, double cos_theta) const {
-    const double F =
-        m_ior ? fresnel_conductor(cos_theta, m_ior->eta(lambda), m_ior->k(lambda)) : 1.0;
-    return F * m_specular_reflectance(lambda);
+SampledSpectrum ConductorBSDF::reflectance(const SampledWavelengths& wl, double cos_theta) const {
+    SampledSpectrum F(1.0);
+    if (m_ior)
+        for (int i = 0; i < kSpectrumSamples; ++i) F[i] = fresnel_conductor(cos_theta, m_ior->eta(wl[i]), m_ior->k(wl[i]));
+    return F * m_specular_reflectance.eval(wl);
 }
 
 std::optional<BSDFSample> ConductorBSDF::sample(const BSDFContext& ctx, const Vec3& wo, double,
@@ -22,7 +23,7 @@ std::optional<BSDFSample> ConductorBSDF::sample(const BSDFContext& ctx, const Ve
     BSDFSample s;
     s.wi = reflect(wo);
     s.pdf = 1;
-    s.weight = reflectance(ctx.lambda, wo.z);
+    s.weight = reflectance(ctx.wl, wo.z);
     s.lobe = kReflection | kSpecular;
     return s;
 }

@@ -14,14 +14,14 @@ public:
     explicit ConductorBSDF(std::optional<ConductorIOR> ior,
                            Spectrum specular_reflectance = Spectrum::constant(1.0));
 
-    double eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
+    SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc,
                                      const Vec2& u) const override;
     uint32_t flags() const override { return kReflection | kSpecular; }
 
     /// Fresnel reflectance times specular_reflectance at cos(theta) in [0, 1].
-    double reflectance(double lambda, double cos_theta) const;
+    SampledSpectrum reflectance(const SampledWavelengths& wl, double cos_theta) const;
 
 private:
     std::optional<ConductorIOR> m_ior;

@@ -19,7 +19,7 @@ public:
                    std::optional<Spectrum> sigma_a = std::nullopt);
 
     /// Deltas only: eval and pdf are 0.
-    double eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
+    SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     /// Chooses reflection with probability F (so the weight carries no F), else refraction;
     /// in Radiance mode refraction scales by 1/eta_it^2 (non-symmetric transmission).
@@ -27,11 +27,12 @@ public:
                                      const Vec2& u) const override;
     uint32_t flags() const override { return kReflection | kTransmission | kSpecular; }
     /// kappa of Eq. 9: F or (1 - F) (radiance-scaled) depending on the sides of wo and wi.
-    double eval_delta(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
+    SampledSpectrum eval_delta(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     /// F or 1 - F: the probability with which sample() chooses that lobe.
     double pdf_delta(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
 
     double eta(double lambda) const override { return m_int_ior(lambda) / m_ext_ior(lambda); }
+    bool dispersive() const override { return !m_int_ior.is_constant() || !m_ext_ior.is_constant(); }
     const Spectrum* interior_absorption() const override {
         return m_sigma_a ? &*m_sigma_a : nullptr;
     }

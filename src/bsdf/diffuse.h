@@ -9,7 +9,7 @@ public:
     /// `reflectance`: albedo in [0, 1] per wavelength.
     explicit DiffuseBSDF(Spectrum reflectance) : m_reflectance(std::move(reflectance)) {}
 
-    double eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
+    SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc,
                                      const Vec2& u) const override;

@@ -24,12 +24,12 @@ double PlasticBSDF::specular_probability(double F) const {
     return ps + pd > 0 ? ps / (ps + pd) : 0.0;
 }
 
-double PlasticBSDF::eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
-    if (wo.z <= 0 || wi.z <= 0) return 0;
+SampledSpectrum PlasticBSDF::eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
+    if (wo.z <= 0 || wi.z <= 0) return {};
     const double Fo = fresnel_dielectric(wo.z, m_eta).R, Fi = fresnel_dielectric(wi.z, m_eta).R;
-    double diff = m_diffuse_reflectance(ctx.lambda);
+    SampledSpectrum diff = m_diffuse_reflectance.eval(ctx.wl);
     // Internal bounces between base and coating: geometric series in rho * R_dr.
-    diff /= m_nonlinear ? 1 - diff * m_fdr_int : 1 - m_fdr_int;
+    for (int i = 0; i < kSpectrumSamples; ++i) diff[i] /= m_nonlinear ? 1 - diff[i] * m_fdr_int : 1 - m_fdr_int;
     // Radiance crossing the coating twice, compressed by 1/eta^2 inside.
     return diff * m_inv_eta2 * (1 - Fo) * (1 - Fi) * kInvPi;
 }
@@ -49,7 +49,7 @@ std::optional<BSDFSample> PlasticBSDF::sample(const BSDFContext& ctx, const Vec3
     if (uc < ps) {
         s.wi = reflect(wo);
         s.pdf = ps;
-        s.weight = m_specular_reflectance(ctx.lambda) * F / ps;
+        s.weight = m_specular_reflectance.eval(ctx.wl) * (F / ps);
         s.lobe = kReflection | kSpecular;
         return s;
     }

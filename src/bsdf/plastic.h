@@ -14,7 +14,7 @@ public:
                 double ext_ior, bool nonlinear = false);
 
     /// The diffuse part only (the coating's mirror reflection is a delta).
-    double eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
+    SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     /// Density of the diffuse lobe times its selection probability.
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc,

@@ -11,16 +11,17 @@ RoughConductorBSDF::RoughConductorBSDF(MicrofacetDistribution distribution,
       m_ior(std::move(ior)),
       m_specular_reflectance(std::move(specular_reflectance)) {}
 
-double RoughConductorBSDF::eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
-    if (wo.z <= 0 || wi.z <= 0) return 0;
+SampledSpectrum RoughConductorBSDF::eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
+    if (wo.z <= 0 || wi.z <= 0) return {};
     const Vec3 m = normalize(wo + wi);
     const double D = m_distr.D(m);
-    if (D == 0) return 0;
+    if (D == 0) return {};
     const double G = m_distr.G(wo, wi, m);
     const double c = dot(wo, m);
-    const double F = m_ior ? fresnel_conductor(c, m_ior->eta(ctx.lambda), m_ior->k(ctx.lambda))
-                           : 1.0;
-    return m_specular_reflectance(ctx.lambda) * F * D * G / (4 * wo.z * wi.z);
+    SampledSpectrum F(1.0);
+    if (m_ior)
+        for (int i = 0; i < kSpectrumSamples; ++i) F[i] = fresnel_conductor(c, m_ior->eta(ctx.wl[i]), m_ior->k(ctx.wl[i]));
+    return m_specular_reflectance.eval(ctx.wl) * F * (D * G / (4 * wo.z * wi.z));
 }
 
 double RoughConductorBSDF::pdf(const BSDFContext&, const Vec3& wo, const Vec3& wi) const {

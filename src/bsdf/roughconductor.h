@@ -16,7 +16,7 @@ public:
     RoughConductorBSDF(MicrofacetDistribution distribution, std::optional<ConductorIOR> ior,
                        Spectrum specular_reflectance = Spectrum::constant(1.0));
 
-    double eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
+    SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     /// Density of m times the reflection Jacobian 1 / (4 |wi.m|), in solid angle of wi.
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc,

@@ -27,10 +27,21 @@ bool RoughDielectricBSDF::half_vector(double eta, const Vec3& wo, const Vec3& wi
     return m.z > 0;
 }
 
-double RoughDielectricBSDF::eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
+SampledSpectrum RoughDielectricBSDF::eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
+    if (wo.z == 0 || wi.z == 0) return {};
+    const bool reflection = wo.z * wi.z > 0;
+    SampledSpectrum f;
+    if (!dispersive()) {
+        f = SampledSpectrum(eval_scalar(eta(ctx.hero()), ctx.mode, wo, wi));
+    } else {
+        // Each wavelength has its own half vector for the same pair of directions.
+        for (int i = 0; i < kSpectrumSamples; ++i) f[i] = eval_scalar(eta(ctx.wl[i]), ctx.mode, wo, wi);
+    }
+    return f * (reflection ? m_specular_reflectance : m_specular_transmittance).eval(ctx.wl);
+}
+
+double RoughDielectricBSDF::eval_scalar(double eta, TransportMode mode, const Vec3& wo, const Vec3& wi) const {
     const double cos_o = wo.z, cos_i = wi.z;
-    if (cos_o == 0 || cos_i == 0) return 0;
-    const double eta = this->eta(ctx.lambda);
     Vec3 m;
     if (!half_vector(eta, wo, wi, m)) return 0;
     // Both directions must see the microfacet from their own side of the macro surface.
@@ -41,21 +52,21 @@ double RoughDielectricBSDF::eval(const BSDFContext& ctx, const Vec3& wo, const V
     const double F = fresnel_dielectric(dot(wo, m), eta).R;
     if (cos_o * cos_i > 0) {
         // Walter et al. Eq. 20.
-        return m_specular_reflectance(ctx.lambda) * F * D * G / (4 * std::abs(cos_o * cos_i));
+        return F * D * G / (4 * std::abs(cos_o * cos_i));
     }
     // Walter et al. Eq. 21.
     const double eta_it = cos_o > 0 ? eta : 1.0 / eta;
     const double denom = dot(wo, m) + eta_it * dot(wi, m);
     const double value = std::abs(dot(wo, m) * dot(wi, m) / (cos_o * cos_i)) * sqr(eta_it) *
                          (1 - F) * D * G / sqr(denom);
-    const double scale = ctx.mode == TransportMode::Radiance ? 1.0 / sqr(eta_it) : 1.0;
-    return m_specular_transmittance(ctx.lambda) * value * scale;
+    const double scale = mode == TransportMode::Radiance ? 1.0 / sqr(eta_it) : 1.0;
+    return value * scale;
 }
 
 double RoughDielectricBSDF::pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
     const double cos_o = wo.z, cos_i = wi.z;
     if (cos_o == 0 || cos_i == 0) return 0;
-    const double eta = this->eta(ctx.lambda);
+    const double eta = this->eta(ctx.hero());
     Vec3 m;
     if (!half_vector(eta, wo, wi, m)) return 0;
     if (dot(wo, m) * cos_o <= 0 || dot(wi, m) * cos_i <= 0) return 0;
@@ -78,7 +89,7 @@ double RoughDielectricBSDF::pdf(const BSDFContext& ctx, const Vec3& wo, const Ve
 std::optional<BSDFSample> RoughDielectricBSDF::sample(const BSDFContext& ctx, const Vec3& wo,
                                                       double uc, const Vec2& u) const {
     if (wo.z == 0) return std::nullopt;
-    const double eta = this->eta(ctx.lambda);
+    const double eta = this->eta(ctx.hero());
     const Vec3 wo_up = wo.z > 0 ? wo : -wo;
     const auto [m, pm] = m_distr.sample(wo_up, u);
     if (!(pm > 0)) return std::nullopt;
@@ -94,11 +105,19 @@ std::optional<BSDFSample> RoughDielectricBSDF::sample(const BSDFContext& ctx, co
         s.lobe = kTransmission | kGlossy;
         s.eta = f.eta_it;
         if (s.wi.z * wo.z >= 0) return std::nullopt;  // refracted to the wrong side
+        // The refracted direction depends on the wavelength: keep the hero alone (pbrt-v4
+        // does the same; the others' f/pdf would have a heavy tail at small roughness).
+        s.hero_only = dispersive();
     }
     // Evaluating the closed forms keeps weight == f |cos| / pdf exactly consistent.
     s.pdf = pdf(ctx, wo, s.wi);
     if (!(s.pdf > 0)) return std::nullopt;
-    s.weight = eval(ctx, wo, s.wi) * std::abs(s.wi.z) / s.pdf;
+    if (s.hero_only) {
+        s.weight[0] = eval_scalar(eta, ctx.mode, wo, s.wi) * m_specular_transmittance(ctx.hero());
+    } else {
+        s.weight = eval(ctx, wo, s.wi);
+    }
+    s.weight *= std::abs(s.wi.z) / s.pdf;
     return s;
 }
 

@@ -20,7 +20,7 @@ public:
 
     /// f(wo, wi) without cosine; wo and wi on either side. Transmission is scaled by
     /// 1/eta_it^2 in Radiance mode only (eta_it: IOR of wi's side over wo's side).
-    double eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
+    SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     /// Solid-angle density of sample(): microfacet density times the half-vector Jacobian,
     /// times the Fresnel lobe-selection probability.
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
@@ -29,6 +29,7 @@ public:
     uint32_t flags() const override { return kReflection | kTransmission | kGlossy; }
 
     double eta(double lambda) const override { return m_int_ior(lambda) / m_ext_ior(lambda); }
+    bool dispersive() const override { return !m_int_ior.is_constant() || !m_ext_ior.is_constant(); }
     const Spectrum* interior_absorption() const override {
         return m_sigma_a ? &*m_sigma_a : nullptr;
     }
@@ -36,6 +37,8 @@ public:
     const MicrofacetDistribution* microfacet() const override { return &m_distr; }
 
 private:
+    /// Walter et al.'s f(wo, wi) for the relative IOR eta, without the specular_* factors.
+    double eval_scalar(double eta, TransportMode mode, const Vec3& wo, const Vec3& wi) const;
     /// Generalised half vector of (wo, wi), oriented to +z; false when degenerate.
     bool half_vector(double eta, const Vec3& wo, const Vec3& wi, Vec3& m) const;
 

@@ -12,7 +12,7 @@ ThinDielectricBSDF::ThinDielectricBSDF(Spectrum int_ior, Spectrum ext_ior,
       m_specular_reflectance(std::move(specular_reflectance)),
       m_specular_transmittance(std::move(specular_transmittance)) {}
 
-double ThinDielectricBSDF::eval(const BSDFContext&, const Vec3&, const Vec3&) const { return 0; }
+SampledSpectrum ThinDielectricBSDF::eval(const BSDFContext&, const Vec3&, const Vec3&) const { return {}; }
 double ThinDielectricBSDF::pdf(const BSDFContext&, const Vec3&, const Vec3&) const { return 0; }
 
 double ThinDielectricBSDF::slab_reflectance(double lambda, double cos_theta) const {
@@ -23,23 +23,32 @@ double ThinDielectricBSDF::slab_reflectance(double lambda, double cos_theta) con
     return R + T * T * R / (1 - R * R);
 }
 
+SampledSpectrum ThinDielectricBSDF::slab_reflectance(const SampledWavelengths& wl, double cos_theta) const {
+    SampledSpectrum R;
+    for (int i = 0; i < kSpectrumSamples; ++i) R[i] = slab_reflectance(wl[i], cos_theta);
+    return R;
+}
+
 std::optional<BSDFSample> ThinDielectricBSDF::sample(const BSDFContext& ctx, const Vec3& wo,
                                                      double uc, const Vec2&) const {
     if (wo.z == 0) return std::nullopt;
-    const double R = slab_reflectance(ctx.lambda, wo.z);
+    // The slab neither bends nor disperses a ray: every wavelength follows the hero's lobe,
+    // weighted by its own reflectance over the hero's.
+    const SampledSpectrum R = slab_reflectance(ctx.wl, wo.z);
     BSDFSample s;
     s.eta = 1;
-    if (uc < R) {
+    if (uc < R[0]) {
         s.wi = reflect(wo);
-        s.pdf = R;
-        s.weight = m_specular_reflectance.eval(ctx.lambda);
+        s.pdf = R[0];
+        s.weight = m_specular_reflectance.eval(ctx.wl) * R / R[0];
         s.lobe = kReflection | kSpecular;
     } else {
         s.wi = -wo;
-        s.pdf = 1 - R;
-        s.weight = m_specular_transmittance.eval(ctx.lambda);
+        s.pdf = 1 - R[0];
+        s.weight = m_specular_transmittance.eval(ctx.wl) * (SampledSpectrum(1.0) - R) / s.pdf;
         s.lobe = kTransmission | kSpecular;
     }
+    if (!(s.pdf > 0)) return std::nullopt;
     return s;
 }
 

@@ -12,7 +12,7 @@ public:
                        Spectrum specular_reflectance = Spectrum::constant(1.0),
                        Spectrum specular_transmittance = Spectrum::constant(1.0));
 
-    double eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
+    SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc,
                                      const Vec2& u) const override;
@@ -21,6 +21,8 @@ public:
 
     /// Total slab reflectance R + T^2 R / (1 - R^2) at |cos_theta| of the incident direction.
     double slab_reflectance(double lambda, double cos_theta) const;
+    /// Hero lobe choice, every wavelength weighted by its own slab reflectance.
+    SampledSpectrum slab_reflectance(const SampledWavelengths& wl, double cos_theta) const;
 
 private:
     Spectrum m_int_ior, m_ext_ior, m_specular_reflectance, m_specular_transmittance;

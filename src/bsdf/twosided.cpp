@@ -9,10 +9,10 @@ Vec3 flip(const Vec3& w) { return {w.x, w.y, -w.z}; }
 TwoSidedBSDF::TwoSidedBSDF(std::shared_ptr<const BSDF> front, std::shared_ptr<const BSDF> back)
     : m_front(std::move(front)), m_back(back ? std::move(back) : m_front) {}
 
-double TwoSidedBSDF::eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
+SampledSpectrum TwoSidedBSDF::eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
     if (wo.z > 0) return m_front->eval(ctx, wo, wi);
     if (wo.z < 0) return m_back->eval(ctx, flip(wo), flip(wi));
-    return 0;
+    return {};
 }
 
 double TwoSidedBSDF::pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {

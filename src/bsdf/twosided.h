@@ -13,7 +13,7 @@ public:
     explicit TwoSidedBSDF(std::shared_ptr<const BSDF> front, std::shared_ptr<const BSDF> back = nullptr);
 
     /// Below the surface (wo.z < 0) the back BSDF is evaluated with both directions mirrored.
-    double eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
+    SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc,
                                      const Vec2& u) const override;

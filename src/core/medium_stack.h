@@ -23,12 +23,12 @@ public:
             --m_size;
         }
     }
-    /// Transmittance of a segment of length t at lambda inside the current medium.
-    double transmittance(double t, double lambda) const {
-        if (m_size == 0 || m_size > kMax) return 1.0;
+    /// Transmittance of a segment of length t inside the current medium, per wavelength.
+    SampledSpectrum transmittance(double t, const SampledWavelengths& wl) const {
+        if (m_size == 0 || m_size > kMax) return SampledSpectrum(1.0);
         const Spectrum* s = m_stack[m_size - 1];
-        if (!s) return 1.0;
-        return std::exp(-s->eval(lambda) * t);
+        if (!s) return SampledSpectrum(1.0);
+        return exp(s->eval(wl) * -t);
     }
     bool inside() const { return m_size > 0; }
 

@@ -225,6 +225,39 @@ double visible_wavelength_pdf(double lambda) {
     return 0.0039398042 / sqr(std::cosh(0.0072 * (lambda - 538.0)));
 }
 
+SampledWavelengths SampledWavelengths::sample_visible(double u, int count) {
+    SampledWavelengths wl;
+    wl.m_count = std::clamp(count, 1, kSpectrumSamples);
+    for (int i = 0; i < kSpectrumSamples; ++i) {
+        if (i >= wl.m_count) {  // unused slots repeat the hero and carry no weight
+            wl.m_lambda[size_t(i)] = wl.m_lambda[0];
+            wl.m_pdf[size_t(i)] = 0;
+            continue;
+        }
+        double ui = u + double(i) / wl.m_count;
+        if (ui >= 1) ui -= 1;
+        wl.m_lambda[size_t(i)] = sample_visible_wavelength(ui);
+        wl.m_pdf[size_t(i)] = visible_wavelength_pdf(wl.m_lambda[size_t(i)]);
+    }
+    return wl;
+}
+
+SampledWavelengths SampledWavelengths::single(double lambda, double pdf) {
+    SampledWavelengths wl;
+    wl.m_count = 1;
+    wl.m_lambda.fill(lambda);
+    wl.m_pdf.fill(0);
+    wl.m_pdf[0] = pdf;
+    return wl;
+}
+
+Vec3 SampledWavelengths::to_xyz(const SampledSpectrum& L) const {
+    Vec3 xyz;
+    for (int i = 0; i < m_count; ++i)
+        if (m_pdf[size_t(i)] > 0 && L[i] != 0) xyz += cie_xyz(m_lambda[size_t(i)]) * (L[i] / m_pdf[size_t(i)]);
+    return xyz / (double(m_count) * cie_y_integral());
+}
+
 Spectrum Spectrum::constant(double v) {
     Spectrum s;
     s.m_kind = Kind::Constant;

@@ -1,11 +1,11 @@
 #pragma once
-// Spectral quantities. A path carries a single, continuously sampled wavelength (the paper's
-// set-up, Sec. 4: no hero wavelengths, so specular and rough interfaces compare fairly).
-// Every spectral quantity is therefore evaluated to a plain double at the path's wavelength.
+// Spectral quantities: functions of wavelength (Spectrum), evaluated at the wavelengths a path
+// carries (SampledWavelengths, core/sampled_spectrum.h) to SampledSpectrum values.
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "core/sampled_spectrum.h"
 #include "core/vector.h"
 
 namespace snell {
@@ -45,6 +45,13 @@ public:
 
     double eval(double lambda) const;
     double operator()(double lambda) const { return eval(lambda); }
+    /// Values at every wavelength a path carries.
+    SampledSpectrum eval(const SampledWavelengths& wl) const {
+        SampledSpectrum r;
+        if (m_kind == Kind::Constant) return SampledSpectrum(m_c[0]);
+        for (int i = 0; i < kSpectrumSamples; ++i) r[i] = eval(wl[i]);
+        return r;
+    }
     /// Mean over [kLambdaMin, kLambdaMax].
     double average() const;
     /// Upper bound over the visible range.

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/object.h"
+#include "core/sampled_spectrum.h"
 #include "core/sampler.h"
 #include "core/vector.h"
 
@@ -15,11 +16,12 @@ struct FilmSpec;
 struct RenderOptions;
 
 /// What the renderer drew for one pixel sample before calling the integrator: the film
-/// position (full-film raster, pixels) and the wavelength with the uniform number behind it.
+/// position (full-film raster, pixels) and the wavelengths with the uniform number behind them.
 /// Integrators that re-evaluate or mutate the sample (ERPT) need these numbers.
 struct CameraSample {
     Vec2 raster;
-    double u_lambda = 0, lambda = 0, pdf_lambda = 0;
+    double u_lambda = 0;
+    SampledWavelengths wl;
 };
 
 /// A contribution that lands on the film somewhere other than the sample's own pixel (light
@@ -38,13 +40,14 @@ using SplatList = std::vector<FilmSplat>;
 /// threads. `li` must be thread-safe (const) and draw all randomness from `sampler`.
 class Integrator : public Object {
 public:
-    /// Radiance arriving at the camera along `ray` at wavelength `lambda` (nm).
-    virtual double li(const Ray& ray, const Scene& scene, Sampler& sampler, double lambda) const = 0;
+    /// Radiance arriving at the camera along `ray` at the wavelengths `wl` (nm).
+    virtual SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler,
+                               const SampledWavelengths& wl) const = 0;
     /// The renderer's entry point: radiance along the camera sample's `ray`, plus any splats
     /// appended to `splats`. Default: li() without splats.
-    virtual double li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
-                            SplatList& /*splats*/) const {
-        return li(ray, scene, sampler, cs.lambda);
+    virtual SampledSpectrum li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+                                     SplatList& /*splats*/) const {
+        return li(ray, scene, sampler, cs.wl);
     }
     /// True when li_splat() may produce splats; the renderer then merges them per tile group.
     virtual bool splats() const { return false; }
@@ -54,6 +57,12 @@ public:
     virtual void prepare(const Scene& /*scene*/, const FilmSpec& /*film*/, const RenderOptions& /*options*/) const {}
     /// The scene-file name of this technique ("path", "nee", ...).
     virtual std::string name() const = 0;
+    /// Wavelengths each path carries (`spectral_samples`; 1 is the paper's set-up).
+    int spectral_samples() const { return m_spectral_samples; }
+    void set_spectral_samples(int n) { m_spectral_samples = n; }
+
+private:
+    int m_spectral_samples = kSpectrumSamples;
 };
 
 /// Builds an integrator from its `type`; unknown types are a SceneError at props' location.

@@ -40,6 +40,11 @@ std::shared_ptr<Integrator> create_integrator(const Props& props) {
         props.raise("unknown integrator type '" + props.type() + "' (known: " + known + ")");
     }
     auto integ = it->second(props);
+    // Every technique: wavelengths per path (1 reproduces the paper's single-wavelength set-up).
+    const int64_t n = props.get_int("spectral_samples", kSpectrumSamples);
+    if (n < 1 || n > kSpectrumSamples)
+        props.raise_param("spectral_samples", "spectral_samples must lie in [1, " + std::to_string(kSpectrumSamples) + "]");
+    integ->set_spectral_samples(int(n));
     props.check_unused();
     return integ;
 }

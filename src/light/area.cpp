@@ -17,7 +17,7 @@ AreaLight::AreaLight(const Spectrum& radiance, std::shared_ptr<Shape> shape)
     : m_radiance(radiance), m_shape(std::move(shape)) {}
 
 std::optional<LightSample> AreaLight::sample_li(const LightSampleContext& ref, const Vec2& u,
-                                                double lambda) const {
+                                                const SampledWavelengths& wl) const {
     const std::optional<ShapeSample> ss = m_shape->sample_from(ref.p, u);
     if (!ss || !(ss->pdf > 0)) return std::nullopt;
     Vec3 d = ss->p - ref.p;
@@ -33,7 +33,7 @@ std::optional<LightSample> AreaLight::sample_li(const LightSampleContext& ref, c
     ls.n = ss->n;
     ls.wi = d;
     ls.dist = dist;
-    ls.Le = m_radiance.eval(lambda);
+    ls.Le = m_radiance.eval(wl);
     ls.pdf = ss->pdf;
     // Solid angle -> area: d(omega) = |cos_light| dA / dist^2.
     ls.pdf_area = ss->pdf * cos_light / dist2;
@@ -53,8 +53,8 @@ double AreaLight::pdf_point(const Vec3& ref, const Vec3& p, const Vec3& n) const
     return m_shape->pdf_from(ref, p, n) * cos_light / dist2;
 }
 
-double AreaLight::le(const Vec3& /*p*/, const Vec3& n, const Vec3& w, double lambda) const {
-    return dot(n, w) > 0 ? m_radiance.eval(lambda) : 0.0;
+SampledSpectrum AreaLight::le(const Vec3& /*p*/, const Vec3& n, const Vec3& w, const SampledWavelengths& wl) const {
+    return dot(n, w) > 0 ? m_radiance.eval(wl) : SampledSpectrum();
 }
 
 double AreaLight::power() const { return m_radiance.average() * m_shape->area() * kPi; }

@@ -20,13 +20,13 @@ public:
     /// area sampling otherwise); pdf in solid angle, pdf_area = pdf * |cos_light| / dist^2.
     /// nullopt when the sampled point faces away from ref (no emission towards it).
     std::optional<LightSample> sample_li(const LightSampleContext& ref, const Vec2& u,
-                                         double lambda) const override;
+                                         const SampledWavelengths& wl) const override;
     /// Shape::pdf_from(ref.p, p, n): solid-angle density at ref.
     double pdf_li(const LightSampleContext& ref, const Vec3& p, const Vec3& n, const Vec3& wi) const override;
     /// radiance if dot(n, w) > 0, else 0.
     /// Area density of sample_li's point, zero where the light faces away from ref.
     double pdf_point(const Vec3& ref, const Vec3& p, const Vec3& n) const override;
-    double le(const Vec3& p, const Vec3& n, const Vec3& w, double lambda) const override;
+    SampledSpectrum le(const Vec3& p, const Vec3& n, const Vec3& w, const SampledWavelengths& wl) const override;
     /// Average radiance * area * pi.
     double power() const override;
     const Shape* shape() const override { return m_shape.get(); }

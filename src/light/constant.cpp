@@ -14,12 +14,12 @@ namespace snell {
 ConstantLight::ConstantLight(const Spectrum& radiance) : m_radiance(radiance) {}
 
 std::optional<LightSample> ConstantLight::sample_li(const LightSampleContext& ref, const Vec2& u,
-                                                    double lambda) const {
+                                                    const SampledWavelengths& wl) const {
     LightSample ls;
     ls.wi = warp::square_to_uniform_sphere(u);
     ls.p = ref.p + ls.wi * m_sphere.far_distance(ref.p);
     ls.dist = kInfinity;
-    ls.Le = m_radiance.eval(lambda);
+    ls.Le = m_radiance.eval(wl);
     ls.pdf = warp::square_to_uniform_sphere_pdf();
     return ls;
 }
@@ -28,7 +28,7 @@ double ConstantLight::pdf_li(const LightSampleContext&, const Vec3&, const Vec3&
     return warp::square_to_uniform_sphere_pdf();
 }
 
-double ConstantLight::le_escaped(const Vec3& /*d*/, double lambda) const { return m_radiance.eval(lambda); }
+SampledSpectrum ConstantLight::le_escaped(const Vec3& /*d*/, const SampledWavelengths& wl) const { return m_radiance.eval(wl); }
 
 double ConstantLight::power() const { return m_radiance.average() * 4 * kPi * kPi * sqr(m_sphere.radius); }
 

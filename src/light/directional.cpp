@@ -16,12 +16,12 @@ DirectionalLight::DirectionalLight(const Spectrum& irradiance, const Vec3& direc
     : m_irradiance(irradiance), m_direction(normalize(direction)) {}
 
 std::optional<LightSample> DirectionalLight::sample_li(const LightSampleContext& ref, const Vec2& /*u*/,
-                                                       double lambda) const {
+                                                       const SampledWavelengths& wl) const {
     LightSample ls;
     ls.wi = -m_direction;
     ls.p = ref.p + ls.wi * m_sphere.far_distance(ref.p);
     ls.dist = kInfinity;
-    ls.Le = m_irradiance.eval(lambda);
+    ls.Le = m_irradiance.eval(wl);
     ls.pdf = 1;
     ls.delta = true;
     return ls;
@@ -29,8 +29,8 @@ std::optional<LightSample> DirectionalLight::sample_li(const LightSampleContext&
 
 double DirectionalLight::power() const { return m_irradiance.average() * kPi * sqr(m_sphere.radius); }
 
-double DirectionalLight::emitted(const Vec3&, const Vec3&, const Vec3&, double lambda) const {
-    return m_irradiance.eval(lambda);
+SampledSpectrum DirectionalLight::emitted(const Vec3&, const Vec3&, const Vec3&, const SampledWavelengths& wl) const {
+    return m_irradiance.eval(wl);
 }
 
 }  // namespace snell

@@ -15,11 +15,11 @@ public:
     LightKind kind() const override { return LightKind::Directional; }
     /// Delta sample: wi = -direction, Le = E, pdf = 1, dist = inf, p far along wi.
     std::optional<LightSample> sample_li(const LightSampleContext& ref, const Vec2& u,
-                                         double lambda) const override;
+                                         const SampledWavelengths& wl) const override;
     double pdf_li(const LightSampleContext&, const Vec3&, const Vec3&, const Vec3&) const override { return 0; }
     /// E * pi r^2 for the scene's bounding sphere of radius r.
     /// The irradiance (direction-independent: MNEE's far point stands in for the direction).
-    double emitted(const Vec3&, const Vec3&, const Vec3&, double lambda) const override;
+    SampledSpectrum emitted(const Vec3&, const Vec3&, const Vec3&, const SampledWavelengths& wl) const override;
     double power() const override;
     void preprocess(const Bounds3& scene_bounds) override { m_sphere.set(scene_bounds); }
     const Vec3& direction() const { return m_direction; }

@@ -130,14 +130,14 @@ Vec3 EnvironmentMap::sample_direction(const Vec2& u, double* pdf, Vec2* uv_out) 
 }
 
 std::optional<LightSample> EnvironmentMap::sample_li(const LightSampleContext& ref, const Vec2& u,
-                                                     double lambda) const {
+                                                     const SampledWavelengths& wl) const {
     LightSample ls;
     Vec2 uv;
     ls.wi = sample_direction(u, &ls.pdf, &uv);
     if (!(ls.pdf > 0)) return std::nullopt;
     // Bins next to black texels can yield directions whose radiance is exactly 0.
-    ls.Le = m_scale * RGBIlluminantTable::get().eval(lookup_rgb(uv), lambda);
-    if (!(ls.Le > 0)) return std::nullopt;
+    ls.Le = m_scale * RGBIlluminantTable::get().eval(lookup_rgb(uv), wl);
+    if (ls.Le.is_zero()) return std::nullopt;
     ls.p = ref.p + ls.wi * m_sphere.far_distance(ref.p);
     ls.dist = kInfinity;
     return ls;
@@ -150,9 +150,9 @@ double EnvironmentMap::pdf_li(const LightSampleContext&, const Vec3&, const Vec3
     return m_dist.pdf(direction_to_uv(d)) / (2 * kPi * kPi * sin_theta);
 }
 
-double EnvironmentMap::le_escaped(const Vec3& d, double lambda) const {
+SampledSpectrum EnvironmentMap::le_escaped(const Vec3& d, const SampledWavelengths& wl) const {
     const Vec2 uv = direction_to_uv(normalize(m_to_local.vector(d)));
-    return m_scale * RGBIlluminantTable::get().eval(lookup_rgb(uv), lambda);
+    return m_scale * RGBIlluminantTable::get().eval(lookup_rgb(uv), wl);
 }
 
 double EnvironmentMap::power() const {

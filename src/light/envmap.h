@@ -36,7 +36,7 @@ public:
     LightKind kind() const override { return LightKind::Infinite; }
     /// Importance-sampled direction; dist = inf, p = ref + wi * far distance.
     std::optional<LightSample> sample_li(const LightSampleContext& ref, const Vec2& u,
-                                         double lambda) const override;
+                                         const SampledWavelengths& wl) const override;
     /// The direction sampling inside sample_li, without radiance: a unit world direction and
     /// its solid-angle density `pdf` (0 when no direction could be produced). Optionally
     /// returns the map coordinates of the sample.
@@ -44,7 +44,7 @@ public:
     /// Solid-angle density of sample_li producing direction wi (p, n ignored).
     double pdf_li(const LightSampleContext& ref, const Vec3& p, const Vec3& n, const Vec3& wi) const override;
     /// Radiance arriving along a ray that escapes in world direction d.
-    double le_escaped(const Vec3& d, double lambda) const override;
+    SampledSpectrum le_escaped(const Vec3& d, const SampledWavelengths& wl) const override;
     /// pi r^2 * integral over the sphere of the (luminance-based) average radiance.
     double power() const override;
     void preprocess(const Bounds3& scene_bounds) override { m_sphere.set(scene_bounds); }

@@ -1,8 +1,9 @@
 #pragma once
-// Emitter interface. Radiance/intensity values are at the path's wavelength.
+// Emitter interface. Radiance/intensity values are at the path's wavelengths.
 #include <optional>
 
 #include "core/object.h"
+#include "core/sampled_spectrum.h"
 #include "core/vector.h"
 
 namespace snell {
@@ -24,7 +25,7 @@ struct LightSample {
     double dist = kInfinity; ///< distance to p (infinite for directional/infinite lights)
     /// Incident radiance for area and infinite lights. For delta lights the factor that makes
     /// the estimate f |cos| Le / pdf correct: point/spot intensity / dist^2, directional irradiance.
-    double Le = 0;
+    SampledSpectrum Le;
     double pdf = 0;          ///< solid-angle density at the reference point (1 for delta lights)
     double pdf_area = 0;     ///< area density of p on the light (area lights; 0 otherwise)
     bool delta = false;      ///< position or direction is a Dirac delta (no MIS with BSDF sampling)
@@ -41,16 +42,16 @@ public:
 
     /// Samples incident illumination at ref. Returns nullopt when nothing can be sampled.
     virtual std::optional<LightSample> sample_li(const LightSampleContext& ref, const Vec2& u,
-                                                 double lambda) const = 0;
+                                                 const SampledWavelengths& wl) const = 0;
     /// Solid-angle density that sample_li(ref) returns the point p (normal n) in direction wi.
     /// For infinite lights p and n are ignored. 0 for delta lights.
     virtual double pdf_li(const LightSampleContext& ref, const Vec3& p, const Vec3& n,
                           const Vec3& wi) const = 0;
 
     /// Area lights: radiance leaving point p (normal n) in unit direction w (away from the light).
-    virtual double le(const Vec3& /*p*/, const Vec3& /*n*/, const Vec3& /*w*/, double /*lambda*/) const { return 0; }
+    virtual SampledSpectrum le(const Vec3& /*p*/, const Vec3& /*n*/, const Vec3& /*w*/, const SampledWavelengths& /*wl*/) const { return {}; }
     /// Infinite lights: radiance arriving along a ray escaping the scene in unit direction d.
-    virtual double le_escaped(const Vec3& /*d*/, double /*lambda*/) const { return 0; }
+    virtual SampledSpectrum le_escaped(const Vec3& /*d*/, const SampledWavelengths& /*wl*/) const { return {}; }
 
     /// MNEE (paper Alg. 2, first line): density in area measure with which sample_li(ref)
     /// returns the light point p with normal n, including its culling (0 where sample_li never
@@ -61,8 +62,8 @@ public:
     /// in a different direction than the seed path, so this is evaluated afresh).
     /// Lights at infinity give the radiance arriving from -w (environment) or, for the
     /// directional light, its irradiance (MNEE turns both into points on a far sphere).
-    virtual double emitted(const Vec3& p, const Vec3& n, const Vec3& w, double lambda) const {
-        return is_infinite() ? le_escaped(-w, lambda) : le(p, n, w, lambda);
+    virtual SampledSpectrum emitted(const Vec3& p, const Vec3& n, const Vec3& w, const SampledWavelengths& wl) const {
+        return is_infinite() ? le_escaped(-w, wl) : le(p, n, w, wl);
     }
 
     /// Emitted power, averaged over the visible range (for light selection; need not be exact).

@@ -16,7 +16,7 @@ PointLight::PointLight(const Spectrum& intensity, const Vec3& position)
     : m_intensity(intensity), m_position(position) {}
 
 std::optional<LightSample> PointLight::sample_li(const LightSampleContext& ref, const Vec2& /*u*/,
-                                                 double lambda) const {
+                                                 const SampledWavelengths& wl) const {
     const Vec3 d = m_position - ref.p;
     const double dist2 = length_squared(d);
     if (!(dist2 > 0)) return std::nullopt;
@@ -24,7 +24,7 @@ std::optional<LightSample> PointLight::sample_li(const LightSampleContext& ref, 
     ls.p = m_position;
     ls.dist = std::sqrt(dist2);
     ls.wi = d / ls.dist;
-    ls.Le = m_intensity.eval(lambda) / dist2;  // inverse-square law
+    ls.Le = m_intensity.eval(wl) / dist2;  // inverse-square law
     ls.pdf = 1;
     ls.delta = true;
     return ls;
@@ -32,8 +32,8 @@ std::optional<LightSample> PointLight::sample_li(const LightSampleContext& ref, 
 
 double PointLight::power() const { return 4 * kPi * m_intensity.average(); }
 
-double PointLight::emitted(const Vec3&, const Vec3&, const Vec3& w, double lambda) const {
-    return m_intensity.eval(lambda);
+SampledSpectrum PointLight::emitted(const Vec3&, const Vec3&, const Vec3& w, const SampledWavelengths& wl) const {
+    return m_intensity.eval(wl);
 }
 
 }  // namespace snell

@@ -12,14 +12,14 @@ public:
     LightKind kind() const override { return LightKind::Point; }
     /// Delta sample: Le = I / dist^2, pdf = 1, delta = true; u is unused.
     std::optional<LightSample> sample_li(const LightSampleContext& ref, const Vec2& u,
-                                         double lambda) const override;
+                                         const SampledWavelengths& wl) const override;
     /// 0: a delta light cannot be hit by BSDF sampling.
     double pdf_li(const LightSampleContext&, const Vec3&, const Vec3&, const Vec3&) const override { return 0; }
     /// 4 pi * average intensity.
     /// Delta position: the light point is always its position (discrete probability 1).
     double pdf_point(const Vec3&, const Vec3&, const Vec3&) const override { return 1; }
     /// Intensity emitted along w (away from the light).
-    double emitted(const Vec3& p, const Vec3& n, const Vec3& w, double lambda) const override;
+    SampledSpectrum emitted(const Vec3& p, const Vec3& n, const Vec3& w, const SampledWavelengths& wl) const override;
     double power() const override;
     const Vec3& position() const { return m_position; }
 

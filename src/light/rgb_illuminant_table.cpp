@@ -33,23 +33,35 @@ const RGBIlluminantTable& RGBIlluminantTable::get() {
     return table;
 }
 
-double RGBIlluminantTable::eval(const RGB& rgb_in, double lambda) const {
+namespace {
+// The bilinear blend of lattice spectra, for one wavelength (double) or a path's (SampledWavelengths).
+template <class Wavelengths, class Value>
+Value blend(const std::vector<Spectrum>& nodes, int side, int n, const RGB& rgb_in, const Wavelengths& lambda) {
     const double c[3] = {std::max(0.0, rgb_in.r), std::max(0.0, rgb_in.g), std::max(0.0, rgb_in.b)};
     const int face = c[0] >= c[1] ? (c[0] >= c[2] ? 0 : 2) : (c[1] >= c[2] ? 1 : 2);
     const double m = c[face];
-    if (!(m > 0)) return 0.0;
+    if (!(m > 0)) return Value(0.0);
     // Face coordinates in [0, 1] and their lattice cell.
-    const double a = c[(face + 1) % 3] / m * kN, b = c[(face + 2) % 3] / m * kN;
-    const int ia = std::min(kN - 1, int(a)), ib = std::min(kN - 1, int(b));
+    const double a = c[(face + 1) % 3] / m * n, b = c[(face + 2) % 3] / m * n;
+    const int ia = std::min(n - 1, int(a)), ib = std::min(n - 1, int(b));
     const double fa = a - ia, fb = b - ib;
-    const Spectrum* base = &m_nodes[size_t(face * kSide * kSide + ia * kSide + ib)];
-    double s = 0;
+    const Spectrum* base = &nodes[size_t(face * side * side + ia * side + ib)];
+    Value s(0.0);
     // Skip zero weights: grey and lattice-aligned colours evaluate a single node exactly.
     if (fa < 1 && fb < 1) s += (1 - fa) * (1 - fb) * base[0].eval(lambda);
     if (fa < 1 && fb > 0) s += (1 - fa) * fb * base[1].eval(lambda);
-    if (fa > 0 && fb < 1) s += fa * (1 - fb) * base[kSide].eval(lambda);
-    if (fa > 0 && fb > 0) s += fa * fb * base[kSide + 1].eval(lambda);
+    if (fa > 0 && fb < 1) s += fa * (1 - fb) * base[side].eval(lambda);
+    if (fa > 0 && fb > 0) s += fa * fb * base[side + 1].eval(lambda);
     return m * s;
+}
+}  // namespace
+
+double RGBIlluminantTable::eval(const RGB& rgb, double lambda) const {
+    return blend<double, double>(m_nodes, kSide, kN, rgb, lambda);
+}
+
+SampledSpectrum RGBIlluminantTable::eval(const RGB& rgb, const SampledWavelengths& wl) const {
+    return blend<SampledWavelengths, SampledSpectrum>(m_nodes, kSide, kN, rgb, wl);
 }
 
 }  // namespace snell

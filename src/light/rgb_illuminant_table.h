@@ -26,6 +26,8 @@ public:
 
     /// Spectral radiance at `lambda` (nm) of emission colour `rgb` (negative parts clamped).
     double eval(const RGB& rgb, double lambda) const;
+    /// The same at every wavelength a path carries.
+    SampledSpectrum eval(const RGB& rgb, const SampledWavelengths& wl) const;
 
 private:
     RGBIlluminantTable();

@@ -34,7 +34,7 @@ double SpotLight::falloff(const Vec3& w_world) const {
 }
 
 std::optional<LightSample> SpotLight::sample_li(const LightSampleContext& ref, const Vec2& /*u*/,
-                                                double lambda) const {
+                                                const SampledWavelengths& wl) const {
     const Vec3 d = m_position - ref.p;
     const double dist2 = length_squared(d);
     if (!(dist2 > 0)) return std::nullopt;
@@ -46,7 +46,7 @@ std::optional<LightSample> SpotLight::sample_li(const LightSampleContext& ref, c
     ls.p = m_position;
     ls.dist = dist;
     ls.wi = d / dist;
-    ls.Le = m_intensity.eval(lambda) * f / dist2;
+    ls.Le = m_intensity.eval(wl) * f / dist2;
     ls.pdf = 1;
     ls.delta = true;
     return ls;
@@ -60,8 +60,8 @@ double SpotLight::power() const {
     return 2 * kPi * ((1 - m_cos_beam) + ramp) * m_intensity.average();
 }
 
-double SpotLight::emitted(const Vec3&, const Vec3&, const Vec3& w, double lambda) const {
-    return m_intensity.eval(lambda) * falloff(w);
+SampledSpectrum SpotLight::emitted(const Vec3&, const Vec3&, const Vec3& w, const SampledWavelengths& wl) const {
+    return m_intensity.eval(wl) * falloff(w);
 }
 
 }  // namespace snell

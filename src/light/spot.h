@@ -18,13 +18,13 @@ public:
     LightKind kind() const override { return LightKind::Spot; }
     /// Delta sample: Le = I falloff / dist^2, pdf = 1; nullopt outside the cone.
     std::optional<LightSample> sample_li(const LightSampleContext& ref, const Vec2& u,
-                                         double lambda) const override;
+                                         const SampledWavelengths& wl) const override;
     double pdf_li(const LightSampleContext&, const Vec3&, const Vec3&, const Vec3&) const override { return 0; }
     /// Integral of the falloff over the sphere times the average intensity (exact).
     /// Delta position: the light point is always its position (discrete probability 1).
     double pdf_point(const Vec3&, const Vec3&, const Vec3&) const override { return 1; }
     /// Intensity emitted along w (away from the light).
-    double emitted(const Vec3& p, const Vec3& n, const Vec3& w, double lambda) const override;
+    SampledSpectrum emitted(const Vec3& p, const Vec3& n, const Vec3& w, const SampledWavelengths& wl) const override;
     double power() const override;
 
     /// Falloff factor in [0, 1] for the unit emission direction `w_world` (away from the light).

@@ -49,9 +49,9 @@ double light_point_pdf(const Scene& scene, const Light& light, const Vec3& ref, 
     (void)scene;
 }
 
-double light_point_emission(const Light& light, const Vec3& p, const Vec3& n, const Vec3& w, const Vec3& center,
-                            double lambda) {
-    const double e = light.emitted(p, n, w, lambda);
+SampledSpectrum light_point_emission(const Light& light, const Vec3& p, const Vec3& n, const Vec3& w, const Vec3& center,
+                                            const SampledWavelengths& wl) {
+    const SampledSpectrum e = light.emitted(p, n, w, wl);
     // A directional light's irradiance E is the intensity E D^2 of a point at distance D.
     return light.kind() == LightKind::Directional ? e * length_squared(p - center) : e;
 }

@@ -36,7 +36,7 @@ double light_point_pdf(const Scene& scene, const Light& light, const Vec3& ref, 
 
 /// Emission from light point p (normal n) along unit w (away from the light): radiance, or
 /// intensity for delta lights. `center` is the far sphere's centre (x_b).
-double light_point_emission(const Light& light, const Vec3& p, const Vec3& n, const Vec3& w, const Vec3& center,
-                            double lambda);
+SampledSpectrum light_point_emission(const Light& light, const Vec3& p, const Vec3& n, const Vec3& w,
+                                     const Vec3& center, const SampledWavelengths& wl);
 
 }  // namespace snell

@@ -67,16 +67,16 @@ double half_vector_density(const ManifoldVertex& v, const Vec3& h) {
     return hl.z > 0 ? v.bsdf->microfacet()->D(hl) : 0.0;
 }
 
-double vertex_throughput(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const BSDFContext& ctx) {
+SampledSpectrum vertex_throughput(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const BSDFContext& ctx) {
     const Vec3 wi_l = v.si.to_local(wi), wo_l = v.si.to_local(wo);
     // BSDF convention: its wo is our camera-side wi, its wi our light-side wo.
     if (is_specular(v)) return v.bsdf->eval_delta(ctx, wi_l, wo_l);  // Eq. 9: kappa
     const Vec3 h = generalized_half_vector(v, wi, wo);
     const double D = half_vector_density(v, h);
     const double cos_h = std::abs(dot(h, v.n));
-    if (!(D > 0) || !(cos_h > 0)) return 0;
+    if (!(D > 0) || !(cos_h > 0)) return {};
     // Eq. 6: f_r |do/dh| |<o, n>| / |<h, n>| over p_dH(h) = D(h).
-    return v.bsdf->eval(ctx, wi_l, wo_l) * std::abs(wo_l.z) * half_vector_jacobian(v, wi, wo, h) / (cos_h * D);
+    return v.bsdf->eval(ctx, wi_l, wo_l) * (std::abs(wo_l.z) * half_vector_jacobian(v, wi, wo, h) / (cos_h * D));
 }
 
 double vertex_bsdf_density(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const BSDFContext& ctx) {
@@ -153,10 +153,10 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     // Measurement in half-vector space (Eq. 6): f_r(x_b) |cos| |do_b/dx_c| prod(vertex) Le.
     const Vec3 o_b = normalize(chain[0].p - xb.p);
     const Vec3 wo_b = xb.to_local(xb.wo), o_b_l = xb.to_local(o_b);
-    const double f_b = bsdf_b.eval(ctx, wo_b, o_b_l) * std::abs(o_b_l.z);
+    const SampledSpectrum f_b = bsdf_b.eval(ctx, wo_b, o_b_l) * std::abs(o_b_l.z);
     const Vec3 from_light = normalize(chain[k - 1].p - xc);
-    const double Le = light_point_emission(light, xc, lp.n, from_light, xb.p, ctx.lambda);
-    if (!(f_b > 0) || !(Le > 0)) {
+    const SampledSpectrum Le = light_point_emission(light, xc, lp.n, from_light, xb.p, ctx.wl);
+    if (f_b.is_zero() || Le.is_zero()) {
         out.outcome = MneeOutcome::Zero;
         return out;
     }
@@ -166,9 +166,10 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
         out.outcome = MneeOutcome::Singular;
         return out;
     }
-    double throughput = 1, p_dH = 1;
+    SampledSpectrum throughput(1.0);
+    double p_dH = 1;
     MediumStack m = media;
-    double tr = m.transmittance(length(chain[0].p - xb.p), ctx.lambda);
+    SampledSpectrum tr = m.transmittance(length(chain[0].p - xb.p), ctx.wl);
     // BSDF-sampling density of the same path (area measure), and its prefix up to x_k.
     double p_bsdf = bsdf_b.pdf(ctx, wo_b, o_b_l) * std::abs(dot(chain[0].ng, o_b)) / length_squared(chain[0].p - xb.p);
     double p_prefix_k = p_bsdf;
@@ -177,22 +178,24 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
         vertex_directions(xb.p, chain, xc, i, &wi, &wo);
         const ManifoldVertex& v = chain[i];
         throughput *= vertex_throughput(v, wi, wo, ctx);
+        // The chain was solved for the hero's eta: with dispersion it is the hero's path alone.
+        out.hero_only = out.hero_only || v.bsdf->dispersive();
         p_dH *= half_vector_density(v, generalized_half_vector(v, wi, wo));
         // Beer-Lambert inside absorbing interiors along the admissible path.
         m.cross(v.bsdf->interior_absorption(), dot(wi, v.ng) > 0);
         const Vec3 next = i + 1 < k ? chain[i + 1].p : xc;
-        tr *= m.transmittance(length(next - v.p), ctx.lambda);
+        tr *= m.transmittance(length(next - v.p), ctx.wl);
         const Vec3 next_n = i + 1 < k ? chain[i + 1].ng : lp.n;
         p_prefix_k = p_bsdf;
         p_bsdf *= vertex_bsdf_density(v, wi, wo, ctx) * std::abs(dot(next_n, wo)) / length_squared(next - v.p);
     }
     const double p_point = lp.pdf;
-    if (!(throughput > 0) || !(p_point > 0)) {
+    if (throughput.is_zero() || !(p_point > 0)) {
         out.outcome = MneeOutcome::Zero;
         return out;
     }
     out.outcome = MneeOutcome::Success;
-    out.value = f_b * jac.do_b_dx_c * throughput * Le * tr / (pmf * p_point);  // Alg. 1, last line
+    out.value = f_b * throughput * Le * tr * (jac.do_b_dx_c / (pmf * p_point));  // Alg. 1, last line
     out.pdf_mnee = pmf * p_point * p_dH * jac.dH_dX;                          // Eq. 7 with Eq. 8
     // Delta lights cannot be hit by BSDF sampling.
     out.pdf_bsdf = lp.delta ? 0.0 : p_bsdf;

@@ -40,7 +40,10 @@ enum class MneeOutcome {
 /// A connection from x_b to a light through a refractive chain.
 struct MneeConnection {
     MneeOutcome outcome = MneeOutcome::Zero;
-    double value = 0;      ///< f(X) / p(X) of Alg. 1 (light pmf included), before MIS
+    SampledSpectrum value;  ///< f(X) / p(X) of Alg. 1 (light pmf included), before MIS
+    /// The chain disperses: the path was solved for the hero wavelength and `value` holds
+    /// the hero's alone (see SampledWavelengths::hero_only).
+    bool hero_only = false;
     double pdf_mnee = 0;   ///< area density of this technique (Eq. 7 with Eq. 8)
     double pdf_bsdf = 0;   ///< area density of BSDF sampling x_1..x_k, x_c from x_b
     double pdf_nee_last = 0;  ///< area density of NEE from x_k (0 unless x_k is rough)
@@ -52,7 +55,7 @@ double half_vector_jacobian(const ManifoldVertex& v, const Vec3& wi, const Vec3&
 
 /// The scattering factor of vertex v in half-vector measure: kappa (Eq. 9) if specular, else
 /// f_r |cos o| |do/dh| / (|cos h| D(h)) (Eq. 6 over p_dH = D, projected solid angle).
-double vertex_throughput(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const BSDFContext& ctx);
+SampledSpectrum vertex_throughput(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const BSDFContext& ctx);
 
 /// Density with which BSDF sampling at v produces wo from wi: solid angle for rough
 /// vertices, lobe probability / |do/dh| for specular ones (delta factored out in h).
@@ -71,7 +74,8 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& settings, co
                             const BSDF& bsdf_b, const BSDFContext& ctx, const MediumStack& media, const Light& light,
                             double pmf, const LightPoint& lp, std::vector<ManifoldVertex>& chain, Sampler& sampler);
 
-/// Alg. 2: area density with which MNEE from x_b produces the path x_b, chain[0..k), x_c.
+/// Alg. 2: area density with which MNEE from x_b produces the path x_b, chain[0..k), x_c, at
+/// the hero wavelength `lambda`.
 /// 0 if the seed path from x_b to x_c walks to a different path (or none).
 double mnee_pdf(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb, const BSDF& bsdf_b,
                 const SurfaceInteraction* chain, int k, const Light& light, double pmf, const Vec3& xc,

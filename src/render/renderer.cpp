@@ -15,7 +15,7 @@
 #include "core/sampler.h"
 #include "core/spectrum.h"
 #include "geometry/scene.h"
-#include "integrators/integrator.h"
+#include "integrators/camera_sample.h"
 #include "integrators/pssmlt/pssmlt.h"
 
 namespace snell {
@@ -36,23 +36,6 @@ std::vector<Tile> make_tiles(int w, int h, int size) {
 // Pass sizes 1, 1, 2, 4, 8, 16, 16, ...: early passes give quick previews and a fine-grained
 // equal-time cut-off; later ones amortise scheduling. Fixed, so images are reproducible.
 uint64_t pass_size(int pass) { return pass < 1 ? 1 : std::min<uint64_t>(16, uint64_t(1) << (pass - 1)); }
-
-/// Keeps invalid estimates off the film (project promise 4) and counts them by kind.
-double sanitize(double L, Counters& c) {
-    if (std::isnan(L)) {
-        c.discarded_nan++;
-        return 0;
-    }
-    if (std::isinf(L)) {
-        c.discarded_inf++;
-        return 0;
-    }
-    if (L < 0) {
-        c.discarded_negative++;
-        return 0;
-    }
-    return L;
-}
 
 }  // namespace
 
@@ -147,15 +130,11 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Film
                             for (uint64_t s = s0; s < s1; ++s) {
                                 sampler->start_pixel_sample(fx, fy, s);
                                 const Vec2 jitter = sampler->next_2d();
-                                CameraSample cs;
-                                cs.raster = Vec2(fx + jitter.x, fy + jitter.y);
-                                cs.u_lambda = sampler->next_1d();
-                                cs.lambda = sample_visible_wavelength(cs.u_lambda);
-                                cs.pdf_lambda = visible_wavelength_pdf(cs.lambda);
-                                const Ray ray = camera->generate_ray(cs.raster);
-                                const double L =
-                                    sanitize(integrator.li_splat(cs, ray, scene, *sampler, splats), counters);
-                                if (L > 0 && cs.pdf_lambda > 0) sum += radiance_to_xyz(L, cs.lambda, cs.pdf_lambda);
+                                const Vec2 raster(fx + jitter.x, fy + jitter.y);
+                                const double u_lambda = sampler->next_1d();
+                                sum += trace_camera_sample(scene, *camera, integrator, raster, u_lambda, *sampler,
+                                                           splats, counters)
+                                           .xyz;
                             }
                             result.film.add_sum(x, y, sum, s1 - s0);
                         }

@@ -120,7 +120,7 @@ TEST_P(BsdfChi2, SamplesFollowPdf) {
     std::string first_bad;
     if (c.bsdf) {
         BSDFContext ctx;
-        ctx.lambda = 550;
+        ctx.wl = SampledWavelengths::sample_visible(0.3);  // four distinct wavelengths
         ctx.mode = c.mode;
         const BSDF& b = *c.bsdf;
         r = snell::test::chi2_sphere_test(
@@ -131,13 +131,20 @@ TEST_P(BsdfChi2, SamplesFollowPdf) {
                 if (!s || s->is_delta()) return std::nullopt;
                 // Consistency of the sample record with eval()/pdf().
                 const double p = b.pdf(ctx, c.wo, s->wi);
-                const double w = b.eval(ctx, c.wo, s->wi) * std::abs(s->wi.z) / p;
+                const SampledSpectrum f = b.eval(ctx, c.wo, s->wi) * (std::abs(s->wi.z) / p);
                 ++checked;
                 if (!(std::abs(s->pdf - p) <= 1e-9 * p)) {
                     if (!pdf_bad++) first_bad = "pdf " + std::to_string(s->pdf) + " vs " + std::to_string(p);
                 }
-                if (!(std::abs(s->weight - w) <= 1e-9 * w + 1e-14)) {
-                    if (!weight_bad++) first_bad += " weight " + std::to_string(s->weight) + " vs " + std::to_string(w);
+                // Every wavelength's weight is its f |cos| over the hero's pdf; a hero-only
+                // sample (dispersive refraction) carries the hero's and zeros.
+                for (int i = 0; i < kSpectrumSamples; ++i) {
+                    const double w = s->hero_only && i > 0 ? 0.0 : f[i];
+                    if (!(std::abs(s->weight[i] - w) <= 1e-9 * w + 1e-14)) {
+                        if (!weight_bad++)
+                            first_bad += " weight[" + std::to_string(i) + "] " + std::to_string(s->weight[i]) + " vs " +
+                                         std::to_string(w);
+                    }
                 }
                 return s->wi;
             },

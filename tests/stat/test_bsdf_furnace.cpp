@@ -49,7 +49,7 @@ Estimate albedo_sampled(const BSDF& b, const BSDFContext& ctx, const Vec3& wo, s
         const double uc = rng.next_double();
         const Vec2 u(rng.next_double(), rng.next_double());
         const auto r = b.sample(ctx, wo, uc, u);
-        const double w = r ? r->weight : 0.0;
+        const double w = r ? r->weight[0] : 0.0;
         s += w;
         s2 += w * w;
     }
@@ -64,7 +64,7 @@ Estimate albedo_uniform(const BSDF& b, const BSDFContext& ctx, const Vec3& wo, s
     double s = 0, s2 = 0;
     for (size_t i = 0; i < n; ++i) {
         const Vec3 wi = warp::square_to_uniform_sphere({rng.next_double(), rng.next_double()});
-        const double v = b.eval(ctx, wo, wi) * std::abs(wi.z) / warp::square_to_uniform_sphere_pdf();
+        const double v = b.eval(ctx, wo, wi)[0] * std::abs(wi.z) / warp::square_to_uniform_sphere_pdf();
         s += v;
         s2 += v * v;
     }
@@ -73,7 +73,7 @@ Estimate albedo_uniform(const BSDF& b, const BSDFContext& ctx, const Vec3& wo, s
 
 BSDFContext importance_ctx() {
     BSDFContext ctx;
-    ctx.lambda = 550;
+    ctx.wl = SampledWavelengths::single(550);
     ctx.mode = TransportMode::Importance;  // no 1/eta^2 radiance compression
     return ctx;
 }
@@ -106,7 +106,7 @@ TEST(BsdfFurnace, SmoothDielectricIsLossless) {
         }
         // Radiance mode: transmitted radiance is scaled by 1/eta_it^2.
         BSDFContext rad;
-        rad.lambda = 550;
+        rad.wl = SampledWavelengths::single(550);
         const DielectricFresnel f = fresnel_dielectric(dir(th).z, 1.5);
         const Estimate e = albedo_sampled(glass, rad, dir(th), 200000, 8);
         const double expect = f.R + (1 - f.R) * sqr(f.eta_ti);
@@ -189,7 +189,7 @@ TEST(BsdfReciprocity, ReflectionIsSymmetric) {
             Vec3 wo = warp::square_to_uniform_sphere({rng.next_double(), rng.next_double()});
             Vec3 wi = warp::square_to_uniform_sphere({rng.next_double(), rng.next_double()});
             if (wo.z * wi.z < 0) wi.z = -wi.z;  // reflection pairs, both sides
-            const double a = b->eval(ctx, wo, wi), c = b->eval(ctx, wi, wo);
+            const double a = b->eval(ctx, wo, wi)[0], c = b->eval(ctx, wi, wo)[0];
             ASSERT_NEAR(a, c, 1e-10 * std::max(a, c)) << name;
         }
 }
@@ -201,7 +201,7 @@ TEST(BsdfReciprocity, TransmissionObeysGeneralisedReciprocity) {
         RoughDielectricBSDF b(MD(t, 0.4), Spectrum::from_ior_abbe(1.5, 40), Spectrum::constant(1.0));
         PCG32 rng(12, 4);
         BSDFContext rad, imp;
-        rad.lambda = imp.lambda = 480;
+        rad.wl = imp.wl = SampledWavelengths::single(480);
         imp.mode = TransportMode::Importance;
         const double eta = b.eta(480);
         int nonzero = 0;
@@ -210,9 +210,9 @@ TEST(BsdfReciprocity, TransmissionObeysGeneralisedReciprocity) {
             Vec3 wi = warp::square_to_uniform_sphere({rng.next_double(), rng.next_double()});
             if (wo.z * wi.z > 0) wi.z = -wi.z;
             const double eta_it = wo.z > 0 ? eta : 1 / eta;
-            const double f = b.eval(rad, wo, wi), g = b.eval(rad, wi, wo);
+            const double f = b.eval(rad, wo, wi)[0], g = b.eval(rad, wi, wo)[0];
             ASSERT_NEAR(g, sqr(eta_it) * f, 1e-10 * std::max(g, 1e-300));
-            ASSERT_NEAR(b.eval(imp, wo, wi), g, 1e-10 * std::max(g, 1e-300));
+            ASSERT_NEAR(b.eval(imp, wo, wi)[0], g, 1e-10 * std::max(g, 1e-300));
             nonzero += f > 0;
         }
         EXPECT_GT(nonzero, 200);  // the test saw actual transmission (about 20% of pairs)

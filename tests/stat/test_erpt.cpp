@@ -106,18 +106,18 @@ TEST(Erpt, RecordedSeedReplaysThroughEvaluate) {
         const Vec2 jitter = sampler.next_2d();
         const Vec2 raster(px + jitter.x, py + jitter.y);
         const double u_lambda = sampler.next_1d();
-        const double lambda = sample_visible_wavelength(u_lambda);
+        const SampledWavelengths wl = SampledWavelengths::sample_visible(u_lambda);
         std::vector<double> state = {raster.x / w, raster.y / h, u_lambda};
         RecordingSampler rec(sampler, state);
-        const double L = inner->li(camera.generate_ray(raster), *ls.scene, rec, lambda);
+        const SampledSpectrum L = inner->li(camera.generate_ray(raster), *ls.scene, rec, wl);
         PrimarySampleSampler replay(1, 2, 0.0);
         replay.set_state(state);
         const PathSample p = evaluate(*ls.scene, camera, *inner, ls.film, replay);
         ASSERT_EQ(p.x, px);
         ASSERT_EQ(p.y, py);
-        if (!(L > 0)) continue;
+        if (L.is_zero()) continue;
         ++lit;
-        const double y = radiance_to_xyz(L, lambda, visible_wavelength_pdf(lambda)).y;
+        const double y = wl.to_xyz(L).y;
         matched += std::abs(p.target() - y) <= 1e-9 * y;
     }
     EXPECT_GT(lit, 1000);

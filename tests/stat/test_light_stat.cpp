@@ -74,17 +74,17 @@ TEST(LightStat, AreaLightIrradianceMatchesDiskClosedForm) {
     PCG32 rng(21, 22);
     const int n = 200000;
     const MeanSE sa = estimate(n, [&](int) {
-        auto ls = light.sample_li(ref, next2(rng), 550);
-        return ls ? ls->Le * std::max(0.0, dot(ref.n, ls->wi)) / ls->pdf : 0.0;
+        auto ls = light.sample_li(ref, next2(rng), SampledWavelengths::single(550));
+        return ls ? ls->Le[0] * std::max(0.0, dot(ref.n, ls->wi)) / ls->pdf : 0.0;
     });
     EXPECT_LT(std::abs(sa.mean - E), kSigmas * sa.se) << sa.mean << " vs " << E << " se " << sa.se;
     EXPECT_LT(sa.se, 0.01 * E);  // the test has power
     // The same estimate through the area density: Le cos cos' / (d^2 pdf_area).
     const MeanSE ar = estimate(n, [&](int) {
-        auto ls = light.sample_li(ref, next2(rng), 550);
+        auto ls = light.sample_li(ref, next2(rng), SampledWavelengths::single(550));
         if (!ls) return 0.0;
         const double cos_l = std::abs(dot(ls->n, ls->wi));
-        return ls->Le * std::max(0.0, dot(ref.n, ls->wi)) * cos_l / (sqr(ls->dist) * ls->pdf_area);
+        return ls->Le[0] * std::max(0.0, dot(ref.n, ls->wi)) * cos_l / (sqr(ls->dist) * ls->pdf_area);
     });
     EXPECT_LT(std::abs(ar.mean - E), kSigmas * ar.se) << ar.mean << " vs " << E;
 }
@@ -101,18 +101,18 @@ TEST(LightStat, SphereLightIrradianceMatchesClosedForm) {
     PCG32 rng(31, 32);
     const int n = 200000;
     const MeanSE sa = estimate(n, [&](int) {
-        auto ls = light.sample_li(ref, next2(rng), 600);
+        auto ls = light.sample_li(ref, next2(rng), SampledWavelengths::single(600));
         if (!ls) return 0.0;
         EXPECT_LT(std::abs(ls->pdf - light.pdf_li(ref, ls->p, ls->n, ls->wi)), 1e-12 * ls->pdf);
-        return ls->Le * std::max(0.0, dot(ref.n, ls->wi)) / ls->pdf;
+        return ls->Le[0] * std::max(0.0, dot(ref.n, ls->wi)) / ls->pdf;
     });
     EXPECT_LT(std::abs(sa.mean - E), kSigmas * sa.se) << sa.mean << " vs " << E << " se " << sa.se;
     EXPECT_LT(sa.se, 0.01 * E);
     const MeanSE ar = estimate(n, [&](int) {
-        auto ls = light.sample_li(ref, next2(rng), 600);
+        auto ls = light.sample_li(ref, next2(rng), SampledWavelengths::single(600));
         if (!ls) return 0.0;
         const double cos_l = std::abs(dot(ls->n, ls->wi));
-        return ls->Le * std::max(0.0, dot(ref.n, ls->wi)) * cos_l / (sqr(ls->dist) * ls->pdf_area);
+        return ls->Le[0] * std::max(0.0, dot(ref.n, ls->wi)) * cos_l / (sqr(ls->dist) * ls->pdf_area);
     });
     EXPECT_LT(std::abs(ar.mean - E), kSigmas * ar.se) << ar.mean << " vs " << E;
 }
@@ -130,15 +130,15 @@ TEST(LightStat, EnvmapIrradianceMatchesQuadrature) {
             const double ph = (j + 0.5) / np * 2 * kPi;
             const Vec3 w(std::sin(t) * std::cos(ph), std::sin(t) * std::sin(ph), std::cos(t));
             const double c = dot(nrm, w);
-            if (c > 0) Eq += env.le_escaped(w, lambda) * c * std::sin(t);
+            if (c > 0) Eq += env.le_escaped(w, SampledWavelengths::single(lambda))[0] * c * std::sin(t);
         }
     }
     Eq *= (kPi / nt) * (2 * kPi / np);
     PCG32 rng(23, 24);
     const LightSampleContext ref{Vec3(), nrm};
     const MeanSE e = estimate(400000, [&](int) {
-        auto ls = env.sample_li(ref, next2(rng), lambda);
-        return ls ? ls->Le * std::max(0.0, dot(nrm, ls->wi)) / ls->pdf : 0.0;
+        auto ls = env.sample_li(ref, next2(rng), SampledWavelengths::single(lambda));
+        return ls ? ls->Le[0] * std::max(0.0, dot(nrm, ls->wi)) / ls->pdf : 0.0;
     });
     // Quadrature of a continuous, piecewise-bilinear integrand on this grid is accurate to
     // well below 0.1%; allow that on top of the Monte Carlo error.
@@ -183,7 +183,7 @@ TEST(LightStat, EnvmapSampleLiUsesSampleDirection) {
         const Vec2 u = next2(rng);
         double pdf;
         const Vec3 w = env.sample_direction(u, &pdf);
-        auto ls = env.sample_li({Vec3(1, 1, 1), Vec3()}, u, 500);
+        auto ls = env.sample_li({Vec3(1, 1, 1), Vec3()}, u, SampledWavelengths::single(500));
         if (!ls) continue;
         EXPECT_EQ(ls->wi, w);
         EXPECT_EQ(ls->pdf, pdf);

@@ -53,7 +53,7 @@ struct Mean {
     double stderr_() const { return std::sqrt(std::max(0.0, sq / double(n) - sqr(mean())) / double(n)); }
 };
 
-const BSDFContext kCtx{550, TransportMode::Radiance};
+const BSDFContext kCtx{SampledWavelengths::single(550), TransportMode::Radiance};
 
 // MNEE's value at receivers under the droplet for light `a` (a single sample: the light has no
 // area, so MNEE is deterministic there) against the mean of MNEE samples for the area light
@@ -71,12 +71,12 @@ void expect_light_limit(const LoadedScene& a, const LoadedScene& b, std::initial
             smp.start_pixel_sample(which, 0, 0);
             for (int n = 0; n < (which ? 4000 : 1); ++n) {
                 double v = 0;
-                if (auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), 550)) {
+                if (auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), SampledWavelengths::single(550))) {
                     const LightPoint lp = light_point(scene, light, *s, xb.p);
                     std::vector<ManifoldVertex> chain;
                     if (trace_seed_path(scene, xb, lp.p, 550, st, &chain) == SeedStatus::Refractive) {
                         const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, 1.0, lp, chain, smp);
-                        if (c.outcome == MneeOutcome::Success) v = c.value;
+                        if (c.outcome == MneeOutcome::Success) v = c.value[0];
                     }
                 }
                 if (which) vb.add(v); else va = v;
@@ -103,11 +103,11 @@ TEST(MneeEstimator, MatchesBsdfSamplingOfTheSamePaths) {
         Mean mnee, bsdf;
         for (int n = 0; n < 40000; ++n) {
             double v = 0;
-            if (auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), 550)) {
+            if (auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), SampledWavelengths::single(550))) {
                 std::vector<ManifoldVertex> chain;
                 if (trace_seed_path(scene, xb, s->p, 550, st, &chain) == SeedStatus::Refractive) {
                     const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, 1.0, light_point(scene, light, *s, xb.p), chain, smp);
-                    if (c.outcome == MneeOutcome::Success) v = c.value;
+                    if (c.outcome == MneeOutcome::Success) v = c.value[0];
                 }
             }
             mnee.add(v);
@@ -117,7 +117,7 @@ TEST(MneeEstimator, MatchesBsdfSamplingOfTheSamePaths) {
             double v = 0;
             auto bs = xb.bsdf()->sample(kCtx, xb.to_local(xb.wo), smp.next_1d(), smp.next_2d());
             if (bs) {
-                double beta = bs->weight;
+                double beta = bs->weight[0];
                 Ray ray = scene.spawn_ray(xb, xb.to_world(bs->wi));
                 std::vector<SurfaceInteraction> chain;
                 SurfaceInteraction h;
@@ -126,13 +126,13 @@ TEST(MneeEstimator, MatchesBsdfSamplingOfTheSamePaths) {
                         const double pdf = chain.empty() ? 0.0
                                                          : mnee_pdf(scene, st, xb, *xb.bsdf(), chain.data(), int(chain.size()),
                                                                     light, 1.0, h.p, h.n, 550);
-                        if (pdf > 0) v = beta * h.emitter()->le(h.p, h.n, -ray.d, 550);
+                        if (pdf > 0) v = beta * h.emitter()->le(h.p, h.n, -ray.d, kCtx.wl)[0];
                         break;
                     }
                     auto b2 = h.bsdf()->sample(kCtx, h.to_local(h.wo), smp.next_1d(), smp.next_2d());
                     if (!b2 || !(b2->lobe & kTransmission)) break;
                     chain.push_back(h);
-                    beta *= b2->weight;
+                    beta *= b2->weight[0];
                     ray = scene.spawn_ray(h, h.to_world(b2->wi));
                 }
             }
@@ -158,7 +158,7 @@ TEST(MneeMis, WeightsOfAllTechniquesSumToOne) {
     smp.start_pixel_sample(0, 0, 0);
     int checked = 0;
     for (int n = 0; n < 400 && checked < 50; ++n) {
-        auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), 550);
+        auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), SampledWavelengths::single(550));
         if (!s) continue;
         std::vector<ManifoldVertex> chain;
         if (trace_seed_path(scene, xb, s->p, 550, st, &chain) != SeedStatus::Refractive) continue;

@@ -143,7 +143,7 @@ TEST(Pssmlt, MneeSamplerRunsAndUnknownSamplerIsRejected) {
     LoadedScene ls = load_xml(xml, {{"integrator", "pssmlt"}, {"res", "16"}});
     const auto& integ = dynamic_cast<const PssmltIntegrator&>(*ls.scene->integrator());
     EXPECT_EQ(integ.settings().sampler, "mnee");
-    EXPECT_THROW(integ.li(Ray(), *ls.scene, *IndependentSampler(0).clone(), 550.0), std::logic_error);
+    EXPECT_THROW(integ.li(Ray(), *ls.scene, *IndependentSampler(0).clone(), SampledWavelengths::single(550)), std::logic_error);
     PssmltSettings s = integ.settings();
     s.mutations_per_pixel = 16;
     s.bootstrap_samples = 4096;

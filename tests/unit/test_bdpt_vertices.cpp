@@ -46,7 +46,7 @@ TEST(BdptVertices, WalkDensitiesMatchPdfArea) {
     for (uint64_t i = 0; i < 4000; ++i) {
         sampler.start_pixel_sample(3, 5, i);
         std::vector<Vertex> path;
-        light_subpath(scene, disk, sampler, 550.0, 8, 100, path);
+        light_subpath(scene, disk, sampler, SampledWavelengths::single(550), 8, 100, path);
         for (size_t k = 1; k + 2 < path.size(); ++k) {
             const Vertex& v = path[k];
             if (v.delta || path[k + 1].delta) continue;  // a delta lobe records 0
@@ -55,8 +55,8 @@ TEST(BdptVertices, WalkDensitiesMatchPdfArea) {
             const double gap = std::min({length(path[k].si.p - path[k - 1].si.p), length(path[k + 1].si.p - v.si.p),
                                          length(path[k + 2].si.p - path[k + 1].si.p)});
             if (gap < 0.05) continue;
-            const double rev = pdf_area(path[k + 1], &path[k + 2], v, opposite(TransportMode::Importance), 550.0, disk);
-            const double fwd = pdf_area(path[k], &path[k - 1], path[k + 1], TransportMode::Importance, 550.0, disk);
+            const double rev = pdf_area(path[k + 1], &path[k + 2], v, opposite(TransportMode::Importance), SampledWavelengths::single(550), disk);
+            const double fwd = pdf_area(path[k], &path[k - 1], path[k + 1], TransportMode::Importance, SampledWavelengths::single(550), disk);
             off += rel_diff(v.pdf_rev, rev) > 1e-2;
             off += rel_diff(path[k + 1].pdf_fwd, fwd) > 1e-2;
             checked += 2;
@@ -82,7 +82,7 @@ TEST(BdptVertices, ConnectionCarriesTheAdjointShadingCorrection) {
         v.si.shading = Frame::from_normal(v.si.n);
         v.si.wo = normalize(wo);
         v.bsdf = &white;
-        v.beta = 1;
+        v.beta = SampledSpectrum(1.0);
         return v;
     };
     // z on the floor of the box, y in mid-air facing down with its shading normal tilted; the
@@ -92,7 +92,7 @@ TEST(BdptVertices, ConnectionCarriesTheAdjointShadingCorrection) {
     const Vec3 ns_tilted(std::sin(0.6), -std::cos(0.6), 0);
     std::vector<Vertex> cam{Vertex{}, surface(pz, up, up, Vec3(0, 1, 1))};
     std::vector<Vertex> lig{Vertex{}, surface(py, down, ns_tilted, Vec3(0.3, -1, 0.2))};
-    const double c = connect(scene, cam, lig, 2, 2, 550.0);
+    const double c = connect(scene, cam, lig, 2, 2, SampledWavelengths::single(550))[0];
 
     const Vec3 d = normalize(py - pz);  // from z towards y
     const double d2 = length_squared(py - pz);

@@ -63,7 +63,7 @@ TEST(AreaLight, SamplePdfMatchesPdfLiAndAreaDensity) {
     int n_ok = 0;
     for (int i = 0; i < 1000; ++i) {
         const double lambda = 400 + 300 * rng.next_double();
-        auto ls = light.sample_li(ref, next2(rng), lambda);
+        auto ls = light.sample_li(ref, next2(rng), SampledWavelengths::single(lambda));
         ASSERT_TRUE(ls);
         ++n_ok;
         EXPECT_NEAR(length(ls->wi), 1.0, 1e-12);
@@ -71,7 +71,7 @@ TEST(AreaLight, SamplePdfMatchesPdfLiAndAreaDensity) {
         EXPECT_LT(rel_diff(ls->pdf, light.pdf_li(ref, ls->p, ls->n, ls->wi)), 1e-12);
         // Area density of the disk's uniform sampling is 1 / area.
         EXPECT_LT(rel_diff(ls->pdf_area, 1.0 / disk->area()), 1e-10);
-        EXPECT_DOUBLE_EQ(ls->Le, L.eval(lambda));
+        EXPECT_DOUBLE_EQ(ls->Le[0], L.eval(lambda));
         EXPECT_FALSE(ls->delta);
     }
     EXPECT_EQ(n_ok, 1000);
@@ -80,13 +80,13 @@ TEST(AreaLight, SamplePdfMatchesPdfLiAndAreaDensity) {
 TEST(AreaLight, OneSidedEmission) {
     auto disk = std::make_shared<test::TestDisk>(Vec3(0, 0, 0), Vec3(0, 0, 1), 1.0);
     AreaLight light(Spectrum::constant(2.0), disk);
-    EXPECT_EQ(light.le(Vec3(0, 0, 0), Vec3(0, 0, 1), normalize(Vec3(0.3, 0, 1)), 550), 2.0);
-    EXPECT_EQ(light.le(Vec3(0, 0, 0), Vec3(0, 0, 1), normalize(Vec3(0.3, 0, -1)), 550), 0.0);
+    EXPECT_EQ(light.le(Vec3(0, 0, 0), Vec3(0, 0, 1), normalize(Vec3(0.3, 0, 1)), SampledWavelengths::single(550))[0], 2.0);
+    EXPECT_EQ(light.le(Vec3(0, 0, 0), Vec3(0, 0, 1), normalize(Vec3(0.3, 0, -1)), SampledWavelengths::single(550))[0], 0.0);
     // A reference point behind the disk sees no emission: nothing to sample.
     PCG32 rng(3, 4);
-    for (int i = 0; i < 100; ++i) EXPECT_FALSE(light.sample_li({Vec3(0, 0, -1), Vec3()}, next2(rng), 550));
+    for (int i = 0; i < 100; ++i) EXPECT_FALSE(light.sample_li({Vec3(0, 0, -1), Vec3()}, next2(rng), SampledWavelengths::single(550)));
     // ...while one in front always gets a sample.
-    for (int i = 0; i < 100; ++i) EXPECT_TRUE(light.sample_li({Vec3(0, 0, 1), Vec3()}, next2(rng), 550));
+    for (int i = 0; i < 100; ++i) EXPECT_TRUE(light.sample_li({Vec3(0, 0, 1), Vec3()}, next2(rng), SampledWavelengths::single(550)));
 }
 
 TEST(AreaLight, PowerAndFactoryRegistration) {
@@ -107,12 +107,12 @@ TEST(AreaLight, PowerAndFactoryRegistration) {
 
 TEST(PointLight, InverseSquareAndDelta) {
     PointLight light(Spectrum::constant(8.0), Vec3(1, 2, 3));
-    auto ls = light.sample_li({Vec3(1, 2, 1), Vec3()}, Vec2(0.3, 0.9), 500);
+    auto ls = light.sample_li({Vec3(1, 2, 1), Vec3()}, Vec2(0.3, 0.9), SampledWavelengths::single(500));
     ASSERT_TRUE(ls);
     EXPECT_TRUE(ls->delta);
     EXPECT_EQ(ls->pdf, 1.0);
     EXPECT_NEAR(ls->dist, 2.0, 1e-15);
-    EXPECT_NEAR(ls->Le, 8.0 / 4.0, 1e-15);
+    EXPECT_NEAR(ls->Le[0], 8.0 / 4.0, 1e-15);
     EXPECT_NEAR(ls->wi.z, 1.0, 1e-15);
     EXPECT_EQ(light.pdf_li({}, Vec3(), Vec3(), Vec3(0, 0, 1)), 0.0);
     EXPECT_NEAR(light.power(), 4 * kPi * 8.0, 1e-12);
@@ -156,14 +156,14 @@ TEST(SpotLight, MitsubaLinearFalloff) {
 
     // sample_li: Le = I * falloff / d^2 towards a point 25 degrees off axis at distance 2.
     const Vec3 ref = Vec3(0, 4, 0) + dir_at(25) * 2.0;
-    auto ls = light.sample_li({ref, Vec3()}, Vec2(), 600);
+    auto ls = light.sample_li({ref, Vec3()}, Vec2(), SampledWavelengths::single(600));
     ASSERT_TRUE(ls);
-    EXPECT_NEAR(ls->Le, 10.0 * 0.5 / 4.0, 1e-8);
+    EXPECT_NEAR(ls->Le[0], 10.0 * 0.5 / 4.0, 1e-8);
     EXPECT_TRUE(ls->delta);
     // Outside the cone: the light point is still returned (MNEE needs it) but carries no light.
-    const auto outside = light.sample_li({Vec3(0, 4, 0) + dir_at(40) * 2.0, Vec3()}, Vec2(), 600);
+    const auto outside = light.sample_li({Vec3(0, 4, 0) + dir_at(40) * 2.0, Vec3()}, Vec2(), SampledWavelengths::single(600));
     ASSERT_TRUE(outside);
-    EXPECT_EQ(outside->Le, 0.0);
+    EXPECT_EQ(outside->Le[0], 0.0);
 
     // power: I times the solid-angle integral of the profile (midpoint rule in theta).
     double integral = 0;
@@ -203,12 +203,12 @@ TEST(DirectionalLight, DeltaDirectionAndFarPoint) {
     b.expand(Vec3(-1, -1, -1));
     b.expand(Vec3(1, 1, 1));
     light->preprocess(b);
-    auto ls = light->sample_li({Vec3(0.5, 0, 0), Vec3()}, Vec2(0.1, 0.2), 550);
+    auto ls = light->sample_li({Vec3(0.5, 0, 0), Vec3()}, Vec2(0.1, 0.2), SampledWavelengths::single(550));
     ASSERT_TRUE(ls);
     EXPECT_EQ(ls->wi, Vec3(0, 1, 0));
     // A <float> irradiance is grey: 5 times the renderer's white illuminant.
     const Spectrum white5 = Spectrum::from_rgb_illuminant(RGB(5.0));
-    EXPECT_NEAR(ls->Le, white5.eval(550), 1e-12);
+    EXPECT_NEAR(ls->Le[0], white5.eval(550), 1e-12);
     EXPECT_TRUE(ls->delta);
     EXPECT_EQ(ls->dist, kInfinity);
     EXPECT_GT(ls->p.y, std::sqrt(3.0));  // outside the scene's bounding sphere
@@ -231,12 +231,12 @@ TEST(ConstantLight, UniformSphere) {
     PCG32 rng(5, 6);
     const LightSampleContext ref{Vec3(0.1, 0.2, 0.3), Vec3()};
     for (int i = 0; i < 200; ++i) {
-        auto ls = light->sample_li(ref, next2(rng), 470);
+        auto ls = light->sample_li(ref, next2(rng), SampledWavelengths::single(470));
         ASSERT_TRUE(ls);
         EXPECT_DOUBLE_EQ(ls->pdf, 1 / (4 * kPi));
         EXPECT_DOUBLE_EQ(ls->pdf, light->pdf_li(ref, ls->p, ls->n, ls->wi));
-        EXPECT_DOUBLE_EQ(ls->Le, L.eval(470));
-        EXPECT_DOUBLE_EQ(light->le_escaped(ls->wi, 470), L.eval(470));
+        EXPECT_DOUBLE_EQ(ls->Le[0], L.eval(470));
+        EXPECT_DOUBLE_EQ(light->le_escaped(ls->wi, SampledWavelengths::single(470))[0], L.eval(470));
         EXPECT_EQ(ls->dist, kInfinity);
         EXPECT_NEAR(length(ls->wi), 1.0, 1e-12);
     }
@@ -299,7 +299,7 @@ TEST(EnvironmentMap, TexelCentresAndBilinearLookup) {
     // The hot texel (3, 2) seen along its own direction, with scale 2.
     const Vec3 d = EnvironmentMap::uv_to_direction(Vec2(3.5 / W, 2.0 / (H - 1)));
     const double expect = 2.0 * RGBIlluminantTable::get().eval(RGB(40, 30, img.at(3, 2, 2)), 600);
-    EXPECT_NEAR(env.le_escaped(d, 600), expect, 1e-9 * expect);
+    EXPECT_NEAR(env.le_escaped(d, SampledWavelengths::single(600))[0], expect, 1e-9 * expect);
 }
 
 TEST(EnvironmentMap, SamplePdfMatchesPdfLi) {
@@ -309,11 +309,11 @@ TEST(EnvironmentMap, SamplePdfMatchesPdfLi) {
     int n_ok = 0;
     for (int i = 0; i < 5000; ++i) {
         const double lambda = 380 + 440 * rng.next_double();
-        auto ls = env.sample_li(ref, next2(rng), lambda);
+        auto ls = env.sample_li(ref, next2(rng), SampledWavelengths::single(lambda));
         if (!ls) continue;
         ++n_ok;
         EXPECT_LT(rel_diff(ls->pdf, env.pdf_li(ref, ls->p, ls->n, ls->wi)), 1e-6);
-        EXPECT_LT(rel_diff(ls->Le, env.le_escaped(ls->wi, lambda)), 1e-6);
+        EXPECT_LT(rel_diff(ls->Le[0], env.le_escaped(ls->wi, SampledWavelengths::single(lambda))[0]), 1e-6);
         EXPECT_NEAR(length(ls->wi), 1.0, 1e-12);
         EXPECT_EQ(ls->dist, kInfinity);
     }
@@ -359,7 +359,8 @@ TEST(EnvironmentMap, ConstantExrBehavesLikeConstant) {
     for (int i = 0; i < 200; ++i) {
         const Vec3 d = warp::square_to_uniform_sphere(next2(rng));
         const double lambda = 360 + 470 * rng.next_double();
-        const double a = env->le_escaped(d, lambda), b = ref_light.le_escaped(d, lambda);
+        const SampledWavelengths wl = SampledWavelengths::single(lambda);
+        const double a = env->le_escaped(d, wl)[0], b = ref_light.le_escaped(d, wl)[0];
         EXPECT_NEAR(a, b, 1e-12 * b);
     }
     EXPECT_NEAR(env->power(), ref_light.power(), 1e-3 * ref_light.power());

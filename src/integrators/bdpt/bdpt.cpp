@@ -51,22 +51,22 @@ void BdptIntegrator::prepare(const Scene& /*scene*/, const FilmSpec& film, const
     m_layers = options.debug_layers;
 }
 
-double BdptIntegrator::li(const Ray&, const Scene&, Sampler&, double) const {
+SampledSpectrum BdptIntegrator::li(const Ray&, const Scene&, Sampler&, const SampledWavelengths&) const {
     throw std::logic_error("bdpt splats its light-tracing strategy onto the film: render it with render()");
 }
 
-double BdptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
-                                SplatList& splats) const {
+SampledSpectrum BdptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+                                         SplatList& splats) const {
     thread_counters().paths++;
-    const double lambda = cs.lambda;
+    const SampledWavelengths& wl = cs.wl;
     const int md = m_settings.max_depth;
     const PerspectiveCamera& camera = *scene.camera();
     const Pinhole pinhole(camera, m_prepared ? m_window : camera.film());
     // Debug layers: each strategy's weighted contribution, at the pixel it reaches.
-    const auto record = [&](int s, int t, double c, const Vec2& raster) {
+    const auto record = [&](int s, int t, const SampledSpectrum& c, const Vec2& raster) {
         if (!m_layers) return;
         const int layer = layer_of(s, t);
-        if (layer > 0 && c > 0) splats.push_back({raster, radiance_to_xyz(c, lambda, cs.pdf_lambda), layer});
+        if (layer > 0 && c.is_positive()) splats.push_back({raster, wl.to_xyz(c), layer});
     };
 
     thread_local std::vector<Vertex> cam, lig;
@@ -74,7 +74,7 @@ double BdptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Sc
     Vertex z0;
     z0.type = VertexType::Camera;
     z0.si.p = ray.o;
-    z0.beta = 1;
+    z0.beta = SampledSpectrum(1.0);
     z0.pinhole = &pinhole;
     cam.push_back(z0);
     Escape esc;
@@ -82,29 +82,29 @@ double BdptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Sc
     const size_t cam_max = md < 0 ? size_t(kUnboundedVertices) : size_t(md + 1);
     const size_t light_max = md < 0 ? size_t(kUnboundedVertices) : size_t(md);
     const double pdf_primary = pinhole.pdf_dir(dot(ray.d, camera.forward()));
-    random_walk(scene, ray, sampler, lambda, 1.0, pdf_primary, cam_max, m_settings.rr_depth, TransportMode::Radiance,
+    random_walk(scene, ray, sampler, wl, SampledSpectrum(1.0), pdf_primary, cam_max, m_settings.rr_depth, TransportMode::Radiance,
                 cam, &esc);
     const SceneDisk disk(scene.bounds());
-    light_subpath(scene, disk, sampler, lambda, light_max, m_settings.rr_depth, lig);
+    light_subpath(scene, disk, sampler, wl, light_max, m_settings.rr_depth, lig);
 
-    double L = 0;
+    SampledSpectrum L;
     const int nc = int(cam.size()), nl = int(lig.size());
     for (int t = 2; t <= nc; ++t) {
         const Vertex& z = cam[size_t(t - 1)];
         // s = 0: the camera subpath ends on an area light.
         if (z.light && !(m_settings.hide_emitters && t == 2)) {
-            const double le = z.light->le(z.si.p, z.si.n, z.si.wo, lambda);
-            if (le > 0) {
-                const double c = z.beta * le * mis_weight(scene, disk, cam, lig, 0, t, lambda);
+            const SampledSpectrum le = z.light->le(z.si.p, z.si.n, z.si.wo, wl);
+            if (le.is_positive()) {
+                const SampledSpectrum c = z.beta * le * mis_weight(scene, disk, cam, lig, 0, t, wl);
                 L += c;
                 record(0, t, c, cs.raster);
             }
         }
         for (int s = 1; s <= nl; ++s) {
             if (md >= 0 && s + t - 1 > md) break;
-            double c = connect(scene, cam, lig, s, t, lambda);
-            if (c > 0) {
-                c *= mis_weight(scene, disk, cam, lig, s, t, lambda);
+            SampledSpectrum c = connect(scene, cam, lig, s, t, wl);
+            if (c.is_positive()) {
+                c *= mis_weight(scene, disk, cam, lig, s, t, wl);
                 L += c;
                 record(s, t, c, cs.raster);
             }
@@ -114,10 +114,10 @@ double BdptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Sc
     for (int s = 2; s <= nl; ++s) {
         if (md >= 0 && s > md) break;
         Vec2 raster;
-        double c = connect_camera(scene, cam[0], lig[size_t(s - 1)], lambda, &raster);
-        if (!(c > 0)) continue;
-        c *= mis_weight(scene, disk, cam, lig, s, 1, lambda);
-        if (c > 0 && cs.pdf_lambda > 0) splats.push_back({raster, radiance_to_xyz(c, lambda, cs.pdf_lambda), 0});
+        SampledSpectrum c = connect_camera(scene, cam[0], lig[size_t(s - 1)], wl, &raster);
+        if (c.is_zero()) continue;
+        c *= mis_weight(scene, disk, cam, lig, s, 1, wl);
+        if (c.is_positive()) splats.push_back({raster, wl.to_xyz(c), 0});
         record(s, 1, c, raster);
     }
     // s = 0 at infinity: the camera subpath escaped; its end is a vertex at infinity on each
@@ -130,11 +130,11 @@ double BdptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Sc
         end.beta = esc.beta;
         end.pdf_fwd = esc.pdf_dir;
         for (const Light* light : scene.infinite_lights()) {
-            const double le = light->le_escaped(esc.d, lambda);
-            if (!(le > 0)) continue;
+            const SampledSpectrum le = light->le_escaped(esc.d, wl);
+            if (le.is_zero()) continue;
             end.light = light;
             cam.push_back(end);
-            const double c = esc.beta * le * mis_weight(scene, disk, cam, lig, 0, nc + 1, lambda);
+            const SampledSpectrum c = esc.beta * le * mis_weight(scene, disk, cam, lig, 0, nc + 1, wl);
             cam.pop_back();
             L += c;
             record(0, nc + 1, c, cs.raster);

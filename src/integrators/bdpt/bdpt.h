@@ -23,8 +23,8 @@ class BdptIntegrator : public Integrator {
 public:
     explicit BdptIntegrator(const PathSettings& settings) : m_settings(settings) {}
     /// Throws: light tracing needs the film, so bdpt renders only through li_splat().
-    double li(const Ray& ray, const Scene& scene, Sampler& sampler, double lambda) const override;
-    double li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+    SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl) const override;
+    SampledSpectrum li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
                     SplatList& splats) const override;
     bool splats() const override { return true; }
     std::vector<std::string> layer_names() const override;

@@ -10,72 +10,80 @@ namespace {
 
 // Light-subpath vertex y scattering towards unit direction d: the adjoint BSDF times the
 // shading cosine, with the shading-normal correction of Importance transport.
-double adjoint_f(const Vertex& y, const Vec3& d, double lambda) {
-    return y.bsdf->eval({lambda, TransportMode::Importance}, y.si.to_local(y.si.wo), y.si.to_local(d)) *
-           std::abs(dot(y.si.n, d)) * shading_correction(y.si, y.si.wo, d);
+SampledSpectrum adjoint_f(const Vertex& y, const Vec3& d, const SampledWavelengths& wl) {
+    return y.bsdf->eval({wl, TransportMode::Importance}, y.si.to_local(y.si.wo), y.si.to_local(d)) *
+           (std::abs(dot(y.si.n, d)) * shading_correction(y.si, y.si.wo, d));
 }
 
 // Beer-Lambert transmittance of a connection edge of length `dist` leaving vertex v along d:
 // the edge lies in v's medium, or the one behind v's interface when it refracts there.
-double edge_transmittance(const Vertex& v, const Vec3& d, double dist, double lambda) {
+SampledSpectrum edge_transmittance(const Vertex& v, const Vec3& d, double dist, const SampledWavelengths& wl) {
     MediumStack media = v.media;
-    if (dot(v.si.wo, v.si.ng) * dot(d, v.si.ng) < 0 && (v.bsdf->eta(lambda) != 1.0 || v.bsdf->interior_absorption()))
+    if (dot(v.si.wo, v.si.ng) * dot(d, v.si.ng) < 0 && (v.bsdf->eta(wl.hero()) != 1.0 || v.bsdf->interior_absorption()))
         media.cross(v.bsdf->interior_absorption(), dot(v.si.wo, v.si.ng) > 0);
-    return media.transmittance(dist, lambda);
+    return media.transmittance(dist, wl);
+}
+
+// Both subpaths passed a dispersive refraction: each scaled its hero by the wavelength count,
+// which the joined path must carry once.
+SampledSpectrum joined(const SampledSpectrum& c, const Vertex& z, const Vertex& y, const SampledWavelengths& wl) {
+    return z.hero_only && y.hero_only ? c / double(wl.count()) : c;
 }
 
 }  // namespace
 
-double connect(const Scene& scene, const std::vector<Vertex>& cam, const std::vector<Vertex>& lig, int s, int t,
-               double lambda) {
+SampledSpectrum connect(const Scene& scene, const std::vector<Vertex>& cam, const std::vector<Vertex>& lig, int s, int t,
+               const SampledWavelengths& wl) {
     const Vertex& z = cam[size_t(t - 1)];
     const Vertex& y = lig[size_t(s - 1)];
-    if (!z.connectible() || !y.connectible()) return 0;
+    if (!z.connectible() || !y.connectible()) return {};
     if (y.infinite) {
         // A light at infinity: the "edge" is the direction y.dir; its geometry term is the
         // cosine at z alone. The shadow ray must escape; a camera vertex inside an absorbing
         // medium cannot see the sky without crossing the medium's boundary, which occludes it.
-        const double fz = z.bsdf->eval({lambda, TransportMode::Radiance}, z.si.to_local(z.si.wo), z.si.to_local(y.dir)) *
-                          std::abs(dot(z.si.n, y.dir));
-        const double c = z.beta * fz * y.light->emitted(Vec3(), Vec3(), -y.dir, lambda) * y.beta;
-        if (!(c > 0) || scene.occluded(scene.spawn_ray(z.si, y.dir))) return 0;
-        return c;
+        const SampledSpectrum fz =
+            z.bsdf->eval({wl, TransportMode::Radiance}, z.si.to_local(z.si.wo), z.si.to_local(y.dir)) *
+            std::abs(dot(z.si.n, y.dir));
+        const SampledSpectrum c = z.beta * fz * y.light->emitted(Vec3(), Vec3(), -y.dir, wl) * y.beta;
+        if (c.is_zero() || scene.occluded(scene.spawn_ray(z.si, y.dir))) return {};
+        return joined(c, z, y, wl);
     }
     Vec3 d = y.si.p - z.si.p;
     const double d2 = length_squared(d);
-    if (!(d2 > 0)) return 0;
+    if (!(d2 > 0)) return {};
     const double dist = std::sqrt(d2);
     d /= dist;
-    const double fz = z.bsdf->eval({lambda, TransportMode::Radiance}, z.si.to_local(z.si.wo), z.si.to_local(d)) *
-                      std::abs(dot(z.si.n, d));
-    if (!(fz > 0)) return 0;
-    double fy;
+    const SampledSpectrum fz =
+        z.bsdf->eval({wl, TransportMode::Radiance}, z.si.to_local(z.si.wo), z.si.to_local(d)) * std::abs(dot(z.si.n, d));
+    if (fz.is_zero()) return {};
+    SampledSpectrum fy;
     if (s == 1) {
-        fy = y.has_normal() ? y.light->le(y.si.p, y.si.n, -d, lambda) * std::abs(dot(y.si.n, d))
-                            : y.light->emitted(y.si.p, Vec3(), -d, lambda);
+        fy = y.has_normal() ? y.light->le(y.si.p, y.si.n, -d, wl) * std::abs(dot(y.si.n, d))
+                            : y.light->emitted(y.si.p, Vec3(), -d, wl);
     } else {
-        fy = adjoint_f(y, -d, lambda);
+        fy = adjoint_f(y, -d, wl);
     }
-    double c = z.beta * fz * fy * y.beta / d2;
-    if (!(c > 0)) return 0;
-    c *= edge_transmittance(z, d, dist, lambda);
-    if (scene.occluded(scene.spawn_ray_to(z.si, y.si.p))) return 0;
-    return c;
+    SampledSpectrum c = z.beta * fz * fy * y.beta / d2;
+    if (c.is_zero()) return {};
+    c *= edge_transmittance(z, d, dist, wl);
+    if (scene.occluded(scene.spawn_ray_to(z.si, y.si.p))) return {};
+    return joined(c, z, y, wl);
 }
 
-double connect_camera(const Scene& scene, const Vertex& z0, const Vertex& y, double lambda, Vec2* raster) {
-    if (!y.connectible() || y.type != VertexType::Surface) return 0;
+SampledSpectrum connect_camera(const Scene& scene, const Vertex& z0, const Vertex& y, const SampledWavelengths& wl,
+                               Vec2* raster) {
+    if (!y.connectible() || y.type != VertexType::Surface) return {};
     double cos_theta = 0;
-    if (!z0.pinhole->raster(y.si.p, raster, &cos_theta)) return 0;
+    if (!z0.pinhole->raster(y.si.p, raster, &cos_theta)) return {};
     Vec3 d = z0.si.p - y.si.p;
     const double d2 = length_squared(d);
-    if (!(d2 > 0)) return 0;
+    if (!(d2 > 0)) return {};
     const double dist = std::sqrt(d2);
     d /= dist;
-    double c = y.beta * adjoint_f(y, d, lambda) * z0.pinhole->importance(cos_theta) * cos_theta / d2;
-    if (!(c > 0)) return 0;
-    c *= edge_transmittance(y, d, dist, lambda);
-    if (scene.occluded(scene.spawn_ray_to(y.si, z0.si.p))) return 0;
+    SampledSpectrum c = y.beta * adjoint_f(y, d, wl) * (z0.pinhole->importance(cos_theta) * cos_theta / d2);
+    if (c.is_zero()) return {};
+    c *= edge_transmittance(y, d, dist, wl);
+    if (scene.occluded(scene.spawn_ray_to(y.si, z0.si.p))) return {};
     return c;
 }
 

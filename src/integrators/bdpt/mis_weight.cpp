@@ -10,7 +10,7 @@ double remap0(double x) { return x != 0 ? x : 1.0; }
 }  // namespace
 
 double mis_weight(const Scene& scene, const SceneDisk& disk, const std::vector<Vertex>& cam,
-                  const std::vector<Vertex>& lig, int s, int t, double lambda) {
+                  const std::vector<Vertex>& lig, int s, int t, const SampledWavelengths& wl) {
     if (s + t == 2) return 1.0;  // (0, 2) only: light vertex to pinhole, (1, 1), is not taken
     thread_local std::vector<double> zr, zf, yr, yf;
     thread_local std::vector<char> zd, yd;
@@ -28,18 +28,18 @@ double mis_weight(const Scene& scene, const SceneDisk& disk, const std::vector<V
         Vertex as_light = z;
         as_light.type = VertexType::Light;
         zr[t - 1] = light_origin_pdf(scene, z);
-        zr[t - 2] = pdf_area(as_light, nullptr, cam[size_t(t - 2)], TransportMode::Importance, lambda, disk);
+        zr[t - 2] = pdf_area(as_light, nullptr, cam[size_t(t - 2)], TransportMode::Importance, wl, disk);
     } else {
         const Vertex& y = lig[size_t(s - 1)];
         const Vertex* zp = t >= 2 ? &cam[size_t(t - 2)] : nullptr;
         yd[s - 1] = false;
         light_delta = delta_origin(*lig[0].light);
         if (t >= 2) {
-            zr[t - 1] = pdf_area(y, s >= 2 ? &lig[size_t(s - 2)] : nullptr, z, TransportMode::Importance, lambda, disk);
-            zr[t - 2] = pdf_area(z, &y, *zp, TransportMode::Importance, lambda, disk);
+            zr[t - 1] = pdf_area(y, s >= 2 ? &lig[size_t(s - 2)] : nullptr, z, TransportMode::Importance, wl, disk);
+            zr[t - 2] = pdf_area(z, &y, *zp, TransportMode::Importance, wl, disk);
         }
-        yr[s - 1] = pdf_area(z, zp, y, TransportMode::Radiance, lambda, disk);  // t = 1: the pinhole's density
-        if (s >= 2) yr[s - 2] = pdf_area(y, &z, lig[size_t(s - 2)], TransportMode::Radiance, lambda, disk);
+        yr[s - 1] = pdf_area(z, zp, y, TransportMode::Radiance, wl, disk);  // t = 1: the pinhole's density
+        if (s >= 2) yr[s - 2] = pdf_area(y, &z, lig[size_t(s - 2)], TransportMode::Radiance, wl, disk);
     }
     double sum = 0, r = 1;
     // Camera vertices handed to the light subpath: strategies (s + t - i, i), i >= 1 (the

@@ -10,6 +10,6 @@ namespace snell::bdpt {
 // (Veach's thesis, Sec. 10.2): the ratios of each alternative's density to this one's follow
 // from per-vertex forward and reverse densities, recomputed around the connection.
 double mis_weight(const Scene& scene, const SceneDisk& disk, const std::vector<Vertex>& cam,
-                  const std::vector<Vertex>& lig, int s, int t, double lambda);
+                  const std::vector<Vertex>& lig, int s, int t, const SampledWavelengths& wl);
 
 }  // namespace snell::bdpt

@@ -12,12 +12,14 @@
 
 namespace snell::bdpt {
 
-void random_walk(const Scene& scene, Ray ray, Sampler& sampler, double lambda, double beta, double pdf_dir,
+void random_walk(const Scene& scene, Ray ray, Sampler& sampler, const SampledWavelengths& wl, SampledSpectrum beta,
+                 double pdf_dir,
                  size_t max_vertices, int rr_depth, TransportMode mode, std::vector<Vertex>& path, Escape* escape) {
-    const BSDFContext ctx{lambda, mode};
-    const BSDFContext ctx_rev{lambda, mode == TransportMode::Radiance ? TransportMode::Importance : TransportMode::Radiance};
+    const BSDFContext ctx{wl, mode};
+    const BSDFContext ctx_rev{wl, mode == TransportMode::Radiance ? TransportMode::Importance : TransportMode::Radiance};
     MediumStack media;
     double eta_scale = 1;
+    bool hero_only = !path.empty() && path.back().hero_only;
     while (path.size() < max_vertices) {
         SurfaceInteraction si;
         if (!scene.intersect(ray, &si)) {
@@ -29,15 +31,16 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, double lambda, d
         // segment it just travelled lay in that interior. (Camera subpaths start outside.)
         if (mode == TransportMode::Importance && !media.inside() && dot(ray.d, si.ng) > 0) {
             const BSDF* b = si.bsdf();
-            if (b && (b->eta(lambda) != 1.0 || b->interior_absorption())) media.cross(b->interior_absorption(), true);
+            if (b && (b->eta(wl.hero()) != 1.0 || b->interior_absorption())) media.cross(b->interior_absorption(), true);
         }
-        beta *= media.transmittance(si.t, lambda);
+        if (media.inside()) beta *= media.transmittance(si.t, wl);
         Vertex v;
         v.si = si;
         v.bsdf = si.bsdf();
         v.light = si.emitter();
         v.beta = beta;
         v.media = media;
+        v.hero_only = hero_only;
         v.pdf_fwd = to_area(pdf_dir, path.back(), v);
         path.push_back(v);
         if (path.size() >= max_vertices || !v.bsdf) break;
@@ -45,7 +48,7 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, double lambda, d
         Vertex& cur = path.back();
         const Vec3 wo = si.to_local(si.wo);
         const auto bs = cur.bsdf->sample(ctx, wo, sampler.next_1d(), sampler.next_2d());
-        if (!bs || !(bs->weight > 0)) break;
+        if (!bs || bs->weight.is_zero()) break;
         const Vec3 wi = si.to_world(bs->wi);
         double pdf_rev_dir = 0;
         if (bs->is_delta()) {
@@ -56,6 +59,11 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, double lambda, d
             pdf_rev_dir = cur.bsdf->pdf(ctx_rev, bs->wi, wo);
         }
         beta *= bs->weight;
+        // A dispersive refraction: the rest of this subpath is the hero's alone.
+        if (bs->hero_only && !hero_only) {
+            beta = wl.hero_only(beta);
+            hero_only = true;
+        }
         if (mode == TransportMode::Importance) beta *= shading_correction(si, si.wo, wi);
         path[path.size() - 2].pdf_rev = to_area(pdf_rev_dir, cur, path[path.size() - 2]);
         if ((bs->lobe & kTransmission) && (bs->eta != 1.0 || cur.bsdf->interior_absorption()))
@@ -64,14 +72,14 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, double lambda, d
         ray = scene.spawn_ray(si, wi);
         // Roulette after the same number of surface vertices as the path tracer.
         if (int(path.size()) - 1 >= rr_depth) {
-            const double q = std::min(0.95, beta * eta_scale);
+            const double q = std::min(0.95, beta.max_component() * eta_scale);
             if (!(sampler.next_1d() < q)) break;
             beta /= q;
         }
     }
 }
 
-void light_subpath(const Scene& scene, const SceneDisk& disk, Sampler& sampler, double lambda, size_t max_vertices,
+void light_subpath(const Scene& scene, const SceneDisk& disk, Sampler& sampler, const SampledWavelengths& wl, size_t max_vertices,
                    int rr_depth, std::vector<Vertex>& path) {
     path.clear();
     double pmf = 0;
@@ -82,21 +90,22 @@ void light_subpath(const Scene& scene, const SceneDisk& disk, Sampler& sampler, 
     y0.type = VertexType::Light;
     y0.light = light;
     if (light->is_infinite()) {
-        const auto ls = light->sample_li({disk.center, Vec3()}, u_dir, lambda);
-        if (!ls || !(ls->pdf > 0) || !(ls->Le > 0)) return;
+        const auto ls = light->sample_li({disk.center, Vec3()}, u_dir, wl);
+        if (!ls || !(ls->pdf > 0) || ls->Le.is_zero()) return;
         y0.infinite = true;
         y0.dir = ls->wi;
         y0.pdf_fwd = pmf * ls->pdf;
-        y0.beta = 1.0 / (pmf * ls->pdf);  // radiance (irradiance) is evaluated per connection
+        y0.beta = SampledSpectrum(1.0 / (pmf * ls->pdf));  // radiance (irradiance) is evaluated per connection
         const Frame f = Frame::from_normal(ls->wi);
         const Vec2 q = warp::square_to_uniform_disk_concentric(u_pos) * disk.radius;
         y0.si.p = disk.center + ls->wi * disk.radius + f.s * q.x + f.t * q.y;
         path.push_back(y0);
-        random_walk(scene, Ray{y0.si.p, -ls->wi}, sampler, lambda, ls->Le / (pmf * ls->pdf * disk.pdf()), disk.pdf(),
+        random_walk(scene, Ray{y0.si.p, -ls->wi}, sampler, wl, ls->Le / (pmf * ls->pdf * disk.pdf()), disk.pdf(),
                     max_vertices, rr_depth, TransportMode::Importance, path, nullptr);
         return;
     }
-    double pdf_pos = 1, pdf_dir = 0, le = 0;
+    double pdf_pos = 1, pdf_dir = 0;
+    SampledSpectrum le;
     Vec3 w;
     if (delta_position(*light)) {
         if (const auto* pl = dynamic_cast<const PointLight*>(light)) y0.si.p = pl->position();
@@ -104,7 +113,7 @@ void light_subpath(const Scene& scene, const SceneDisk& disk, Sampler& sampler, 
         else return;
         w = warp::square_to_uniform_sphere(u_dir);
         pdf_dir = kInv4Pi;
-        le = light->emitted(y0.si.p, Vec3(), w, lambda);
+        le = light->emitted(y0.si.p, Vec3(), w, wl);
     } else {
         const Shape* shape = light->shape();
         if (!shape) return;
@@ -113,18 +122,18 @@ void light_subpath(const Scene& scene, const SceneDisk& disk, Sampler& sampler, 
         y0.si.p = ss.p;
         y0.si.n = y0.si.ng = ss.n;
         y0.si.shading = Frame::from_normal(ss.n);
-        const Vec3 wl = warp::square_to_cosine_hemisphere(u_dir);
-        w = y0.si.to_world(wl);
-        pdf_dir = warp::square_to_cosine_hemisphere_pdf(wl);
-        le = light->le(ss.p, ss.n, w, lambda) * wl.z;
+        const Vec3 w_local = warp::square_to_cosine_hemisphere(u_dir);
+        w = y0.si.to_world(w_local);
+        pdf_dir = warp::square_to_cosine_hemisphere_pdf(w_local);
+        le = light->le(ss.p, ss.n, w, wl) * w_local.z;
     }
     if (!(pdf_pos > 0)) return;
     y0.pdf_fwd = pmf * pdf_pos;
-    y0.beta = 1.0 / (pmf * pdf_pos);  // emission is evaluated per connection (s = 1)
+    y0.beta = SampledSpectrum(1.0 / (pmf * pdf_pos));  // emission is evaluated per connection (s = 1)
     path.push_back(y0);
-    if (!(le > 0) || !(pdf_dir > 0)) return;
+    if (le.is_zero() || !(pdf_dir > 0)) return;
     const Ray ray = y0.has_normal() ? scene.spawn_ray(y0.si, w) : Ray{y0.si.p, w};
-    random_walk(scene, ray, sampler, lambda, le / (pmf * pdf_pos * pdf_dir), pdf_dir, max_vertices, rr_depth,
+    random_walk(scene, ray, sampler, wl, le / (pmf * pdf_pos * pdf_dir), pdf_dir, max_vertices, rr_depth,
                 TransportMode::Importance, path, nullptr);
 }
 

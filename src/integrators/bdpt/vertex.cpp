@@ -7,7 +7,7 @@
 
 namespace snell::bdpt {
 
-double pdf_area(const Vertex& v, const Vertex* prev, const Vertex& next, TransportMode mode, double lambda,
+double pdf_area(const Vertex& v, const Vertex* prev, const Vertex& next, TransportMode mode, const SampledWavelengths& wl,
                 const SceneDisk& disk) {
     const Vec3 wi = direction(v, next);
     if (v.type == VertexType::Camera) {
@@ -23,7 +23,7 @@ double pdf_area(const Vertex& v, const Vertex* prev, const Vertex& next, Transpo
     }
     if (v.type != VertexType::Surface || !v.bsdf || !prev) return 0;
     const Vec3 wo = direction(v, *prev);
-    const BSDFContext ctx{lambda, mode};
+    const BSDFContext ctx{wl, mode};
     return to_area(v.bsdf->pdf(ctx, v.si.to_local(wo), v.si.to_local(wi)), v, next);
 }
 

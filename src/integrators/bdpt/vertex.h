@@ -26,7 +26,8 @@ struct Vertex {
     SurfaceInteraction si;      // camera: p only; light: p and n (zero for point and spot)
     const BSDF* bsdf = nullptr;
     const Light* light = nullptr;  // light vertex: its light; surface vertex: the shape's emitter
-    double beta = 0;            // throughput of the subpath up to and including this vertex
+    SampledSpectrum beta;       // throughput of the subpath up to and including this vertex
+    bool hero_only = false;     // a dispersive refraction before it: beta is the hero's alone (scaled)
     double pdf_fwd = 0, pdf_rev = 0;
     bool delta = false;         // scattered by a delta lobe on its own subpath
     MediumStack media;          // medium on the side the subpath arrived from
@@ -78,7 +79,7 @@ inline double to_area(double pdf_dir, const Vertex& from, const Vertex& to) {
 
 // Area density at `next` with which a subpath continuing from `v` (reached from `prev`, which
 // for a light vertex is ignored) samples `next`; `mode` is the transport of that subpath.
-double pdf_area(const Vertex& v, const Vertex* prev, const Vertex& next, TransportMode mode, double lambda,
+double pdf_area(const Vertex& v, const Vertex* prev, const Vertex& next, TransportMode mode, const SampledWavelengths& wl,
                 const SceneDisk& disk);
 
 // Density of choosing light vertex `v` (on v.light) as the start of a light subpath: of its

@@ -1,4 +1,5 @@
 #include "integrators/erpt/erpt.h"
+#include "integrators/camera_sample.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -54,8 +55,9 @@ ErptIntegrator::ErptIntegrator(ErptSettings settings) : m_settings(std::move(set
     m_inner = make_watching_estimator(m_settings.sampler, m_settings.path, m_settings.mnee, {});
 }
 
-double ErptIntegrator::li(const Ray& ray, const Scene& scene, Sampler& sampler, double lambda) const {
-    return m_inner->li(ray, scene, sampler, lambda);
+SampledSpectrum ErptIntegrator::li(const Ray& ray, const Scene& scene, Sampler& sampler,
+                                   const SampledWavelengths& wl) const {
+    return m_inner->li(ray, scene, sampler, wl);
 }
 
 void ErptIntegrator::prepare(const Scene& scene, const FilmSpec& film, const RenderOptions& opt) const {
@@ -125,8 +127,8 @@ private:
 
 }  // namespace
 
-double ErptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
-                                SplatList& splats) const {
+SampledSpectrum ErptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+                                         SplatList& splats) const {
     const FilmSpec& film = m_film;
     const int w = film.out_width(), h = film.out_height();
     const bool restricted = !m_settings.shapes.empty();
@@ -140,13 +142,13 @@ double ErptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Sc
     state.push_back(std::clamp((cs.raster.y - film.crop_y) / h, 0.0, below_one));
     state.push_back(cs.u_lambda);
     RecordingSampler recorder(sampler, state);
-    const double L = m_inner->li(ray, scene, recorder, cs.lambda);
+    const SampledSpectrum L = m_inner->li(ray, scene, recorder, cs.wl);
     const bool touched = camera_path_touched();
 
     // Steps 2-3: its energy, and whether it is redistributed at all.
-    if (!(m_deposit > 0) || !(L > 0) || !std::isfinite(L) || !(cs.pdf_lambda > 0)) return L;
+    if (!(m_deposit > 0) || L.is_zero() || !is_valid_radiance(L)) return L;
     if (restricted && !touched) return L;
-    const Vec3 xyz = radiance_to_xyz(L, cs.lambda, cs.pdf_lambda);
+    const Vec3 xyz = cs.wl.to_xyz(L);
     const double e = xyz.y;
     if (!(e > 0) || !std::isfinite(e)) return L;
 
@@ -170,7 +172,7 @@ double ErptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Sc
         },
         [&](const PathSample& p, const Vec3& v) { deposits.add(p.x, p.y, v); });
     deposits.flush(film, splats);
-    return 0;  // the seed's energy is in its chains' deposits
+    return {};  // the seed's energy is in its chains' deposits
 }
 
 }  // namespace snell

@@ -54,8 +54,8 @@ class ErptIntegrator final : public Integrator {
 public:
     explicit ErptIntegrator(ErptSettings settings);
     /// The inner estimator alone (no camera sample, so nothing to redistribute).
-    double li(const Ray& ray, const Scene& scene, Sampler& sampler, double lambda) const override;
-    double li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+    SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl) const override;
+    SampledSpectrum li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
                     SplatList& splats) const override;
     bool splats() const override { return true; }
     void prepare(const Scene& scene, const FilmSpec& film, const RenderOptions& options) const override;

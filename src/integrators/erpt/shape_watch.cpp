@@ -23,16 +23,18 @@ public:
     explicit ShapeWatching(std::vector<const Shape*> watched, Args&&... args)
         : Base(std::forward<Args>(args)...), m_watched(std::move(watched)) {}
 
-    double li(const Ray& ray, const Scene& scene, Sampler& sampler, double lambda) const override {
+    SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler,
+                       const SampledWavelengths& wl) const override {
         t_touched = false;
-        return Base::li(ray, scene, sampler, lambda);
+        return Base::li(ray, scene, sampler, wl);
     }
 
 protected:
     // on_arrival runs at every vertex of the camera subpath and at nothing else (light
     // samples and manifold walks do not arrive), which is what "touches" means.
-    void on_arrival(PathState& state, const SurfaceInteraction& si, const Ray& ray, double lambda) const override {
-        Base::on_arrival(state, si, ray, lambda);
+    void on_arrival(PathState& state, const SurfaceInteraction& si, const Ray& ray,
+                    const BSDFContext& ctx) const override {
+        Base::on_arrival(state, si, ray, ctx);
         if (!t_touched && si.shape && std::find(m_watched.begin(), m_watched.end(), si.shape) != m_watched.end())
             t_touched = true;
     }

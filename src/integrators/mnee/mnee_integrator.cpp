@@ -46,9 +46,10 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     return s;
 }
 
-void MneeIntegrator::on_arrival(PathState& state, const SurfaceInteraction& si, const Ray& ray, double lambda) const {
+void MneeIntegrator::on_arrival(PathState& state, const SurfaceInteraction& si, const Ray& ray,
+                                const BSDFContext& ctx) const {
     RefractiveSuffix& s = state.suffix;
-    if (!s.has_xb || !is_manifold_interface(si.bsdf(), lambda)) return;
+    if (!s.has_xb || !is_manifold_interface(si.bsdf(), ctx.hero())) return;
     if (s.k >= RefractiveSuffix::kMaxVertices) {
         s.has_xb = false;
         return;
@@ -59,17 +60,17 @@ void MneeIntegrator::on_arrival(PathState& state, const SurfaceInteraction& si, 
 }
 
 void MneeIntegrator::on_scatter(PathState& state, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFSample& bs,
-                                double lambda) const {
+                                const BSDFContext& ctx) const {
     RefractiveSuffix& s = state.suffix;
     const MediumStack media_before = state.media;
-    PathTracer::on_scatter(state, si, bsdf, bs, lambda);
-    if (is_manifold_interface(&bsdf, lambda)) {
+    PathTracer::on_scatter(state, si, bsdf, bs, ctx);
+    if (is_manifold_interface(&bsdf, ctx.hero())) {
         if (!s.has_xb) return;
         const size_t i = size_t(s.k - 1);
         s.specular[i] = bs.is_delta();
         if (!(bs.lobe & kTransmission)) s.transmissions_only = false;
-        const ManifoldVertex v = ManifoldVertex::from_interaction(si, bsdf.eta(lambda));
-        s.q_last = vertex_bsdf_density(v, si.wo, bs.wi, BSDFContext{lambda, TransportMode::Radiance});
+        const ManifoldVertex v = ManifoldVertex::from_interaction(si, bsdf.eta(ctx.hero()));
+        s.q_last = vertex_bsdf_density(v, si.wo, bs.wi, ctx);
     } else if (bsdf.is_smooth_sampled() && !bs.is_delta()) {
         // A new x_b: MNEE connected from here.
         s = RefractiveSuffix();
@@ -83,16 +84,16 @@ void MneeIntegrator::on_scatter(PathState& state, const SurfaceInteraction& si, 
 }
 
 double MneeIntegrator::emitter_hit_weight(const Scene& scene, const PathState& state, const Light& light, const Vec3& p,
-                                          const Vec3& n, const Vec3& d, double lambda) const {
+                                          const Vec3& n, const Vec3& d, const BSDFContext& ctx) const {
     const RefractiveSuffix& s = state.suffix;
-    if (!s.has_xb || s.k == 0) return PathTracer::emitter_hit_weight(scene, state, light, p, n, d, lambda);
+    if (!s.has_xb || s.k == 0) return PathTracer::emitter_hit_weight(scene, state, light, p, n, d, ctx);
     // A BSDF-sampled path x_b, x_1..x_k (refractive), x_c: three techniques can produce it.
     const LightPoint lp = light_point_hit(scene, light, p, n, d, s.xb.p);
     const double pmf = scene.light_sampler().pmf(&light);
     const size_t last = size_t(s.k - 1);
     const double p_bsdf = s.p_prefix * s.q_last * std::abs(dot(lp.n, d)) / length_squared(lp.p - s.chain[last].p);
     const double p_mnee = s.transmissions_only ? mnee_pdf(scene, m_mnee, s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light,
-                                                          pmf, lp.p, lp.n, lambda)
+                                                          pmf, lp.p, lp.n, ctx.hero())
                                                : 0.0;
     const double p_nee =
         s.specular[last] ? 0.0 : s.p_prefix * pmf * light_point_pdf(scene, light, s.chain[last].p, lp.p, lp.n);
@@ -102,18 +103,19 @@ double MneeIntegrator::emitter_hit_weight(const Scene& scene, const PathState& s
     return power3(p_bsdf, p_mnee, p_nee);
 }
 
-double MneeIntegrator::connect_at_interface(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
-                                            const BSDFContext& ctx, const PathState& state, Sampler& sampler) const {
+SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const SurfaceInteraction& si,
+                                                     const BSDF& bsdf, const BSDFContext& ctx, const PathState& state,
+                                                     Sampler& sampler) const {
     const RefractiveSuffix& s = state.suffix;
     const Light* light = nullptr;
     double pmf = 0;
-    const auto ls = sample_light(scene, si, ctx.lambda, sampler, &light, &pmf);
-    if (!ls) return 0;
+    const auto ls = sample_light(scene, si, ctx.wl, sampler, &light, &pmf);
+    if (!ls) return {};
     if (!s.has_xb || s.k == 0) return nee_connect(scene, si, bsdf, ctx, state, *ls, pmf);
     const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls->wi);
-    if (!(bsdf.eval(ctx, wo, wi) > 0)) return 0;
+    if (bsdf.eval(ctx, wo, wi).is_zero()) return {};
     const Ray shadow = std::isinf(ls->dist) ? scene.spawn_ray(si, ls->wi) : scene.spawn_ray_to(si, ls->p);
-    if (scene.occluded(shadow)) return 0;
+    if (scene.occluded(shadow)) return {};
     // The path x_b, x_1..x_k = si, x_c in area measure (lights at infinity on MNEE's far sphere).
     const LightPoint lp = light_point_hit(scene, *light, ls->p, ls->n, ls->wi, s.xb.p);
     const double p_nee = s.p_prefix * pmf * light_point_pdf(scene, *light, si.p, lp.p, lp.n);
@@ -122,41 +124,43 @@ double MneeIntegrator::connect_at_interface(const Scene& scene, const SurfaceInt
     const bool refracts = dot(si.wo, si.ng) * dot(ls->wi, si.ng) < 0;
     const double p_mnee = s.transmissions_only && refracts
                               ? mnee_pdf(scene, m_mnee, s.xb, *s.xb.bsdf(), s.chain.data(), s.k, *light, pmf, lp.p,
-                                         lp.n, ctx.lambda)
+                                         lp.n, ctx.hero())
                               : 0.0;
-    if (m_mnee.biased && s.transmissions_only && refracts && !(p_mnee > 0)) return 0;
+    if (m_mnee.biased && s.transmissions_only && refracts && !(p_mnee > 0)) return {};
     return nee_estimate(si, bsdf, ctx, state, *ls, pmf, power3(p_nee, p_bsdf, p_mnee));
 }
 
-double MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
-                                        const BSDFContext& ctx, const PathState& state, Sampler& sampler) const {
-    if (is_manifold_interface(&bsdf, ctx.lambda)) return connect_at_interface(scene, si, bsdf, ctx, state, sampler);
+SampledSpectrum MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
+                                                 const BSDFContext& ctx, const PathState& state, Sampler& sampler) const {
+    if (is_manifold_interface(&bsdf, ctx.hero())) return connect_at_interface(scene, si, bsdf, ctx, state, sampler);
 
     // Alg. 1, line 1: the light point, drawn exactly as NEE draws it.
     const Light* light = nullptr;
     double pmf = 0;
-    const auto ls = sample_light(scene, si, ctx.lambda, sampler, &light, &pmf, /*keep_dark=*/true);
-    if (!ls) return 0;
+    const auto ls = sample_light(scene, si, ctx.wl, sampler, &light, &pmf, /*keep_dark=*/true);
+    if (!ls) return {};
     const LightPoint lp = light_point(scene, *light, *ls, si.p);
 
     // Line 2: the seed path (Sec. 3.1).
     std::vector<ManifoldVertex> chain;
-    switch (trace_seed_path(scene, si, lp.p, ctx.lambda, m_mnee, &chain)) {
+    switch (trace_seed_path(scene, si, lp.p, ctx.hero(), m_mnee, &chain)) {
         case SeedStatus::Clear:
             // Nothing refracts in between: MNEE is NEE (same sample, same weight).
-            if (!(bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls->wi)) > 0)) return 0;
+            if (bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls->wi)).is_zero()) return {};
             return nee_estimate(si, bsdf, ctx, state, *ls, pmf, nee_weight(si, bsdf, ctx, *ls, pmf));
-        case SeedStatus::Occluded: thread_counters().seeds_occluded++; return 0;
-        case SeedStatus::TooMany: thread_counters().seeds_too_many++; return 0;
+        case SeedStatus::Occluded: thread_counters().seeds_occluded++; return {};
+        case SeedStatus::TooMany: thread_counters().seeds_too_many++; return {};
         case SeedStatus::Refractive: break;
     }
     // The connection adds k + 1 segments to the depth + 1 the path has (max_depth, Mitsuba's
     // meaning); BSDF sampling cannot produce longer paths, so neither may MNEE.
-    if (m_settings.max_depth >= 0 && state.depth + 2 + int(chain.size()) > m_settings.max_depth) return 0;
+    if (m_settings.max_depth >= 0 && state.depth + 2 + int(chain.size()) > m_settings.max_depth) return {};
     // Lines 3-5: half vectors, walk, measurement; then MIS against the other techniques.
     const MneeConnection c = mnee_connect(scene, m_mnee, si, bsdf, ctx, state.media, *light, pmf, lp, chain, sampler);
-    if (c.outcome != MneeOutcome::Success) return 0;
-    return c.value * power3(c.pdf_mnee, c.pdf_bsdf, c.pdf_nee_last);
+    if (c.outcome != MneeOutcome::Success) return {};
+    // A dispersive chain is the hero's path alone; scale it once unless the throughput already is.
+    const SampledSpectrum value = c.hero_only && !state.hero_only ? ctx.wl.hero_only(c.value) : c.value;
+    return value * power3(c.pdf_mnee, c.pdf_bsdf, c.pdf_nee_last);
 }
 
 }  // namespace snell

@@ -31,6 +31,9 @@ struct PathState {
     double prev_bsdf_pdf = 0;       ///< solid-angle density of the last sampled direction
     LightSampleContext prev;        ///< previous vertex (for light pdfs of emitter hits)
     MediumStack media;              ///< interiors the path is in
+    /// A dispersive refraction was sampled: the throughput carries the hero wavelength alone
+    /// (already scaled by SampledWavelengths::hero_only), so no later factor may scale it again.
+    bool hero_only = false;
     RefractiveSuffix suffix;        ///< maintained only by integrators that need it (MNEE)
 };
 

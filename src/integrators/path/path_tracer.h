@@ -29,39 +29,41 @@ struct PathSettings {
 class PathTracer : public Integrator {
 public:
     PathTracer(const PathSettings& settings, bool nee) : m_settings(settings), m_nee(nee) {}
-    double li(const Ray& ray, const Scene& scene, Sampler& sampler, double lambda) const override;
+    SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl) const override;
     std::string name() const override { return m_nee ? "nee" : "path"; }
     const PathSettings& settings() const { return m_settings; }
 
 protected:
     /// Light connection from a vertex with a non-delta BSDF. Returns the contribution (to be
     /// multiplied by the path throughput). Default: NEE with MIS.
-    virtual double connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
+    virtual SampledSpectrum connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
                                     const BSDFContext& ctx, const PathState& state, Sampler& sampler) const;
     /// MIS weight of an emitter found by BSDF sampling at point p (normal n; zero for lights at
     /// infinity) along unit direction d from the previous vertex.
     virtual double emitter_hit_weight(const Scene& scene, const PathState& state, const Light& light, const Vec3& p,
-                                      const Vec3& n, const Vec3& d, double lambda) const;
+                                      const Vec3& n, const Vec3& d, const BSDFContext& ctx) const;
     /// Called when the path arrives at `si` along `ray` (before connecting or scattering).
-    virtual void on_arrival(PathState& /*state*/, const SurfaceInteraction& /*si*/, const Ray& /*ray*/, double /*lambda*/) const {}
+    virtual void on_arrival(PathState& /*state*/, const SurfaceInteraction& /*si*/, const Ray& /*ray*/,
+                            const BSDFContext& /*ctx*/) const {}
     /// Called after the BSDF at `si` sampled `bs` (directions in world space: wi is the new one).
     virtual void on_scatter(PathState& state, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFSample& bs,
-                            double lambda) const;
+                            const BSDFContext& ctx) const;
 
     /// Picks a light and samples it as NEE does (same random numbers in the same order).
     /// `keep_dark` keeps samples that emit nothing towards si (a spot light seen from outside
     /// its cone): MNEE reaches the light along another direction.
-    static std::optional<LightSample> sample_light(const Scene& scene, const SurfaceInteraction& si, double lambda,
+    static std::optional<LightSample> sample_light(const Scene& scene, const SurfaceInteraction& si,
+                                                   const SampledWavelengths& wl,
                                                    Sampler& sampler, const Light** light, double* pmf,
                                                    bool keep_dark = false);
     /// NEE for an already drawn light sample: shadow ray, power heuristic against BSDF sampling.
-    static double nee_connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
+    static SampledSpectrum nee_connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
                               const BSDFContext& ctx, const PathState& state, const LightSample& ls, double pmf);
     /// MIS weight of NEE against BSDF sampling (power heuristic, solid angle).
     static double nee_weight(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
                              const LightSample& ls, double pmf);
     /// NEE estimate for a visible light sample with MIS weight `w`: f |cos| Tr Le w / (pmf pdf).
-    static double nee_estimate(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
+    static SampledSpectrum nee_estimate(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
                                const PathState& state, const LightSample& ls, double pmf, double w);
 
     PathSettings m_settings;

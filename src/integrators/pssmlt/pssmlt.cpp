@@ -44,7 +44,7 @@ std::shared_ptr<Integrator> make_pssmlt_inner(const PssmltSettings& s) {
     return std::make_shared<PathTracer>(s.path, true);
 }
 
-double PssmltIntegrator::li(const Ray&, const Scene&, Sampler&, double) const {
+SampledSpectrum PssmltIntegrator::li(const Ray&, const Scene&, Sampler&, const SampledWavelengths&) const {
     throw std::logic_error("pssmlt renders with render_pssmlt, not per pixel sample");
 }
 

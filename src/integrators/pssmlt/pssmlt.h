@@ -52,7 +52,7 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, c
 class PssmltIntegrator final : public Integrator {
 public:
     explicit PssmltIntegrator(PssmltSettings settings) : m_settings(std::move(settings)) {}
-    double li(const Ray& ray, const Scene& scene, Sampler& sampler, double lambda) const override;
+    SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl) const override;
     std::string name() const override { return m_settings.sampler == "mnee" ? "pssmlt(mnee)" : "pssmlt(nee)"; }
     const PssmltSettings& settings() const { return m_settings; }
 

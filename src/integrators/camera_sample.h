@@ -1,0 +1,31 @@
+#pragma once
+// The one pixel-sample pipeline that every render loop shares (the tile loop, PSSMLT's and
+// ERPT's evaluations): wavelengths, camera ray, the integrator's estimate, sanitising, XYZ.
+#include "camera/camera.h"
+#include "core/stats.h"
+#include "integrators/integrator.h"
+
+namespace snell {
+
+/// Keeps an invalid estimate off the film (project promise 4): NaN, infinite or negative
+/// values become 0 and are counted by kind in `c`.
+double sanitize(double v, Counters& c);
+/// The same for a sample's radiance: one invalid wavelength discards the whole sample.
+SampledSpectrum sanitize(const SampledSpectrum& L, Counters& c);
+/// Every value finite and non-negative.
+bool is_valid_radiance(const SampledSpectrum& L);
+
+struct TracedSample {
+    CameraSample cs;
+    SampledSpectrum L;  ///< sanitised radiance at cs.wl
+    Vec3 xyz;           ///< its CIE XYZ estimate (cs.wl.to_xyz(L))
+};
+
+/// Draws the path's wavelengths from `u_lambda` (integrator.spectral_samples() of them,
+/// stratified), traces the camera ray through the full-film raster position `raster`, and
+/// returns the sanitised estimate of integrator.li_splat() with its XYZ.
+TracedSample trace_camera_sample(const Scene& scene, const PerspectiveCamera& camera, const Integrator& integrator,
+                                 const Vec2& raster, double u_lambda, Sampler& sampler, SplatList& splats,
+                                 Counters& counters);
+
+}  // namespace snell
