@@ -10,6 +10,7 @@ namespace snell {
 
 void MultiJitterSampler::grid_for(int requested, int& cols, int& rows) {
     if (requested <= 0) throw std::invalid_argument("multijitter sampler: sample_count must be positive");
+    if (requested > (1 << 30)) throw std::invalid_argument("multijitter sampler: sample_count must be at most 2^30");
     const int64_t n = requested;
     // An exact factorisation with aspect ratio at most 2, largest rows first.
     for (int64_t r = int64_t(std::sqrt(double(n))) + 1; r >= 1; --r) {

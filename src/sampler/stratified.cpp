@@ -9,6 +9,7 @@ namespace snell {
 
 int StratifiedSampler::round_sample_count(int requested) {
     if (requested <= 0) throw std::invalid_argument("stratified sampler: sample_count must be positive");
+    if (requested > (1 << 30)) throw std::invalid_argument("stratified sampler: sample_count must be at most 2^30");
     int res = 1;
     while (res * res < requested) ++res;
     return res * res;
