@@ -119,6 +119,7 @@ RenderResult run(const Prepared& p, double time_limit, int spp, int threads, uin
     o.spp = spp > 0 ? spp : p.ls.spp;
     o.threads = threads;
     o.seed = seed;
+    o.sampler = p.ls.sampler;
     o.progress = false;
     return render(*p.ls.scene, *p.integrator, p.ls.film, o, &g_cancel);
 }

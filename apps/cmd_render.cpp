@@ -31,6 +31,7 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
     opt.threads = threads;
     const uint64_t seed = seed_arg ? *seed_arg : ls.seed;  // --seed overrides the scene's <sampler> seed
     opt.seed = seed;
+    opt.sampler = ls.sampler;
     opt.progress = !quiet;
     opt.debug_layers = strategies;
 

@@ -68,6 +68,7 @@ void render_bench(benchmark::State& state, const char* integrator) {
     LoadedScene& ls = demo_scene(integrator);
     RenderOptions opt;
     opt.spp = 4;
+    opt.sampler = ls.sampler;
     opt.progress = false;
     Counters total;
     for (auto _ : state) {

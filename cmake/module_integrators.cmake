@@ -17,7 +17,7 @@ snell_library(snell_integrators
   src/integrators/erpt/shape_watch.cpp
   src/render/renderer.cpp
 )
-target_link_libraries(snell_integrators PUBLIC snell_manifold snell_geometry snell_bsdf snell_light snell_props TBB::tbb)
+target_link_libraries(snell_integrators PUBLIC snell_sampler snell_manifold snell_geometry snell_bsdf snell_light snell_props TBB::tbb)
 
 set(SNELL_ALL_LIBS snell_loader snell_integrators)
 snell_test(test_integrators

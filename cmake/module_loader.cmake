@@ -8,7 +8,7 @@ target_link_libraries(snell_xml PUBLIC snell_props PRIVATE pugixml::pugixml)
 snell_library(snell_loader
   src/io/scene_loader.cpp
 )
-target_link_libraries(snell_loader PUBLIC snell_xml)
+target_link_libraries(snell_loader PUBLIC snell_xml snell_sampler)
 foreach(dep snell_bsdf snell_geometry snell_light snell_integrators)
   if(TARGET ${dep})
     target_link_libraries(snell_loader PUBLIC ${dep})

@@ -7,7 +7,8 @@
 namespace snell {
 
 /// All randomness of an estimator goes through this interface (STYLE.md habit 6), so a
-/// primary-sample-space Metropolis sampler can later replace the independent one.
+/// primary-sample-space Metropolis sampler can later replace the independent one. The pixel
+/// samplers (independent, stratified, multijitter, ldsampler, sobol) live in src/sampler/.
 class Sampler {
 public:
     virtual ~Sampler() = default;
@@ -20,23 +21,6 @@ public:
         return {a, next_1d()};
     }
     virtual std::unique_ptr<Sampler> clone() const = 0;
-};
-
-/// Mitsuba's `independent` sampler: fresh uniform numbers for every dimension.
-class IndependentSampler final : public Sampler {
-public:
-    explicit IndependentSampler(uint64_t seed = 0) : m_seed(seed) {}
-    void start_pixel_sample(int px, int py, uint64_t index) override {
-        const uint64_t pixel = (uint64_t(uint32_t(py)) << 32) | uint32_t(px);
-        m_rng.seed(mix_bits(pixel ^ mix_bits(m_seed)), mix_bits(index + 0x9e3779b97f4a7c15ULL * (m_seed + 1)));
-    }
-    double next_1d() override { return m_rng.next_double(); }
-    std::unique_ptr<Sampler> clone() const override { return std::make_unique<IndependentSampler>(*this); }
-    uint64_t seed() const { return m_seed; }
-
-private:
-    uint64_t m_seed;
-    PCG32 m_rng;
 };
 
 }  // namespace snell

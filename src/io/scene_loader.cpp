@@ -3,6 +3,7 @@
 // plugin understood is always an error with its file:line. The syntax is in docs/scene-format.md.
 #include "io/scene_loader.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <set>
@@ -205,8 +206,15 @@ private:
 
     void read_sampler(const XmlObject& o) {
         Props p = props(o);
-        if (o.type != "independent")
-            p.raise("unknown sampler type '" + o.type + "' (supported: independent)");
+        const auto& types = sampler_types();
+        if (std::find(types.begin(), types.end(), o.type) == types.end()) {
+            std::string supported;
+            for (const auto& t : types) supported += (supported.empty() ? "" : ", ") + t;
+            p.raise("unknown sampler type '" + o.type + "' (supported: " + supported + ")");
+        }
+        SamplerSpec spec;
+        spec.type = o.type;
+        if (o.type == "stratified" || o.type == "multijitter") spec.jitter = p.get_bool("jitter", true);
         const int64_t spp = p.get_int("sample_count", m_out.spp);
         if (spp <= 0) p.raise_param("sample_count", "sample_count must be positive");
         const int64_t seed = p.get_int("seed", 0);
@@ -214,6 +222,7 @@ private:
         p.check_unused();
         m_out.spp = int(spp);
         m_out.seed = uint64_t(seed);
+        m_out.sampler = spec;
     }
 };
 

@@ -7,6 +7,7 @@
 #include "camera/camera.h"
 #include "core/props.h"
 #include "geometry/scene.h"
+#include "sampler/factory.h"
 
 namespace snell {
 
@@ -16,6 +17,7 @@ struct LoadedScene {
     FilmSpec film;
     int spp = 16;                  ///< sampler sample_count
     uint64_t seed = 0;             ///< sampler seed (offsets every random stream of the render)
+    SamplerSpec sampler;           ///< sampler type and jitter; `independent` without a <sampler> (Mitsuba's default)
     std::string path;              ///< file it came from ("builtin:<name>" for built-ins)
 };
 

@@ -5,6 +5,8 @@
 #include "camera/camera.h"
 #include "camera/film.h"
 #include "core/stats.h"
+#include "sampler/factory.h"
+#include "sampler/independent.h"  // transitional: renderer.cpp still builds an IndependentSampler
 
 namespace snell {
 
@@ -16,6 +18,7 @@ struct RenderOptions {
     double time_limit = 0;     ///< > 0: render until this many seconds have passed (equal-time mode)
     int threads = 0;           ///< 0: all hardware threads
     uint64_t seed = 0;         ///< sampler seed; the image is a pure function of (scene, seed, spp)
+    SamplerSpec sampler;       ///< pixel sampler (the scene's <sampler> type); built with create_sampler(sampler, spp, seed)
     bool progress = true;      ///< progress bar on a terminal
     int tile_size = 16;
     bool debug_layers = false;  ///< integrators fill their debug layers (BDPT: per-strategy images)

@@ -11,6 +11,7 @@
 #include "integrators/erpt/energy_redistribution.h"
 #include "integrators/erpt/erpt.h"
 #include "integrators/erpt/recording_sampler.h"
+#include "sampler/independent.h"
 #include "integrators/pssmlt/path_sample.h"
 #include "integrators/pssmlt/primary_sample_sampler.h"
 #include "stat/box_scene.h"

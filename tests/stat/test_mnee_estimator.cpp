@@ -7,6 +7,7 @@
 #include "integrators/mis.h"
 #include "manifold/mnee.h"
 #include "manifold/seed_path.h"
+#include "sampler/independent.h"
 #include "stat/render_stats.h"
 
 using namespace snell;

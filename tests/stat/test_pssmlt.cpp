@@ -8,6 +8,7 @@
 
 #include "integrators/pssmlt/primary_sample_sampler.h"
 #include "integrators/pssmlt/pssmlt.h"
+#include "sampler/independent.h"
 #include "stat/replica_stats.h"
 #include "stat/box_scene.h"
 

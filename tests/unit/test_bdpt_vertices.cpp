@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "bsdf/diffuse.h"
-#include "core/sampler.h"
+#include "sampler/independent.h"
 #include "integrators/bdpt/connect.h"
 #include "integrators/bdpt/subpath.h"
 #include "stat/box_scene.h"

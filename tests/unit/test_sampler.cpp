@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "core/distribution.h"
-#include "core/sampler.h"
+#include "sampler/independent.h"
 
 using namespace snell;
 

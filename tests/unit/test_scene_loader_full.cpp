@@ -73,6 +73,32 @@ TEST(SceneLoaderFull, DefaultIntegratorIsPath) {
     EXPECT_EQ(s.spp, 16);
 }
 
+TEST(SceneLoaderFull, SamplerTypesAndParameters) {
+    // Without a <sampler>: Mitsuba's default, independent.
+    const LoadedScene d = load_scene_string(scene_with("<shape type=\"sphere\"/>"), "test.xml", kDataDir);
+    EXPECT_EQ(d.sampler.type, "independent");
+    EXPECT_TRUE(d.sampler.jitter);
+    for (const std::string type : {"independent", "stratified", "multijitter", "ldsampler", "sobol"}) {
+        const bool has_jitter = type == "stratified" || type == "multijitter";
+        const std::string xml = "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<sampler type=\"" + type +
+                                "\">\n<integer name=\"sample_count\" value=\"64\"/>\n<integer name=\"seed\" value=\"5\"/>\n" +
+                                (has_jitter ? "<boolean name=\"jitter\" value=\"false\"/>\n" : "") +
+                                "</sampler>\n</sensor>\n<shape type=\"sphere\"/>\n</scene>";
+        const LoadedScene s = load_scene_string(xml, "test.xml", kDataDir);
+        EXPECT_EQ(s.sampler.type, type);
+        EXPECT_EQ(s.sampler.jitter, !has_jitter) << type;
+        EXPECT_EQ(s.spp, 64) << type;
+        EXPECT_EQ(s.seed, 5u) << type;
+    }
+    // `jitter` only where Mitsuba has it.
+    expect_error("<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<sampler type=\"sobol\">\n"
+                 "<boolean name=\"jitter\" value=\"false\"/>\n</sampler>\n</sensor>\n</scene>",
+                 "test.xml:4: <sampler>", "unused parameter 'jitter'");
+    expect_error("<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<sampler type=\"halton\">\n"
+                 "<integer name=\"sample_count\" value=\"4\"/>\n</sampler>\n</sensor>\n</scene>",
+                 "test.xml:3: <sampler>", "halton");
+}
+
 TEST(SceneLoaderFull, UnusedAndUnknownParametersNameTheirLine) {
     expect_error(scene_with("<bsdf type=\"diffuse\">\n<float name=\"roughness\" value=\"0.1\"/>\n</bsdf>"),
                  "test.xml:4: <bsdf>: unused parameter 'roughness' for type 'diffuse'", "reflectance");
@@ -97,8 +123,8 @@ TEST(SceneLoaderFull, SensorFilmSamplerErrors) {
                  "</sensor>\n</scene>",
                  "test.xml:4: <film>", "does not fit");
     expect_error("<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n"
-                 "<sampler type=\"stratified\"/>\n</sensor>\n</scene>",
-                 "test.xml:4: <sampler>", "independent");
+                 "<sampler type=\"orthogonal\"/>\n</sensor>\n</scene>",
+                 "test.xml:4: <sampler>", "unknown sampler type 'orthogonal' (supported: independent, stratified");
     expect_error("<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n"
                  "<film type=\"hdrfilm\">\n<float name=\"exposure\" value=\"1\"/>\n</film>\n</sensor>\n</scene>",
                  "test.xml:5: <film>", "unused parameter 'exposure'");

@@ -21,6 +21,7 @@
 #include "integrators/pssmlt/path_sample.h"
 #include "integrators/pssmlt/primary_sample_sampler.h"
 #include "render/renderer.h"
+#include "sampler/independent.h"
 
 namespace snell {
 

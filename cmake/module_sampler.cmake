@@ -1,0 +1,14 @@
+# Pixel samplers (Mitsuba's independent, stratified, multijitter, ldsampler; scrambled Sobol) and
+# their factory. Every sampler is a pure function of (seed, pixel, sample index).
+snell_library(snell_sampler
+  src/sampler/stratified.cpp
+  src/sampler/multijitter.cpp
+  src/sampler/ldsampler.cpp
+  src/sampler/sobol.cpp
+  src/sampler/factory.cpp
+)
+target_link_libraries(snell_sampler PUBLIC snell_base)
+
+snell_test(test_samplers
+  SOURCES tests/unit/test_samplers.cpp
+  LIBS snell_sampler)
