@@ -89,11 +89,13 @@ TEST(FilterChi2, RejectsAMismatchedPdf) {
     const Chi2Result res = test::chi2_plane_test(
         [&](PCG32& rng) -> std::optional<Vec2> { return sampled.sample(next_2d(rng)).offset; },
         [&](const Vec2& o) { return claimed.pdf(o); }, Vec2(-r.x, -r.y), r, opt);
+    std::cout << "[chi2 power] gaussian 0.5 vs pdf of 0.53: p = " << res.p_value << "\n";
     EXPECT_FALSE(res.passed) << res.message;
     const TentFilter tent(1.0);
     const Chi2Result res2 = test::chi2_plane_test(
         [&](PCG32& rng) -> std::optional<Vec2> { return tent.sample(next_2d(rng)).offset; },
         [&](const Vec2& o) { return box_filter()->pdf(o); }, Vec2(-1, -1), Vec2(1, 1), opt);
+    std::cout << "[chi2 power] tent vs pdf of box: p = " << res2.p_value << "\n";
     EXPECT_FALSE(res2.passed) << res2.message;
 }
 
