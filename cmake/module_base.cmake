@@ -3,6 +3,7 @@ snell_library(snell_base
   src/core/transform.cpp
   src/core/stats.cpp
   src/camera/camera.cpp
+  src/camera/filter.cpp
 )
 target_link_libraries(snell_base PUBLIC TBB::tbb)
 

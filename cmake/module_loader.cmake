@@ -7,6 +7,7 @@ target_link_libraries(snell_xml PUBLIC snell_props PRIVATE pugixml::pugixml)
 
 snell_library(snell_loader
   src/io/scene_loader.cpp
+  src/camera/factory.cpp
 )
 target_link_libraries(snell_loader PUBLIC snell_xml snell_sampler)
 foreach(dep snell_bsdf snell_geometry snell_light snell_integrators)
@@ -22,4 +23,10 @@ snell_test(test_scene_parser
 # Full instantiation through every factory (needs all plugin libraries).
 snell_test(test_scene_loader_full
   SOURCES tests/unit/test_scene_loader_full.cpp
+  LIBS snell_loader snell_integrators)
+
+# Reconstruction filters: chi-square of filter importance sampling, normalisation, splat
+# support, and <rfilter> loading.
+snell_test(test_filters
+  SOURCES tests/stat/test_filters.cpp
   LIBS snell_loader snell_integrators)

@@ -1,16 +1,25 @@
 #pragma once
+#include <memory>
+
+#include "camera/filter.h"
 #include "core/object.h"
 #include "core/transform.h"
 #include "core/vector.h"
 
 namespace snell {
 
-/// Film settings (Mitsuba's hdrfilm): size and optional crop window, in pixels.
+/// Film settings (Mitsuba's hdrfilm): size and optional crop window, in pixels, and the pixel
+/// reconstruction filter.
 struct FilmSpec {
     int width = 768, height = 576;
     int crop_x = 0, crop_y = 0, crop_w = 0, crop_h = 0;  ///< crop_w == 0: whole image
+    /// Reconstruction filter (camera/filter.h); nullptr means the one-pixel box. Scene files
+    /// without an <rfilter> get Mitsuba's default, a gaussian of stddev 0.5.
+    std::shared_ptr<const Filter> filter;
     int out_width() const { return crop_w ? crop_w : width; }
     int out_height() const { return crop_h ? crop_h : height; }
+    /// The filter to use: `filter`, or the box when there is none.
+    const Filter& pixel_filter() const { return filter ? *filter : *box_filter(); }
 };
 
 /// Mitsuba's `perspective` sensor: pinhole camera looking down +z in camera space,

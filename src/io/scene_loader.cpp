@@ -5,10 +5,10 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <iostream>
 #include <set>
 
 #include "bsdf/factory.h"
+#include "camera/factory.h"
 #include "geometry/factory.h"
 #include "integrators/integrator.h"
 #include "io/xml_scene.h"
@@ -144,6 +144,7 @@ private:
         const Transform to_world = p.get_transform("to_world");
 
         FilmSpec film;
+        film.filter = default_filter();  // a sensor without <film> gets Mitsuba's default hdrfilm
         const XmlObject *film_obj = nullptr, *sampler_obj = nullptr;
         for (const auto& c : o.children) {
             const XmlObject*& slot = c.obj->tag == "film" ? film_obj : sampler_obj;
@@ -183,25 +184,21 @@ private:
             p.raise_param("pixel_format", "unknown pixel_format (rgb, rgba, luminance, luminance_alpha, xyz, xyza)");
         if (!component_formats.count(p.get_string("component_format", "float16")))
             p.raise_param("component_format", "unknown component_format (float16, float32, uint32)");
-        for (const auto& c : o.children) read_rfilter(*c.obj);
+        f.filter = default_filter();
+        for (const auto& c : o.children) f.filter = read_rfilter(*c.obj);
         if (o.children.size() > 1) throw SceneError(o.children[1].loc, "rfilter", "more than one <rfilter> in the film");
         p.check_unused();
         return f;
     }
 
-    static void read_rfilter(const XmlObject& o) {
+    /// Mitsuba 3's reconstruction filter when the film names none: gaussian, stddev 0.5.
+    static std::shared_ptr<const Filter> default_filter() { return std::make_shared<GaussianFilter>(0.5); }
+
+    static std::shared_ptr<const Filter> read_rfilter(const XmlObject& o) {
         Props p = props(o);
-        if (o.type == "gaussian") {
-            p.get_float("stddev", 0.5);
-        } else if (o.type == "tent") {
-            p.get_float("radius", 1.0);
-        } else if (o.type != "box") {
-            p.raise("unknown rfilter type '" + o.type + "' (accepted: box, gaussian, tent)");
-        }
+        auto filter = create_filter(p);
         p.check_unused();
-        if (o.type != "box")  // not silent: the render differs slightly from Mitsuba's
-            std::cerr << "note: " << o.loc.str() << ": <rfilter type=\"" << o.type
-                      << "\"> is ignored; snell reconstructs with a one-pixel box filter\n";
+        return filter;
     }
 
     void read_sampler(const XmlObject& o) {
