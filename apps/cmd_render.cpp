@@ -65,7 +65,7 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
     write_exr(out_path.string(), img);
     write_png(png_path.string(), img, exposure);
     if (strategies) {
-        const std::vector<std::string> layers = integ->layer_names();
+        const std::vector<std::string>& layers = r.layer_names;
         if (layers.empty() && !quiet)
             std::fprintf(stderr, "snell: --strategies: integrator %s has no per-strategy images\n", integ->name().c_str());
         for (size_t k = 0; k < layers.size(); ++k) {

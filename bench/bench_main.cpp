@@ -139,7 +139,7 @@ const std::vector<Ray>& random_rays() {
 
 /// The closest-hit rays the `path` integrator traces on the demo scene, in the renderer's order
 /// (16x16 tiles, pixel by pixel, path by path): camera rays through jittered pixel positions,
-/// then BSDF-sampled continuations (refraction through the droplet included, one wavelength per
+/// then BSDF-sampled continuations (refraction through the droplet included, four wavelengths per
 /// path), with the scene's max_depth (12) and the renderer's Russian roulette from depth 5.
 const std::vector<Ray>& renderer_rays() {
     static const std::vector<Ray> rays = [] {
@@ -155,21 +155,25 @@ const std::vector<Ray>& renderer_rays() {
                 for (int y = ty; y < std::min(kResY, ty + tile); ++y)
                     for (int x = tx; x < std::min(kResX, tx + tile); ++x)
                         for (int s = 0; s < spp; ++s) {
-                            const BSDFContext ctx{sample_visible_wavelength(rng.next_double()), TransportMode::Radiance};
+                            const BSDFContext ctx{SampledWavelengths::sample_visible(rng.next_double()),
+                                                  TransportMode::Radiance};
                             Ray ray = cam.generate_ray(Vec2(x + rng.next_double(), y + rng.next_double()));
-                            double beta = 1, eta_scale = 1;
+                            SampledSpectrum beta(1.0);
+                            double eta_scale = 1;
+                            bool hero_only = false;
                             for (int depth = 0; depth < max_depth; ++depth) {
                                 out.push_back(ray);
                                 SurfaceInteraction si;
                                 if (!scene.intersect(ray, &si) || !si.bsdf()) break;
                                 const auto bs = si.bsdf()->sample(ctx, si.to_local(si.wo), rng.next_double(),
                                                                   {rng.next_double(), rng.next_double()});
-                                if (!bs || !(bs->weight > 0)) break;
+                                if (!bs || bs->weight.is_zero()) break;
                                 beta *= bs->weight;
+                                if (bs->hero_only && !hero_only) beta = ctx.wl.hero_only(beta), hero_only = true;
                                 if ((bs->lobe & kTransmission) && bs->eta != 1.0) eta_scale *= bs->eta * bs->eta;
                                 ray = scene.spawn_ray(si, si.to_world(bs->wi));
                                 if (depth + 1 >= rr_depth) {
-                                    const double q = std::min(0.95, beta * eta_scale);
+                                    const double q = std::min(0.95, beta.max_component() * eta_scale);
                                     if (!(rng.next_double() < q)) break;
                                     beta /= q;
                                 }

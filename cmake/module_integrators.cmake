@@ -1,7 +1,7 @@
 # Integrators (path, nee; later mnee and the baselines) and the tile renderer.
 snell_library(snell_integrators
   src/integrators/registry.cpp
-  src/integrators/camera_sample.cpp
+  src/integrators/integrator.cpp
   src/integrators/path/path_tracer.cpp
   src/integrators/mnee/mnee_integrator.cpp
   src/integrators/bdpt/bdpt.cpp
@@ -15,9 +15,8 @@ snell_library(snell_integrators
   src/integrators/erpt/erpt.cpp
   src/integrators/erpt/energy_redistribution.cpp
   src/integrators/erpt/shape_watch.cpp
-  src/render/renderer.cpp
 )
-target_link_libraries(snell_integrators PUBLIC snell_sampler snell_manifold snell_geometry snell_bsdf snell_light snell_props TBB::tbb)
+target_link_libraries(snell_integrators PUBLIC snell_render snell_sampler snell_manifold snell_geometry snell_bsdf snell_light snell_props TBB::tbb)
 
 set(SNELL_ALL_LIBS snell_loader snell_integrators)
 snell_test(test_integrators

@@ -43,14 +43,15 @@ Ray PerspectiveCamera::generate_ray(const Vec2& raster) const {
     return r;
 }
 
-bool PerspectiveCamera::raster_of(const Vec3& p, Vec2* raster, double* cos_theta) const {
+bool PerspectiveCamera::raster_of(const Vec3& p, Vec2* raster, double* cos_theta, const Vec2& margin) const {
     const Vec3 v = m_to_camera.point(p);
     const double len = length(v);
     if (!(v.z > 0) || !(len > 0)) return false;
     if (v.z < m_near || v.z > m_far) return false;  // clip planes are distances along the axis
     const double sx = v.x / (v.z * m_tx), sy = v.y / (v.z * m_ty);
     const Vec2 r((1.0 - sx) * 0.5 * m_film.width, (1.0 - sy) * 0.5 * m_film.height);
-    if (!(r.x >= 0 && r.x < m_film.width && r.y >= 0 && r.y < m_film.height)) return false;
+    if (!(r.x >= -margin.x && r.x < m_film.width + margin.x && r.y >= -margin.y && r.y < m_film.height + margin.y))
+        return false;
     *raster = r;
     *cos_theta = v.z / len;
     return true;

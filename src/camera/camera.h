@@ -20,6 +20,16 @@ struct FilmSpec {
     int out_height() const { return crop_h ? crop_h : height; }
     /// The filter to use: `filter`, or the box when there is none.
     const Filter& pixel_filter() const { return filter ? *filter : *box_filter(); }
+    /// How far (pixels) beyond the output window the filters of its pixels reach: radius - 1/2
+    /// (0 for the box). Techniques that place samples on the film themselves (light tracing,
+    /// Metropolis) cover the window grown by this margin, as filtered camera samples do.
+    Vec2 filter_margin() const {
+        const Vec2 r = pixel_filter().radius();
+        return {std::max(0.0, r.x - 0.5), std::max(0.0, r.y - 0.5)};
+    }
+    /// The output window grown by filter_margin(), in full-film raster coordinates.
+    Vec2 sample_origin() const { return Vec2(crop_x - filter_margin().x, crop_y - filter_margin().y); }
+    Vec2 sample_extent() const { return Vec2(out_width() + 2 * filter_margin().x, out_height() + 2 * filter_margin().y); }
 };
 
 /// Mitsuba's `perspective` sensor: pinhole camera looking down +z in camera space,
@@ -36,9 +46,10 @@ public:
     /// Unit optical axis in world space.
     Vec3 forward() const { return normalize(m_to_world.vector(Vec3(0, 0, 1))); }
     /// Full-film raster position at which world point `p` is seen (the inverse of
-    /// generate_ray); false when p lies behind the camera, outside the film or the clip range.
-    /// `cos_theta` receives the cosine between the direction to p and the optical axis.
-    bool raster_of(const Vec3& p, Vec2* raster, double* cos_theta) const;
+    /// generate_ray); false when p lies behind the camera, outside the film grown by `margin`
+    /// pixels on each side, or outside the clip range. `cos_theta` receives the cosine between
+    /// the direction to p and the optical axis.
+    bool raster_of(const Vec3& p, Vec2* raster, double* cos_theta, const Vec2& margin = Vec2(0, 0)) const;
     /// Area, on the image plane at unit distance, of one pixel.
     double pixel_plane_area() const { return 4.0 * m_tx * m_ty / (double(m_film.width) * double(m_film.height)); }
     /// Tangent of half the horizontal / vertical field of view.

@@ -13,10 +13,8 @@
 
 #include "core/progress.h"
 #include "core/sampler.h"
-#include "core/spectrum.h"
 #include "geometry/scene.h"
-#include "integrators/camera_sample.h"
-#include "integrators/pssmlt/pssmlt.h"
+#include "render/camera_sample.h"
 
 namespace snell {
 
@@ -39,11 +37,8 @@ uint64_t pass_size(int pass) { return pass < 1 ? 1 : std::min<uint64_t>(16, uint
 
 }  // namespace
 
-RenderResult render(const Scene& scene, const Integrator& integrator, const FilmSpec& spec,
-                    const RenderOptions& opt, const std::atomic<bool>* cancel) {
-    // Metropolis places its samples anywhere on the film: it has its own render loop.
-    if (const auto* mlt = dynamic_cast<const PssmltIntegrator*>(&integrator))
-        return render_pssmlt(scene, mlt->settings(), spec, opt, cancel);
+RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int spectral_samples, const FilmSpec& spec,
+                          const RenderOptions& opt, const std::atomic<bool>* cancel) {
     using Clock = std::chrono::steady_clock;
     const PerspectiveCamera* camera = scene.camera();
     if (!camera) throw std::runtime_error("scene has no sensor");
@@ -59,7 +54,8 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Film
 
     const int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
     tbb::task_arena arena(threads);
-    const IndependentSampler prototype(opt.seed);
+    const std::unique_ptr<Sampler> prototype = create_sampler(opt.sampler, std::max(1, opt.spp), opt.seed);
+    const Filter& filter = spec.pixel_filter();
 
     std::unique_ptr<ProgressBar> bar;
     if (opt.progress)
@@ -73,24 +69,31 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Film
     // Splats may land on any pixel: each tile collects its own, and they are added to the film
     // in tile order after every group of tiles, so the image does not depend on scheduling.
     // Groups bound the memory the buffers take; without splats one group holds every tile.
-    const bool splatting = integrator.splats();
+    const bool splatting = tracer.splats();
     const size_t group = splatting ? std::max<size_t>(64, size_t(threads) * 8) : tiles.size();
     std::vector<SplatList> tile_splats(splatting ? std::min(group, tiles.size()) : 0);
     Counters splat_counters;
     const auto merge_splats = [&](size_t n) {
         for (size_t k = 0; k < n; ++k) {
             for (const FilmSplat& sp : tile_splats[k]) {
-                const int x = int(std::floor(sp.raster.x)) - spec.crop_x, y = int(std::floor(sp.raster.y)) - spec.crop_y;
-                if (x < 0 || y < 0 || x >= w || y >= h) continue;
                 // One count per invalid splat; XYZ of a non-negative radiance is non-negative.
                 const double c = sanitize(sp.xyz.x + sp.xyz.y + sp.xyz.z, splat_counters);
-                if (c > 0 && sp.xyz.x >= 0 && sp.xyz.y >= 0 && sp.xyz.z >= 0) result.film.add_splat(x, y, sp.xyz, sp.layer);
+                if (!(c > 0 && sp.xyz.x >= 0 && sp.xyz.y >= 0 && sp.xyz.z >= 0)) continue;
+                const Vec2 p(sp.raster.x - spec.crop_x, sp.raster.y - spec.crop_y);  // output window
+                if (sp.binned) {
+                    const int x = int(std::floor(p.x)), y = int(std::floor(p.y));
+                    if (x >= 0 && y >= 0 && x < w && y < h) result.film.add_splat(x, y, sp.xyz, sp.layer);
+                    continue;
+                }
+                // The pixels whose filter covers the splat estimate their filtered integral.
+                for_each_pixel_in_support(filter, p, w, h, [&](int x, int y, double wt) {
+                    result.film.add_splat(x, y, sp.xyz * wt, sp.layer);
+                });
             }
             tile_splats[k].clear();
         }
     };
 
-    integrator.prepare(scene, spec, opt);
     uint64_t done_spp = 0;
     for (int pass = 0; !stop_requested(); ++pass) {
         // Splats need whole passes: a chain's deposits stay near its seed (ERPT), so a pass cut
@@ -115,7 +118,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Film
                         return;
                     }
                     const Tile& t = tiles[ti];
-                    auto sampler = prototype.clone();
+                    auto sampler = prototype->clone();
                     Counters& counters = thread_counters();
                     SplatList dummy;
                     SplatList& splats = splatting ? tile_splats[ti - g0] : dummy;
@@ -129,12 +132,16 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Film
                             Vec3 sum;
                             for (uint64_t s = s0; s < s1; ++s) {
                                 sampler->start_pixel_sample(fx, fy, s);
-                                const Vec2 jitter = sampler->next_2d();
-                                const Vec2 raster(fx + jitter.x, fy + jitter.y);
+                                // Filter importance sampling: the film position around the
+                                // pixel centre, with density proportional to the filter.
+                                const FilterSample fs = filter.sample(sampler->next_2d());
+                                const Vec2 centre(fx + 0.5, fy + 0.5);
+                                const Vec2 raster = centre + fs.offset;
                                 const double u_lambda = sampler->next_1d();
-                                sum += trace_camera_sample(scene, *camera, integrator, raster, u_lambda, *sampler,
-                                                           splats, counters)
-                                           .xyz;
+                                sum += trace_camera_sample(scene, *camera, tracer, spectral_samples, centre, raster,
+                                                           u_lambda, *sampler, splats, counters)
+                                           .xyz *
+                                       fs.weight;
                             }
                             result.film.add_sum(x, y, sum, s1 - s0);
                         }
@@ -168,6 +175,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Film
     result.counters.discarded_nan += splat_counters.discarded_nan;
     result.counters.discarded_inf += splat_counters.discarded_inf;
     result.counters.discarded_negative += splat_counters.discarded_negative;
+    result.layer_names = tracer.layer_names();
     return result;
 }
 

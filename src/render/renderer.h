@@ -5,13 +5,12 @@
 #include "camera/camera.h"
 #include "camera/film.h"
 #include "core/stats.h"
+#include "render/sample_tracer.h"
 #include "sampler/factory.h"
-#include "sampler/independent.h"  // transitional: renderer.cpp still builds an IndependentSampler
 
 namespace snell {
 
 class Scene;
-class Integrator;
 
 struct RenderOptions {
     int spp = 16;              ///< samples per pixel (spp mode)
@@ -31,13 +30,16 @@ struct RenderResult {
     double spp_mean = 0;          ///< mean samples per pixel, partial passes included
     bool interrupted = false;     ///< cancelled (Ctrl-C) before the requested spp
     Counters counters;
+    std::vector<std::string> layer_names;  ///< names of the film's debug layers 1, 2, ...
 };
 
-/// Renders in progressive passes over tiles with TBB. Every pixel sample draws from its own
-/// random stream (seed, pixel, index) and pixel sums are accumulated in a fixed order, so the
-/// result does not depend on the thread count. Samples that are NaN, infinite or negative are
-/// counted and replaced by zero so that nothing invalid reaches the film.
-RenderResult render(const Scene& scene, const Integrator& integrator, const FilmSpec& film,
-                    const RenderOptions& options, const std::atomic<bool>* cancel = nullptr);
+/// The shared render loop of per-pixel-sample estimators: progressive passes over tiles with
+/// TBB. Every pixel sample draws from its own random stream (seed, pixel, index) of the
+/// options' sampler, its film position from the pixel's reconstruction filter (importance
+/// sampled), then `spectral_samples` wavelengths; pixel sums are accumulated in a fixed order,
+/// so the result does not depend on the thread count. Samples that are NaN, infinite or
+/// negative are counted and replaced by zero so that nothing invalid reaches the film.
+RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int spectral_samples, const FilmSpec& film,
+                          const RenderOptions& options, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace snell

@@ -61,6 +61,13 @@ const ErptIntegrator& erpt_of(const LoadedScene& ls) {
     return dynamic_cast<const ErptIntegrator&>(*ls.scene->integrator());
 }
 
+/// The tracer a render with `seed` uses (E_d and the bootstrap's mean depend on the seed only).
+std::unique_ptr<ErptTracer> prepared(const LoadedScene& ls, uint64_t seed) {
+    RenderOptions opt;
+    opt.seed = seed;
+    return erpt_of(ls).prepare_erpt(*ls.scene, ls.film, opt);
+}
+
 /// Replica statistics of `erpt` renders at kSpp over independent seeds.
 ReplicaStats erpt_replica_stats(const LoadedScene& ls, uint64_t seed_base) {
     return replica_stats_of(ls, kBlock, seed_base, kReplicas, [&](uint64_t s) { return render_once(ls, s); });
@@ -108,12 +115,13 @@ TEST(Erpt, RecordedSeedReplaysThroughEvaluate) {
         const Vec2 raster(px + jitter.x, py + jitter.y);
         const double u_lambda = sampler.next_1d();
         const SampledWavelengths wl = SampledWavelengths::sample_visible(u_lambda);
-        std::vector<double> state = {raster.x / w, raster.y / h, u_lambda};
+        const Vec2 o = ls.film.sample_origin(), e = ls.film.sample_extent();
+        std::vector<double> state = {(raster.x - o.x) / e.x, (raster.y - o.y) / e.y, u_lambda};
         RecordingSampler rec(sampler, state);
         const SampledSpectrum L = inner->li(camera.generate_ray(raster), *ls.scene, rec, wl);
         PrimarySampleSampler replay(1, 2, 0.0);
         replay.set_state(state);
-        const PathSample p = evaluate(*ls.scene, camera, *inner, ls.film, replay);
+        const PathSample p = evaluate(*ls.scene, camera, *inner, kSpectrumSamples, ls.film, replay);
         ASSERT_EQ(p.x, px);
         ASSERT_EQ(p.y, py);
         if (L.is_zero()) continue;
@@ -247,7 +255,7 @@ TEST(Erpt, AgreesWithNeeInABox) {
     const LoadedScene nee = load_xml(kCornellBox, {{"integrator", "nee"}, {"res", "16"}});
     const ReplicaStats a = erpt_replica_stats(erpt, 1000);
     // The chains ran: E_d came from a bootstrap that saw light.
-    EXPECT_GT(erpt_of(erpt).deposition_energy(), 0);
+    EXPECT_GT(prepared(erpt, 1000)->deposition_energy(), 0);
     expect_replicas_agree(a, replica_stats(nee, kNeeSpp, kBlock, 2000, kReplicas), "erpt vs nee");
 }
 
@@ -258,11 +266,10 @@ TEST(Erpt, AgreesWithNeeWhenRestrictedToAShape) {
     const LoadedScene nee = load_xml(kCornellBox, {{"integrator", "nee"}, {"res", "16"}});
     const ReplicaStats a = erpt_replica_stats(erpt, 3000);
     // Some but not all light reaches the camera through paths touching the sphere.
-    const ErptIntegrator& integ = erpt_of(erpt);
-    EXPECT_GT(integ.deposition_energy(), 0);
+    const auto tracer = prepared(erpt, 3000);
+    EXPECT_GT(tracer->deposition_energy(), 0);
     const LoadedScene all = load_erpt();
-    render_once(all, 1000, 0, 1);
-    EXPECT_LT(integ.mean_eligible_energy(), 0.5 * erpt_of(all).mean_eligible_energy());
+    EXPECT_LT(tracer->mean_eligible_energy(), 0.5 * prepared(all, 1000)->mean_eligible_energy());
     expect_replicas_agree(a, replica_stats(nee, kNeeSpp, kBlock, 4000, kReplicas), "erpt(shapes=glass) vs nee");
 }
 

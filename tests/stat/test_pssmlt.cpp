@@ -34,7 +34,7 @@ RenderResult render_once(const LoadedScene& ls, uint64_t seed, int threads = 0, 
     opt.seed = seed;
     opt.progress = false;
     opt.threads = threads;
-    return render_pssmlt(*ls.scene, test_settings(ls, chains), ls.film, opt);
+    return render_pssmlt(*ls.scene, test_settings(ls, chains), kSpectrumSamples, ls.film, opt);
 }
 
 /// Replica statistics of render_pssmlt over independent seeds.
@@ -144,14 +144,13 @@ TEST(Pssmlt, MneeSamplerRunsAndUnknownSamplerIsRejected) {
     LoadedScene ls = load_xml(xml, {{"integrator", "pssmlt"}, {"res", "16"}});
     const auto& integ = dynamic_cast<const PssmltIntegrator&>(*ls.scene->integrator());
     EXPECT_EQ(integ.settings().sampler, "mnee");
-    EXPECT_THROW(integ.li(Ray(), *ls.scene, *IndependentSampler(0).clone(), SampledWavelengths::single(550)), std::logic_error);
     PssmltSettings s = integ.settings();
     s.mutations_per_pixel = 16;
     s.bootstrap_samples = 4096;
     s.chains = 2;
     RenderOptions opt;
     opt.progress = false;
-    const RenderResult r = render_pssmlt(*ls.scene, s, ls.film, opt);
+    const RenderResult r = render_pssmlt(*ls.scene, s, kSpectrumSamples, ls.film, opt);
     EXPECT_GT(r.counters.walks_started, 0u);
     expect_finite_and_lit(r.film);
 

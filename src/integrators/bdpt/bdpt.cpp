@@ -17,11 +17,34 @@ namespace snell {
 
 using namespace bdpt;
 
-int BdptIntegrator::max_layer_depth() const {
+namespace {
+
+/// BDPT for one render: the output window (camera importance) and whether debug layers are on.
+class BdptTracer final : public SampleTracer {
+public:
+    BdptTracer(const PathSettings& settings, const FilmSpec& window, bool layers)
+        : m_settings(settings), m_window(window), m_layers(layers) {}
+    SampledSpectrum li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+                             SplatList& splats) const override;
+    bool splats() const override { return true; }
+    std::vector<std::string> layer_names() const override;
+
+private:
+    static constexpr int kMaxLayerDepth = 6;
+    int max_layer_depth() const;
+    /// Debug layer of strategy (s, t); -1 when it has none.
+    int layer_of(int s, int t) const;
+
+    PathSettings m_settings;
+    FilmSpec m_window;
+    bool m_layers;
+};
+
+int BdptTracer::max_layer_depth() const {
     return m_settings.max_depth > 0 ? std::min(m_settings.max_depth, kMaxLayerDepth) : kMaxLayerDepth;
 }
 
-int BdptIntegrator::layer_of(int s, int t) const {
+int BdptTracer::layer_of(int s, int t) const {
     // Lengths k = 1, 2, ... in order; within one, s = 0 .. k (t = k + 1 - s >= 1), without (1, 1).
     int index = 1;
     for (int k = 1; k <= max_layer_depth(); ++k)
@@ -33,7 +56,7 @@ int BdptIntegrator::layer_of(int s, int t) const {
     return -1;
 }
 
-std::vector<std::string> BdptIntegrator::layer_names() const {
+std::vector<std::string> BdptTracer::layer_names() const {
     std::vector<std::string> names;
     if (!m_layers) return names;
     for (int k = 1; k <= max_layer_depth(); ++k)
@@ -45,28 +68,20 @@ std::vector<std::string> BdptIntegrator::layer_names() const {
     return names;
 }
 
-void BdptIntegrator::prepare(const Scene& /*scene*/, const FilmSpec& film, const RenderOptions& options) const {
-    m_window = film;
-    m_prepared = true;
-    m_layers = options.debug_layers;
-}
-
-SampledSpectrum BdptIntegrator::li(const Ray&, const Scene&, Sampler&, const SampledWavelengths&) const {
-    throw std::logic_error("bdpt splats its light-tracing strategy onto the film: render it with render()");
-}
-
-SampledSpectrum BdptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+SampledSpectrum BdptTracer::li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
                                          SplatList& splats) const {
     thread_counters().paths++;
     const SampledWavelengths& wl = cs.wl;
     const int md = m_settings.max_depth;
     const PerspectiveCamera& camera = *scene.camera();
-    const Pinhole pinhole(camera, m_prepared ? m_window : camera.film());
+    const Pinhole pinhole(camera, m_window);
     // Debug layers: each strategy's weighted contribution, at the pixel it reaches.
+    // Camera strategies (t >= 2) belong to the sample's own pixel, as in the image; light
+    // tracing (t = 1) lands wherever it projects, filtered like the image's splats.
     const auto record = [&](int s, int t, const SampledSpectrum& c, const Vec2& raster) {
         if (!m_layers) return;
         const int layer = layer_of(s, t);
-        if (layer > 0 && c.is_positive()) splats.push_back({raster, wl.to_xyz(c), layer});
+        if (layer > 0 && c.is_positive()) splats.push_back({raster, wl.to_xyz(c), layer, t >= 2});
     };
 
     thread_local std::vector<Vertex> cam, lig;
@@ -97,7 +112,7 @@ SampledSpectrum BdptIntegrator::li_splat(const CameraSample& cs, const Ray& ray,
             if (le.is_positive()) {
                 const SampledSpectrum c = z.beta * le * mis_weight(scene, disk, cam, lig, 0, t, wl);
                 L += c;
-                record(0, t, c, cs.raster);
+                record(0, t, c, cs.pixel_centre);
             }
         }
         for (int s = 1; s <= nl; ++s) {
@@ -106,7 +121,7 @@ SampledSpectrum BdptIntegrator::li_splat(const CameraSample& cs, const Ray& ray,
             if (c.is_positive()) {
                 c *= mis_weight(scene, disk, cam, lig, s, t, wl);
                 L += c;
-                record(s, t, c, cs.raster);
+                record(s, t, c, cs.pixel_centre);
             }
         }
     }
@@ -137,10 +152,17 @@ SampledSpectrum BdptIntegrator::li_splat(const CameraSample& cs, const Ray& ray,
             const SampledSpectrum c = esc.beta * le * mis_weight(scene, disk, cam, lig, 0, nc + 1, wl);
             cam.pop_back();
             L += c;
-            record(0, nc + 1, c, cs.raster);
+            record(0, nc + 1, c, cs.pixel_centre);
         }
     }
     return L;
+}
+
+}  // namespace
+
+std::unique_ptr<SampleTracer> BdptIntegrator::prepare(const Scene& /*scene*/, const FilmSpec& film,
+                                                      const RenderOptions& options) const {
+    return std::make_unique<BdptTracer>(m_settings, film, options.debug_layers);
 }
 
 }  // namespace snell

@@ -19,30 +19,18 @@ namespace snell {
 /// Settings: max_depth (segments, -1 unbounded), rr_depth, hide_emitters. With
 /// RenderOptions::debug_layers (`snell render --strategies`) each strategy's weighted
 /// contribution also goes to its own film layer d<k>_s<s>_t<t> (path length k <= 6).
-class BdptIntegrator : public Integrator {
+class BdptIntegrator : public TileIntegrator {
 public:
     explicit BdptIntegrator(const PathSettings& settings) : m_settings(settings) {}
-    /// Throws: light tracing needs the film, so bdpt renders only through li_splat().
-    SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl) const override;
-    SampledSpectrum li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
-                    SplatList& splats) const override;
-    bool splats() const override { return true; }
-    std::vector<std::string> layer_names() const override;
-    void prepare(const Scene& scene, const FilmSpec& film, const RenderOptions& options) const override;
+    /// The tracer for one render: camera importance over the film's output window, and the
+    /// per-strategy layers when options.debug_layers is set.
+    std::unique_ptr<SampleTracer> prepare(const Scene& scene, const FilmSpec& film,
+                                          const RenderOptions& options) const override;
     std::string name() const override { return "bdpt"; }
     const PathSettings& settings() const { return m_settings; }
 
 private:
-    static constexpr int kMaxLayerDepth = 6;
-    int max_layer_depth() const;
-    /// Debug layer of strategy (s, t); -1 when it has none.
-    int layer_of(int s, int t) const;
-
     PathSettings m_settings;
-    // Set by prepare() for one render: the output window (camera importance) and debug layers.
-    mutable FilmSpec m_window;
-    mutable bool m_prepared = false;
-    mutable bool m_layers = false;
 };
 
 }  // namespace snell

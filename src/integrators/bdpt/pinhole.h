@@ -17,11 +17,12 @@ struct Pinhole {
 
     Pinhole(const PerspectiveCamera& cam, const FilmSpec& spec)
         : camera(&cam), window(spec), area(cam.pixel_plane_area() * double(spec.out_width()) * double(spec.out_height())) {}
-    /// Raster position (full film) at which p is seen, when inside the output window.
+    /// Raster position (full film) at which p is seen, when a pixel filter of the output
+    /// window covers it (the window grown by the filter margin, where camera samples land too).
     bool raster(const Vec3& p, Vec2* r, double* cos_theta) const {
-        if (!camera->raster_of(p, r, cos_theta)) return false;
-        return r->x >= window.crop_x && r->x < window.crop_x + window.out_width() && r->y >= window.crop_y &&
-               r->y < window.crop_y + window.out_height();
+        if (!camera->raster_of(p, r, cos_theta, window.filter_margin())) return false;
+        const Vec2 o = window.sample_origin(), e = window.sample_extent();
+        return r->x >= o.x && r->x < o.x + e.x && r->y >= o.y && r->y < o.y + e.y;
     }
     double pdf_dir(double cos_theta) const { return cos_theta > 0 ? 1.0 / (area * cos_theta * cos_theta * cos_theta) : 0.0; }
     double importance(double cos_theta) const { return cos_theta > 0 ? pdf_dir(cos_theta) / cos_theta : 0.0; }

@@ -1,5 +1,4 @@
 #include "integrators/erpt/erpt.h"
-#include "integrators/camera_sample.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -20,6 +19,7 @@
 #include "integrators/mnee/mnee_integrator.h"
 #include "integrators/pssmlt/path_sample.h"
 #include "integrators/pssmlt/primary_sample_sampler.h"
+#include "render/camera_sample.h"
 #include "render/renderer.h"
 #include "sampler/independent.h"
 
@@ -51,25 +51,13 @@ ErptSettings ErptSettings::from_props(const Props& props) {
     return s;
 }
 
-ErptIntegrator::ErptIntegrator(ErptSettings settings) : m_settings(std::move(settings)) {
-    // Usable before prepare() (no shapes resolved, E_d = 0): plain path tracing.
-    m_inner = make_watching_estimator(m_settings.sampler, m_settings.path, m_settings.mnee, {});
-}
-
-SampledSpectrum ErptIntegrator::li(const Ray& ray, const Scene& scene, Sampler& sampler,
-                                   const SampledWavelengths& wl) const {
-    return m_inner->li(ray, scene, sampler, wl);
-}
-
-void ErptIntegrator::prepare(const Scene& scene, const FilmSpec& film, const RenderOptions& opt) const {
-    m_film = film;
-    m_inner = make_watching_estimator(m_settings.sampler, m_settings.path, m_settings.mnee,
-                                      resolve_shape_ids(scene, m_settings.shapes, m_settings.loc));
-    m_mean_energy = 0;
-    if (m_settings.deposition_energy > 0) {
-        m_deposit = m_settings.deposition_energy;
-        return;
-    }
+std::unique_ptr<ErptTracer> ErptIntegrator::prepare_erpt(const Scene& scene, const FilmSpec& film,
+                                                         const RenderOptions& opt) const {
+    const std::shared_ptr<const PathTracer> inner = make_watching_estimator(
+        m_settings.sampler, m_settings.path, m_settings.mnee, resolve_shape_ids(scene, m_settings.shapes, m_settings.loc));
+    const int n_lambda = spectral_samples();
+    if (m_settings.deposition_energy > 0)
+        return std::make_unique<ErptTracer>(m_settings, inner, film, n_lambda, m_settings.deposition_energy, 0.0);
     const PerspectiveCamera* camera = scene.camera();
     if (!camera) throw std::runtime_error("scene has no sensor");
 
@@ -87,16 +75,18 @@ void ErptIntegrator::prepare(const Scene& scene, const FilmSpec& film, const Ren
             auto sampler = prototype.clone();
             for (size_t i = r.begin(); i < r.end(); ++i) {
                 sampler->start_pixel_sample(-1, -1, i);  // no pixel of the film uses (-1, -1)
-                const PathSample s = evaluate(scene, *camera, *m_inner, film, *sampler);
+                const PathSample s = evaluate(scene, *camera, *inner, n_lambda, film, *sampler);
                 if (!restricted || camera_path_touched()) energy[i] = s.target();
             }
         });
     });
     double sum = 0;
     for (double e : energy) sum += e;
-    m_mean_energy = sum / double(n);
+    const double mean_energy = sum / double(n);
     // E[chains per sample] = E[e] / (M E_d) = chains_per_sample.
-    m_deposit = m_mean_energy > 0 ? m_mean_energy / (double(m_settings.mutations) * m_settings.chains_per_sample) : 0.0;
+    const double deposit =
+        mean_energy > 0 ? mean_energy / (double(m_settings.mutations) * m_settings.chains_per_sample) : 0.0;
+    return std::make_unique<ErptTracer>(m_settings, inner, film, n_lambda, deposit, mean_energy);
 }
 
 namespace {
@@ -104,17 +94,32 @@ namespace {
 /// One pixel sample's deposits summed per output pixel, in order of first visit (so the
 /// splat list is deterministic). A chain deposits M times but visits few pixels, and the film
 /// bins splats by pixel anyway, so this only saves memory.
+///
+/// A deposit at film position x goes to every output pixel k whose filter f covers it, with
+/// weight f(x - c_k) / s(x), s(x) = sum_j f(x - c_j) over the output pixels. The seeds are
+/// camera samples, which cover the film with density proportional to s(x) (filter importance
+/// sampling per pixel), and the chains keep their energy near where it started; dividing by
+/// s(x) makes the expected deposit in pixel k its filtered integral, edges included (Cline et
+/// al. redistribute over one-pixel boxes, where s = 1).
 class Deposits {
 public:
-    void add(int x, int y, const Vec3& xyz) {
-        const auto [it, fresh] = m_index.try_emplace(int64_t(y) * (int64_t(1) << 32) + x, m_sums.size());
-        if (fresh) m_sums.push_back({x, y, Vec3()});
-        m_sums[it->second].xyz += xyz;
+    explicit Deposits(const FilmSpec& film) : m_film(film), m_filter(film.pixel_filter()) {}
+    void add(const Vec2& raster, const Vec3& xyz) {
+        const Vec2 p(raster.x - m_film.crop_x, raster.y - m_film.crop_y);
+        const int w = m_film.out_width(), h = m_film.out_height();
+        double coverage = 0;
+        for_each_pixel_in_support(m_filter, p, w, h, [&](int, int, double f) { coverage += f; });
+        if (!(coverage > 0)) return;
+        for_each_pixel_in_support(m_filter, p, w, h, [&](int x, int y, double f) {
+            const auto [it, fresh] = m_index.try_emplace(int64_t(y) * (int64_t(1) << 32) + x, m_sums.size());
+            if (fresh) m_sums.push_back({x, y, Vec3()});
+            m_sums[it->second].xyz += xyz * (f / coverage);
+        });
     }
-    /// Appends one splat per visited pixel, at the pixel's centre (full-film raster).
-    void flush(const FilmSpec& film, SplatList& splats) const {
+    /// Appends one binned splat per visited pixel, at the pixel's centre (full-film raster).
+    void flush(SplatList& splats) const {
         for (const Sum& s : m_sums)
-            splats.push_back({Vec2(film.crop_x + s.x + 0.5, film.crop_y + s.y + 0.5), s.xyz, 0});
+            splats.push_back({Vec2(m_film.crop_x + s.x + 0.5, m_film.crop_y + s.y + 0.5), s.xyz, 0, true});
     }
 
 private:
@@ -122,13 +127,15 @@ private:
         int x, y;
         Vec3 xyz;
     };
+    const FilmSpec& m_film;
+    const Filter& m_filter;
     std::unordered_map<int64_t, size_t> m_index;
     std::vector<Sum> m_sums;
 };
 
 }  // namespace
 
-SampledSpectrum ErptIntegrator::li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+SampledSpectrum ErptTracer::li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
                                          SplatList& splats) const {
     const FilmSpec& film = m_film;
     const int w = film.out_width(), h = film.out_height();
@@ -139,8 +146,9 @@ SampledSpectrum ErptIntegrator::li_splat(const CameraSample& cs, const Ray& ray,
     const double below_one = std::nextafter(1.0, 0.0);
     std::vector<double> state;
     state.reserve(64);
-    state.push_back(std::clamp((cs.raster.x - film.crop_x) / w, 0.0, below_one));
-    state.push_back(std::clamp((cs.raster.y - film.crop_y) / h, 0.0, below_one));
+    const Vec2 origin = film.sample_origin(), extent = film.sample_extent();
+    state.push_back(std::clamp((cs.raster.x - origin.x) / extent.x, 0.0, below_one));
+    state.push_back(std::clamp((cs.raster.y - origin.y) / extent.y, 0.0, below_one));
     state.push_back(cs.u_lambda);
     RecordingSampler recorder(sampler, state);
     const SampledSpectrum L = m_inner->li(ray, scene, recorder, cs.wl);
@@ -162,17 +170,17 @@ SampledSpectrum ErptIntegrator::li_splat(const CameraSample& cs, const Ray& ray,
     seed.raster = cs.raster;
     seed.xyz = xyz;
     const PerspectiveCamera& camera = *scene.camera();
-    Deposits deposits;
+    Deposits deposits(film);
     redistribute_energy(
         state, seed, plan, m_settings.mutations, stream_bits, m_settings.s1, m_settings.s2,
         [&](PrimarySampleSampler& mutator) {
-            PathSample p = evaluate(scene, camera, *m_inner, film, mutator);
+            PathSample p = evaluate(scene, camera, *m_inner, m_spectral_samples, film, mutator);
             // Outside the `shapes` set the target is zero: the chain never leaves it.
             if (restricted && !camera_path_touched()) p.xyz = Vec3();
             return p;
         },
-        [&](const PathSample& p, const Vec3& v) { deposits.add(p.x, p.y, v); });
-    deposits.flush(film, splats);
+        [&](const PathSample& p, const Vec3& v) { deposits.add(p.raster, v); });
+    deposits.flush(splats);
     return {};  // the seed's energy is in its chains' deposits
 }
 

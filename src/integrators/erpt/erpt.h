@@ -46,32 +46,49 @@ struct ErptSettings {
     static ErptSettings from_props(const Props& props);
 };
 
-/// The ERPT estimator for the tiled renderer. prepare() resolves `shapes` and sets E_d from a
-/// bootstrap; li_splat() returns the seed's radiance when it is not redistributed and 0 when
-/// it is, its chains' deposits going to `splats`. Deterministic for a seed: chains draw from
-/// streams seeded by the pixel sample's own sampler.
-class ErptIntegrator final : public Integrator {
+/// ERPT for one render, built by ErptIntegrator::prepare(): the inner estimator (watching
+/// `shapes`), the output window and E_d. li_splat() returns the seed's radiance when it is not
+/// redistributed and 0 when it is, its chains' deposits going to `splats` (binned per pixel
+/// with the film's filter). Deterministic for a seed: chains draw from streams seeded by the
+/// pixel sample's own sampler.
+class ErptTracer final : public SampleTracer {
 public:
-    explicit ErptIntegrator(ErptSettings settings);
-    /// The inner estimator alone (no camera sample, so nothing to redistribute).
-    SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl) const override;
+    ErptTracer(const ErptSettings& settings, std::shared_ptr<const PathTracer> inner, const FilmSpec& film,
+               int spectral_samples, double deposit, double mean_energy)
+        : m_settings(settings), m_inner(std::move(inner)), m_film(film), m_spectral_samples(spectral_samples),
+          m_deposit(deposit), m_mean_energy(mean_energy) {}
     SampledSpectrum li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
-                    SplatList& splats) const override;
+                             SplatList& splats) const override;
     bool splats() const override { return true; }
-    void prepare(const Scene& scene, const FilmSpec& film, const RenderOptions& options) const override;
-    std::string name() const override { return "erpt"; }
-    const ErptSettings& settings() const { return m_settings; }
-    /// E_d in use after prepare() (0: no chains, plain path tracing).
+    /// E_d in use (0: no chains, plain path tracing).
     double deposition_energy() const { return m_deposit; }
     /// Bootstrap estimate of the mean luminance per sample of eligible seeds (0 if E_d was given).
     double mean_eligible_energy() const { return m_mean_energy; }
 
 private:
+    const ErptSettings& m_settings;
+    std::shared_ptr<const PathTracer> m_inner;
+    FilmSpec m_film;
+    int m_spectral_samples;
+    double m_deposit, m_mean_energy;
+};
+
+class ErptIntegrator final : public TileIntegrator {
+public:
+    explicit ErptIntegrator(ErptSettings settings) : m_settings(std::move(settings)) {}
+    /// Resolves `shapes` and sets E_d from a bootstrap (or the given deposition_energy).
+    std::unique_ptr<SampleTracer> prepare(const Scene& scene, const FilmSpec& film,
+                                          const RenderOptions& options) const override {
+        return prepare_erpt(scene, film, options);
+    }
+    /// prepare() with its concrete type (E_d and the bootstrap's mean are readable).
+    std::unique_ptr<ErptTracer> prepare_erpt(const Scene& scene, const FilmSpec& film,
+                                             const RenderOptions& options) const;
+    std::string name() const override { return "erpt"; }
+    const ErptSettings& settings() const { return m_settings; }
+
+private:
     ErptSettings m_settings;
-    // Set by prepare(), read-only while rendering.
-    mutable std::shared_ptr<const Integrator> m_inner;  ///< watches `shapes` when any are given
-    mutable FilmSpec m_film;
-    mutable double m_deposit = 0, m_mean_energy = 0;
 };
 
 }  // namespace snell

@@ -83,7 +83,7 @@ std::vector<const Shape*> resolve_shape_ids(const Scene& scene, const std::vecto
     return shapes;
 }
 
-std::shared_ptr<Integrator> make_watching_estimator(const std::string& sampler, const PathSettings& path,
+std::shared_ptr<PathTracer> make_watching_estimator(const std::string& sampler, const PathSettings& path,
                                                     const MneeSettings& mnee, std::vector<const Shape*> watched) {
     if (sampler == "mnee") return std::make_shared<ShapeWatching<MneeIntegrator>>(std::move(watched), path, mnee);
     return std::make_shared<ShapeWatching<PathTracer>>(std::move(watched), path, true);

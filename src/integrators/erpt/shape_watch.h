@@ -29,7 +29,7 @@ std::vector<const Shape*> resolve_shape_ids(const Scene& scene, const std::vecto
 /// by camera_path_touched(), whether the camera subpath of its latest li() had a vertex (a
 /// surface hit by the camera ray or by a BSDF-sampled ray) on one of `watched`. Estimates and
 /// random numbers are exactly those of the unwrapped estimator.
-std::shared_ptr<Integrator> make_watching_estimator(const std::string& sampler, const PathSettings& path,
+std::shared_ptr<PathTracer> make_watching_estimator(const std::string& sampler, const PathSettings& path,
                                                     const MneeSettings& mnee, std::vector<const Shape*> watched);
 
 /// The flag of the latest li() of a watching estimator on the calling thread. A thread runs

@@ -20,6 +20,10 @@ PathSettings PathSettings::from_props(const Props& props) {
     return s;
 }
 
+std::unique_ptr<SampleTracer> PathTracer::prepare(const Scene&, const FilmSpec&, const RenderOptions&) const {
+    return std::make_unique<RadianceTracer>(*this);
+}
+
 std::optional<LightSample> PathTracer::sample_light(const Scene& scene, const SurfaceInteraction& si,
                                                     const SampledWavelengths& wl, Sampler& sampler, const Light** light,
                                                     double* pmf, bool keep_dark) {

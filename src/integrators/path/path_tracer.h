@@ -26,10 +26,16 @@ struct PathSettings {
 /// Unidirectional path tracer. `path` samples only the BSDF (the paper's PT); `nee` adds next
 /// event estimation combined with BSDF sampling by the power heuristic (the paper's NEE).
 /// MNEE derives from it and replaces the light connection and the emitter-hit weights.
-class PathTracer : public Integrator {
+class PathTracer : public TileIntegrator {
 public:
     PathTracer(const PathSettings& settings, bool nee) : m_settings(settings), m_nee(nee) {}
-    SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl) const override;
+    /// Radiance arriving at the camera along `ray` at the wavelengths `wl` (nm). Thread-safe;
+    /// all randomness from `sampler`.
+    virtual SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler,
+                               const SampledWavelengths& wl) const;
+    /// Stateless: the tracer calls li() for each camera sample.
+    std::unique_ptr<SampleTracer> prepare(const Scene& scene, const FilmSpec& film,
+                                          const RenderOptions& options) const override;
     std::string name() const override { return m_nee ? "nee" : "path"; }
     const PathSettings& settings() const { return m_settings; }
 
@@ -68,6 +74,20 @@ protected:
 
     PathSettings m_settings;
     bool m_nee;
+};
+
+/// The path-tracing family's tracer: li() for every camera sample, no splats. Also how PSSMLT
+/// and ERPT evaluate their inner estimator.
+class RadianceTracer final : public SampleTracer {
+public:
+    explicit RadianceTracer(const PathTracer& estimator) : m_estimator(estimator) {}
+    SampledSpectrum li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+                             SplatList& /*splats*/) const override {
+        return m_estimator.li(ray, scene, sampler, cs.wl);
+    }
+
+private:
+    const PathTracer& m_estimator;
 };
 
 }  // namespace snell

@@ -5,22 +5,27 @@
 
 #include "core/spectrum.h"
 #include "core/stats.h"
-#include "integrators/camera_sample.h"
+#include "integrators/path/path_tracer.h"
+#include "render/camera_sample.h"
 
 namespace snell {
 
 // Same conversion as render(): raster jitter (2D), then the wavelength (1D), then li().
-PathSample evaluate(const Scene& scene, const PerspectiveCamera& camera, const Integrator& inner, const FilmSpec& spec,
-                    Sampler& sampler) {
+PathSample evaluate(const Scene& scene, const PerspectiveCamera& camera, const PathTracer& inner, int spectral_samples,
+                    const FilmSpec& spec, Sampler& sampler) {
     const int w = spec.out_width(), h = spec.out_height();
     const Vec2 u = sampler.next_2d();
     PathSample s;
-    s.x = std::min(w - 1, int(u.x * w));
-    s.y = std::min(h - 1, int(u.y * h));
-    s.raster = Vec2(spec.crop_x + u.x * w, spec.crop_y + u.y * h);
+    // Film positions cover the output window grown by the filter margin, as camera samples do.
+    const Vec2 o = spec.sample_origin(), e = spec.sample_extent();
+    s.raster = Vec2(o.x + u.x * e.x, o.y + u.y * e.y);
+    s.x = std::clamp(int(std::floor(s.raster.x)) - spec.crop_x, 0, w - 1);
+    s.y = std::clamp(int(std::floor(s.raster.y)) - spec.crop_y, 0, h - 1);
     SplatList no_splats;
-    s.xyz = trace_camera_sample(scene, camera, inner, s.raster, sampler.next_1d(), sampler, no_splats,
-                                thread_counters()).xyz;
+    const Vec2 centre(spec.crop_x + s.x + 0.5, spec.crop_y + s.y + 0.5);
+    s.xyz = trace_camera_sample(scene, camera, RadianceTracer(inner), spectral_samples, centre, s.raster,
+                                sampler.next_1d(), sampler, no_splats, thread_counters())
+                .xyz;
     return s;
 }
 

@@ -10,20 +10,20 @@
 namespace snell {
 
 class Scene;
-class Integrator;
+class PathTracer;
 
 /// One evaluation of the inner estimator at the sampler's current primary sample.
 struct PathSample {
-    int x = 0, y = 0;  ///< output (crop) pixel
+    int x = 0, y = 0;  ///< output (crop) pixel containing `raster` (the nearest one in the filter margin)
     Vec2 raster;       ///< full-film raster position of the camera ray (pixels)
     Vec3 xyz;          ///< contribution, as render() accumulates it
     double target() const { return xyz.y; }  // luminance Y: the Metropolis target function
 };
 
 /// Draws the film position u in [0,1)^2 (over the output window) and the wavelength from
-/// `sampler`, then runs `inner`. Invalid (NaN, infinite, negative) estimates become zero and
+/// `sampler` (`spectral_samples` wavelengths), then runs `inner`. Invalid (NaN, infinite, negative) estimates become zero and
 /// are counted, as in render().
-PathSample evaluate(const Scene& scene, const PerspectiveCamera& camera, const Integrator& inner, const FilmSpec& spec,
-                    Sampler& sampler);
+PathSample evaluate(const Scene& scene, const PerspectiveCamera& camera, const PathTracer& inner, int spectral_samples,
+                    const FilmSpec& spec, Sampler& sampler);
 
 }  // namespace snell

@@ -39,14 +39,11 @@ PssmltSettings PssmltSettings::from_props(const Props& props) {
     return s;
 }
 
-std::shared_ptr<Integrator> make_pssmlt_inner(const PssmltSettings& s) {
+std::shared_ptr<PathTracer> make_pssmlt_inner(const PssmltSettings& s) {
     if (s.sampler == "mnee") return std::make_shared<MneeIntegrator>(s.path, s.mnee);
     return std::make_shared<PathTracer>(s.path, true);
 }
 
-SampledSpectrum PssmltIntegrator::li(const Ray&, const Scene&, Sampler&, const SampledWavelengths&) const {
-    throw std::logic_error("pssmlt renders with render_pssmlt, not per pixel sample");
-}
 
 namespace {
 
@@ -56,8 +53,8 @@ uint64_t chain_seed(uint64_t seed, uint64_t c) { return mix_bits(mix_bits(seed +
 
 }  // namespace
 
-RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, const FilmSpec& spec,
-                           const RenderOptions& opt, const std::atomic<bool>* cancel) {
+RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, int spectral_samples,
+                           const FilmSpec& spec, const RenderOptions& opt, const std::atomic<bool>* cancel) {
     using Clock = std::chrono::steady_clock;
     const PerspectiveCamera* camera = scene.camera();
     if (!camera) throw std::runtime_error("scene has no sensor");
@@ -70,6 +67,12 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, c
     const int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
     const int n_chains = settings.chains > 0 ? settings.chains : threads;
     const double p_large = settings.large_step_probability;
+    // A state's weight goes to every pixel whose reconstruction filter covers its position.
+    const Filter& filter = spec.pixel_filter();
+    const auto deposit = [&](std::vector<Vec3>& film, const PathSample& s, const Vec3& v) {
+        const Vec2 p(s.raster.x - spec.crop_x, s.raster.y - spec.crop_y);
+        for_each_pixel_in_support(filter, p, w, h, [&](int x, int y, double wt) { film[size_t(y) * w + x] += v * wt; });
+    };
     tbb::task_arena arena(threads);
     reset_counters();
 
@@ -85,7 +88,7 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, c
         tbb::parallel_for(tbb::blocked_range<size_t>(0, n_boot, 256), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t i = r.begin(); i < r.end(); ++i) {
                 PrimarySampleSampler sampler(bootstrap_seed(opt.seed, i), i, p_large, settings.s1, settings.s2);
-                boot_y[i] = evaluate(scene, *camera, *inner, spec, sampler).target();
+                boot_y[i] = evaluate(scene, *camera, *inner, spectral_samples, spec, sampler).target();
             }
         });
     });
@@ -125,7 +128,7 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, c
             PCG32 pick(chain_seed(opt.seed, uint64_t(c)), uint64_t(c) * 2 + 1);
             const size_t i = seeds.sample_discrete(pick.next_double());
             PrimarySampleSampler sampler(bootstrap_seed(opt.seed, i), i, p_large, settings.s1, settings.s2);
-            PathSample current = evaluate(scene, *camera, *inner, spec, sampler);
+            PathSample current = evaluate(scene, *camera, *inner, spectral_samples, spec, sampler);
             sampler.accept();
             sampler.reseed(chain_seed(opt.seed, uint64_t(c)), uint64_t(c) * 2);
 
@@ -137,7 +140,7 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, c
                     if (stop_requested()) break;
                 }
                 sampler.start_iteration();
-                const PathSample proposed = evaluate(scene, *camera, *inner, spec, sampler);
+                const PathSample proposed = evaluate(scene, *camera, *inner, spectral_samples, spec, sampler);
                 const double fc = current.target(), fp = proposed.target();
                 const double a = fc > 0 ? std::min(1.0, fp / fc) : 1.0;
                 // Expected-value accumulation: each state splats XYZ / Y with its probability
@@ -149,8 +152,8 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, c
                 const double pk = settings.kelemen_weights ? p_large : 0.0;
                 const double wc = (1 - a) / (fc / b + pk);
                 const double wp = (a + (settings.kelemen_weights && large ? 1.0 : 0.0)) / (fp / b + pk);
-                if (wc > 0 && fc > 0) film[size_t(current.y) * w + current.x] += current.xyz * wc;
-                if (wp > 0 && fp > 0) film[size_t(proposed.y) * w + proposed.x] += proposed.xyz * wp;
+                if (wc > 0 && fc > 0) deposit(film, current, current.xyz * wc);
+                if (wp > 0 && fp > 0) deposit(film, proposed, proposed.xyz * wp);
                 if (sampler.uniform() < a) {
                     current = proposed;
                     sampler.accept();
@@ -164,10 +167,12 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, c
     if (bar) bar->finish();
 
     // Pixel value = b * (pixel count) / (mutations) * splat sum: the chains visit the film
-    // with density Y / b over the unit square of film positions, each pixel covering 1/pixels.
+    // with density Y / b over the unit square of film positions, each pixel covering 1/area.
     uint64_t mutations = 0;
     for (uint64_t d : done) mutations += d;
-    const double scale = mutations > 0 ? double(pixels) / double(mutations) : 0.0;
+    // Film positions cover the window grown by the filter margin: its area replaces the count.
+    const Vec2 extent = spec.sample_extent();
+    const double scale = mutations > 0 ? extent.x * extent.y / double(mutations) : 0.0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             Vec3 sum;

@@ -34,7 +34,7 @@ struct PssmltSettings {
 };
 
 /// The inner per-sample estimator that the chains drive (`nee` or `mnee`).
-std::shared_ptr<Integrator> make_pssmlt_inner(const PssmltSettings& settings);
+std::shared_ptr<PathTracer> make_pssmlt_inner(const PssmltSettings& settings);
 
 /// Renders `film` with PSSMLT. The target function is the luminance Y of a sample's XYZ;
 /// the normalisation b = E[Y] comes from `bootstrap_samples` independent paths, from which
@@ -44,15 +44,20 @@ std::shared_ptr<Integrator> make_pssmlt_inner(const PssmltSettings& settings);
 /// the film position over the output (crop) window, the third the wavelength, as in render().
 /// A pure function of (scene, settings, options.seed) when `chains` is fixed and no time
 /// limit is set: each chain owns its random stream and per-chain films are summed in order.
-RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, const FilmSpec& film,
-                           const RenderOptions& options, const std::atomic<bool>* cancel = nullptr);
+/// Each path carries `spectral_samples` wavelengths.
+RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, int spectral_samples,
+                           const FilmSpec& film, const RenderOptions& options,
+                           const std::atomic<bool>* cancel = nullptr);
 
-/// The scene-file object for `type="pssmlt"`; carries the settings for render_pssmlt. Its
-/// li() throws: a caller that finds a PssmltIntegrator must render with render_pssmlt.
+/// `type="pssmlt"`: Metropolis places its samples anywhere on the film, so it brings its own
+/// render loop (render_pssmlt) instead of the tile loop.
 class PssmltIntegrator final : public Integrator {
 public:
     explicit PssmltIntegrator(PssmltSettings settings) : m_settings(std::move(settings)) {}
-    SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl) const override;
+    RenderResult render(const Scene& scene, const FilmSpec& film, const RenderOptions& options,
+                        const std::atomic<bool>* cancel = nullptr) const override {
+        return render_pssmlt(scene, m_settings, spectral_samples(), film, options, cancel);
+    }
     std::string name() const override { return m_settings.sampler == "mnee" ? "pssmlt(mnee)" : "pssmlt(nee)"; }
     const PssmltSettings& settings() const { return m_settings; }
 

@@ -3,7 +3,7 @@
 // ERPT's evaluations): wavelengths, camera ray, the integrator's estimate, sanitising, XYZ.
 #include "camera/camera.h"
 #include "core/stats.h"
-#include "integrators/integrator.h"
+#include "render/sample_tracer.h"
 
 namespace snell {
 
@@ -21,11 +21,11 @@ struct TracedSample {
     Vec3 xyz;           ///< its CIE XYZ estimate (cs.wl.to_xyz(L))
 };
 
-/// Draws the path's wavelengths from `u_lambda` (integrator.spectral_samples() of them,
-/// stratified), traces the camera ray through the full-film raster position `raster`, and
-/// returns the sanitised estimate of integrator.li_splat() with its XYZ.
-TracedSample trace_camera_sample(const Scene& scene, const PerspectiveCamera& camera, const Integrator& integrator,
-                                 const Vec2& raster, double u_lambda, Sampler& sampler, SplatList& splats,
-                                 Counters& counters);
+/// Draws the path's `spectral_samples` wavelengths from `u_lambda` (stratified), traces the
+/// camera ray through the full-film raster position `raster` (a sample of the pixel centred at
+/// `pixel_centre`), and returns the sanitised estimate of tracer.li_splat() with its XYZ.
+TracedSample trace_camera_sample(const Scene& scene, const PerspectiveCamera& camera, const SampleTracer& tracer,
+                                 int spectral_samples, const Vec2& pixel_centre, const Vec2& raster, double u_lambda,
+                                 Sampler& sampler, SplatList& splats, Counters& counters);
 
 }  // namespace snell

@@ -1,4 +1,4 @@
-#include "integrators/camera_sample.h"
+#include "render/camera_sample.h"
 
 #include <cmath>
 
@@ -32,15 +32,16 @@ bool is_valid_radiance(const SampledSpectrum& L) {
     return true;
 }
 
-TracedSample trace_camera_sample(const Scene& scene, const PerspectiveCamera& camera, const Integrator& integrator,
-                                 const Vec2& raster, double u_lambda, Sampler& sampler, SplatList& splats,
-                                 Counters& counters) {
+TracedSample trace_camera_sample(const Scene& scene, const PerspectiveCamera& camera, const SampleTracer& tracer,
+                                 int spectral_samples, const Vec2& pixel_centre, const Vec2& raster, double u_lambda,
+                                 Sampler& sampler, SplatList& splats, Counters& counters) {
     TracedSample t;
     t.cs.raster = raster;
+    t.cs.pixel_centre = pixel_centre;
     t.cs.u_lambda = u_lambda;
-    t.cs.wl = SampledWavelengths::sample_visible(u_lambda, integrator.spectral_samples());
+    t.cs.wl = SampledWavelengths::sample_visible(u_lambda, spectral_samples);
     const Ray ray = camera.generate_ray(raster);
-    t.L = sanitize(integrator.li_splat(t.cs, ray, scene, sampler, splats), counters);
+    t.L = sanitize(tracer.li_splat(t.cs, ray, scene, sampler, splats), counters);
     t.xyz = t.cs.wl.to_xyz(t.L);
     return t;
 }

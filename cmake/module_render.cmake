@@ -1,0 +1,7 @@
+# The shared tile render loop and the pixel-sample pipeline (below the integrators, which
+# own their render loops and use this one by default).
+snell_library(snell_render
+  src/render/renderer.cpp
+  src/render/camera_sample.cpp
+)
+target_link_libraries(snell_render PUBLIC snell_sampler snell_geometry TBB::tbb)

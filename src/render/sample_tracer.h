@@ -1,0 +1,54 @@
+#pragma once
+// What the shared tile loop renders: a per-render estimator of one pixel sample (Tungsten's
+// Tracer), built by a TileIntegrator's prepare() for one render.
+#include <string>
+#include <vector>
+
+#include "core/sampled_spectrum.h"
+#include "core/sampler.h"
+#include "core/vector.h"
+
+namespace snell {
+
+class Scene;
+
+/// What the render loop drew for one pixel sample before calling the estimator: the film
+/// position (full-film raster, pixels) and the wavelengths with the uniform number behind them.
+/// Estimators that re-evaluate or mutate the sample (ERPT) need these numbers.
+struct CameraSample {
+    Vec2 raster;
+    Vec2 pixel_centre;  ///< centre (full-film raster) of the pixel whose estimate this sample is
+    double u_lambda = 0;
+    SampledWavelengths wl;
+};
+
+/// A contribution that lands on the film somewhere other than the sample's own pixel (light
+/// tracing in BDPT, ERPT's deposits). `raster` is a full-film position; `xyz` is already
+/// divided by the wavelength density. The render loop adds splats in a fixed order, spreads
+/// each over the pixels whose reconstruction filter covers `raster` (filter weights), and
+/// scales them by 1 / (camera samples per pixel), so an estimator of pixel j is the sum of its
+/// splats divided by the number of samples each pixel receives. A `binned` splat is already a
+/// pixel's sum (filter applied by its producer) and goes to the pixel containing `raster`.
+struct FilmSplat {
+    Vec2 raster;
+    Vec3 xyz;
+    int layer = 0;        ///< 0: the image; > 0: a debug layer (BDPT's per-strategy images)
+    bool binned = false;  ///< already filtered into the pixel that contains `raster`
+};
+using SplatList = std::vector<FilmSplat>;
+
+/// The estimator of one pixel sample for one render. Thread-safe (const) while rendering; all
+/// randomness comes from `sampler`.
+class SampleTracer {
+public:
+    virtual ~SampleTracer() = default;
+    /// Radiance along the camera sample's `ray` at cs.wl, plus any splats appended to `splats`.
+    virtual SampledSpectrum li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+                                     SplatList& splats) const = 0;
+    /// True when li_splat() may produce splats; the render loop then merges them per tile group.
+    virtual bool splats() const { return false; }
+    /// Names of the debug layers 1, 2, ... that splats may target (empty: none).
+    virtual std::vector<std::string> layer_names() const { return {}; }
+};
+
+}  // namespace snell
