@@ -22,6 +22,11 @@
 //                                  the geometry layer on top of Embree.
 // Both raw benchmarks pass the double-precision ray through the context exactly as
 // Scene::intersect does, because the analytic sphere's intersection callback reads it there.
+//
+// The *Serial variants run the same work on the benchmark's own thread (render() with one
+// thread; the ray buffers without TBB) and report rates per CPU second of that thread rather
+// than per wall second: on a machine shared with other jobs, wall-clock rates move with the
+// load, CPU-time rates much less. Compare renderer and Embree figures within one run.
 #include <benchmark/benchmark.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -64,12 +69,13 @@ LoadedScene& demo_scene(const std::string& integrator) {
 }
 
 // Full renderer: camera rays, BSDF and light sampling, spectral accumulation, all threads.
-void render_bench(benchmark::State& state, const char* integrator) {
+void render_bench(benchmark::State& state, const char* integrator, int threads = 0) {
     LoadedScene& ls = demo_scene(integrator);
     RenderOptions opt;
     opt.spp = 4;
     opt.sampler = ls.sampler;
     opt.progress = false;
+    opt.threads = threads;
     Counters total;
     for (auto _ : state) {
         RenderResult r = render(*ls.scene, *ls.scene->integrator(), ls.film, opt);
@@ -85,6 +91,8 @@ void BM_RenderPath(benchmark::State& s) { render_bench(s, "path"); }
 void BM_RenderNEE(benchmark::State& s) { render_bench(s, "nee"); }
 void BM_RenderMNEE(benchmark::State& s) { render_bench(s, "mnee"); }
 void BM_RenderBDPT(benchmark::State& s) { render_bench(s, "bdpt"); }
+void BM_RenderPathSerial(benchmark::State& s) { render_bench(s, "path", 1); }
+void BM_RenderNEESerial(benchmark::State& s) { render_bench(s, "nee", 1); }
 
 /// One closest-hit query straight to Embree (no differential geometry, no shading).
 bool embree_closest_hit(RTCScene scene, const Ray& ray) {
@@ -104,17 +112,25 @@ bool embree_closest_hit(RTCScene scene, const Ray& ray) {
     return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
 }
 
-/// Traces every ray of `rays` with `trace` on all threads; reports rays/s and the hit fraction.
+/// Traces every ray of `rays` with `trace` on all threads (or, `serial`, on this one);
+/// reports rays/s and the hit fraction.
 template <typename Trace>
-void replay(benchmark::State& state, const std::vector<Ray>& rays, const Trace& trace) {
+void replay(benchmark::State& state, const std::vector<Ray>& rays, const Trace& trace, bool serial = false) {
     std::atomic<uint64_t> hits{0};
     uint64_t traced = 0;
     for (auto _ : state) {
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+        if (serial) {
             uint64_t local = 0;
-            for (size_t i = r.begin(); i < r.end(); ++i) local += trace(rays[i]);
+            for (const Ray& r : rays) local += trace(r);
             hits += local;
-        });
+        } else {
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 4096),
+                              [&](const tbb::blocked_range<size_t>& r) {
+                                  uint64_t local = 0;
+                                  for (size_t i = r.begin(); i < r.end(); ++i) local += trace(rays[i]);
+                                  hits += local;
+                              });
+        }
         traced += rays.size();
     }
     state.counters["rays/s"] = benchmark::Counter(double(traced), benchmark::Counter::kIsRate);
@@ -189,20 +205,27 @@ void BM_EmbreeRawRandomRays(benchmark::State& state) {
     replay(state, random_rays(), [s](const Ray& r) { return embree_closest_hit(s, r); });
 }
 
-void BM_EmbreeRawRendererRays(benchmark::State& state) {
+void embree_raw_renderer_rays(benchmark::State& state, bool serial) {
     const RTCScene s = demo_scene("path").scene->rtc_scene();
     const std::vector<Ray>& rays = renderer_rays();
-    replay(state, rays, [s](const Ray& r) { return embree_closest_hit(s, r); });
+    replay(state, rays, [s](const Ray& r) { return embree_closest_hit(s, r); }, serial);
     state.counters["rays/path"] = double(rays.size()) / double(kResX * kResY * 4);
 }
+void BM_EmbreeRawRendererRays(benchmark::State& state) { embree_raw_renderer_rays(state, false); }
+void BM_EmbreeRawRendererRaysSerial(benchmark::State& state) { embree_raw_renderer_rays(state, true); }
 
-void BM_SceneIntersectRendererRays(benchmark::State& state) {
+void scene_intersect_renderer_rays(benchmark::State& state, bool serial) {
     const Scene& scene = *demo_scene("path").scene;
-    replay(state, renderer_rays(), [&scene](const Ray& r) {
-        SurfaceInteraction si;
-        return scene.intersect(r, &si);
-    });
+    replay(
+        state, renderer_rays(),
+        [&scene](const Ray& r) {
+            SurfaceInteraction si;
+            return scene.intersect(r, &si);
+        },
+        serial);
 }
+void BM_SceneIntersectRendererRays(benchmark::State& state) { scene_intersect_renderer_rays(state, false); }
+void BM_SceneIntersectRendererRaysSerial(benchmark::State& state) { scene_intersect_renderer_rays(state, true); }
 
 }  // namespace
 
@@ -213,4 +236,8 @@ BENCHMARK(BM_RenderPath)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(
 BENCHMARK(BM_RenderNEE)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 BENCHMARK(BM_RenderMNEE)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 BENCHMARK(BM_RenderBDPT)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+BENCHMARK(BM_EmbreeRawRendererRaysSerial)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_SceneIntersectRendererRaysSerial)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_RenderPathSerial)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+BENCHMARK(BM_RenderNEESerial)->Unit(benchmark::kMillisecond)->MinTime(3.0);
 BENCHMARK_MAIN();

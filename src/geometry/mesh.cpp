@@ -65,6 +65,10 @@ TriangleMesh::TriangleMesh(MeshData data, bool face_normals, bool flip_normals,
     }
     if (!(m_area > 0)) throw std::runtime_error(name + ": mesh has zero surface area");
     m_tri_dist = Distribution1D(std::move(areas));
+    if (m_tris.size() <= kMaxCachedTriangles) {
+        m_params.resize(m_tris.size());
+        for (uint32_t i = 0; i < m_tris.size(); ++i) m_params[i] = triangle_params(i);
+    }
 }
 
 TriangleMesh::~TriangleMesh() {
@@ -99,28 +103,24 @@ unsigned TriangleMesh::attach(RTCDevice device, RTCScene scene) {
     return m_geom_id;
 }
 
-void TriangleMesh::interaction_at(uint32_t prim, const Vec2& b, SurfaceInteraction* si) const {
+TriangleMesh::TriangleParams TriangleMesh::triangle_params(uint32_t prim) const {
     const auto& tri = m_tris[prim];
     const Vec3 p0 = vertex(tri[0]), p1 = vertex(tri[1]), p2 = vertex(tri[2]);
-    const double b1 = b.x, b2 = b.y, b0 = 1 - b1 - b2;
     const Vec3 e1 = p1 - p0, e2 = p2 - p0;
-    Vec3 ng = cross(e1, e2);
+    TriangleParams tp;
+    const Vec3 ng = cross(e1, e2);
     const double ng_len = length(ng);
-    ng = ng_len > 0 ? ng / ng_len : Vec3(0, 0, 1);
+    tp.ng = ng_len > 0 ? ng / ng_len : Vec3(0, 0, 1);
 
     // Parametrisation: barycentric unless the texture map is usable.
-    Vec3 dpdu = e1, dpdv = e2;
-    Vec3 dNdu, dNdv;  // derivatives of the unnormalised blended normal
+    tp.dpdu = e1;
+    tp.dpdv = e2;
     const bool smooth = !m_normals.empty();
-    Vec3 n0, n1, n2;
     if (smooth) {
-        n0 = m_normals[tri[0]];
-        n1 = m_normals[tri[1]];
-        n2 = m_normals[tri[2]];
-        dNdu = n1 - n0;
-        dNdv = n2 - n0;
+        const Vec3 n0 = m_normals[tri[0]];
+        tp.dNdu = m_normals[tri[1]] - n0;
+        tp.dNdv = m_normals[tri[2]] - n0;
     }
-    Vec2 uv = b;
     if (!m_uvs.empty()) {
         const Vec2 t0 = m_uvs[tri[0]], t1 = m_uvs[tri[1]], t2 = m_uvs[tri[2]];
         const Vec2 d1 = t1 - t0, d2 = t2 - t0;
@@ -130,26 +130,57 @@ void TriangleMesh::interaction_at(uint32_t prim, const Vec2& b, SurfaceInteracti
         if (std::abs(det) > 1e-9 * length(d1) * length(d2) && std::isfinite(1 / det)) {
             const double inv = 1 / det;
             // [e1 e2] = [dp/du dp/dv] [d1 d2]  =>  [dp/du dp/dv] = [e1 e2] [d1 d2]^-1
-            dpdu = (e1 * d2.y - e2 * d1.y) * inv;
-            dpdv = (e2 * d1.x - e1 * d2.x) * inv;
+            tp.dpdu = (e1 * d2.y - e2 * d1.y) * inv;
+            tp.dpdv = (e2 * d1.x - e1 * d2.x) * inv;
             if (smooth) {
-                const Vec3 a = dNdu, c = dNdv;
-                dNdu = (a * d2.y - c * d1.y) * inv;
-                dNdv = (c * d1.x - a * d2.x) * inv;
+                const Vec3 a = tp.dNdu, c = tp.dNdv;
+                tp.dNdu = (a * d2.y - c * d1.y) * inv;
+                tp.dNdv = (c * d1.x - a * d2.x) * inv;
             }
-            uv = t0 * b0 + t1 * b1 + t2 * b2;
+            tp.uv_map = true;
         }
     }
+    // Flat shading: n is the (flipped) face normal, so the frame's s axis -- the Gram-Schmidt
+    // step of Frame::from_normal_tangent -- is constant over the triangle.
+    if (!smooth) {
+        const Vec3 n = m_flip ? -tp.ng : tp.ng;
+        Vec3 s = tp.dpdu - n * dot(n, tp.dpdu);
+        const double l2 = length_squared(s);
+        if (l2 > 1e-20) {
+            s /= std::sqrt(l2);
+            tp.flat_s = s;
+            tp.flat_s_valid = true;
+        }
+    }
+    return tp;
+}
 
-    Vec3 n = ng, dndu, dndv;
+void TriangleMesh::interaction_at(uint32_t prim, const Vec2& b, SurfaceInteraction* si) const {
+    TriangleParams computed;
+    const TriangleParams* tp = nullptr;
+    if (m_params.empty()) {
+        computed = triangle_params(prim);
+        tp = &computed;
+    } else {
+        tp = &m_params[prim];
+    }
+    const auto& tri = m_tris[prim];
+    const Vec3 p0 = vertex(tri[0]), p1 = vertex(tri[1]), p2 = vertex(tri[2]);
+    const double b1 = b.x, b2 = b.y, b0 = 1 - b1 - b2;
+
+    Vec2 uv = b;
+    if (tp->uv_map) uv = m_uvs[tri[0]] * b0 + m_uvs[tri[1]] * b1 + m_uvs[tri[2]] * b2;
+
+    Vec3 ng = tp->ng, n = tp->ng, dndu, dndv;
+    const bool smooth = !m_normals.empty();
     if (smooth) {
-        const Vec3 N = n0 * b0 + n1 * b1 + n2 * b2;
+        const Vec3 N = m_normals[tri[0]] * b0 + m_normals[tri[1]] * b1 + m_normals[tri[2]] * b2;
         const double len = length(N);
         if (len > 0) {
             n = N / len;
             // d(N/|N|) = (dN - n (n . dN)) / |N|
-            dndu = (dNdu - n * dot(n, dNdu)) / len;
-            dndv = (dNdv - n * dot(n, dNdv)) / len;
+            dndu = (tp->dNdu - n * dot(n, tp->dNdu)) / len;
+            dndv = (tp->dNdv - n * dot(n, tp->dNdv)) / len;
             ng = face_forward(ng, n);
         }
     }
@@ -163,12 +194,13 @@ void TriangleMesh::interaction_at(uint32_t prim, const Vec2& b, SurfaceInteracti
     si->t = 0;
     si->ng = ng;
     si->n = n;
-    si->dpdu = dpdu;
-    si->dpdv = dpdv;
+    si->dpdu = tp->dpdu;
+    si->dpdv = tp->dpdv;
     si->dndu = dndu;
     si->dndv = dndv;
     si->uv = uv;
-    si->shading = Frame::from_normal_tangent(n, dpdu);
+    si->shading = tp->flat_s_valid ? Frame(tp->flat_s, cross(n, tp->flat_s), n)
+                                   : Frame::from_normal_tangent(n, tp->dpdu);
     si->shape = this;
     si->prim = prim;
 }

@@ -56,7 +56,25 @@ class TriangleMesh final : public Shape {
     bool has_vertex_normals() const { return !m_normals.empty(); }
     bool has_uvs() const { return !m_uvs.empty(); }
 
+    /// Meshes with at most this many triangles keep the per-triangle part of the
+    /// differential geometry (TriangleParams, 152 bytes a triangle) precomputed; larger
+    /// ones recompute it at every hit rather than double their memory.
+    static constexpr size_t kMaxCachedTriangles = size_t(1) << 16;
+
   private:
+    /// Everything interaction_at needs that depends on the triangle alone, not on the
+    /// barycentrics: computed by triangle_params() the same way whether cached or not, so
+    /// both paths give bit-identical results.
+    struct TriangleParams {
+        Vec3 ng;          ///< unit winding normal, before face_forward and flipping
+        Vec3 dpdu, dpdv;  ///< position derivatives in the chosen parametrisation
+        Vec3 dNdu, dNdv;  ///< derivatives of the unnormalised blended normal (smooth only)
+        bool uv_map = false;  ///< the texture map parametrises this triangle
+        /// Flat shading (no vertex normals): the frame's s axis, which is then constant.
+        Vec3 flat_s;
+        bool flat_s_valid = false;
+    };
+    TriangleParams triangle_params(uint32_t prim) const;
     RTCGeometry make_geometry(RTCDevice device) const;
 
     std::vector<Vec3f> m_pos;  ///< one extra padding element: Embree reads 16 bytes per vertex
@@ -68,6 +86,7 @@ class TriangleMesh final : public Shape {
     Bounds3 m_bounds;
     double m_area = 0;
     Distribution1D m_tri_dist;
+    std::vector<TriangleParams> m_params;  ///< per triangle, empty above kMaxCachedTriangles
     RTCScene m_query_scene = nullptr;
 };
 

@@ -31,7 +31,8 @@ public:
 
     /// Fills `si` from an Embree hit on primitive `prim` at barycentrics/parameters `uv`
     /// (as Embree reports them) at ray distance t. Full differential geometry, ng and n
-    /// pointing to the shape's outside (flipped when `flip_normals` is set).
+    /// pointing to the shape's outside (flipped when `flip_normals` is set), and
+    /// wo = -normalize(ray.d).
     virtual void compute_interaction(const Ray& ray, double t, uint32_t prim, const Vec2& uv,
                                      SurfaceInteraction* si) const = 0;
 

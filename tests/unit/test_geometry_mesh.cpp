@@ -279,3 +279,32 @@ TEST(GeometryMesh, InvalidMeshThrows) {
         EXPECT_NE(std::string(e.what()).find("bad.ply"), std::string::npos);
     }
 }
+
+/// Meshes up to TriangleMesh::kMaxCachedTriangles keep the per-triangle part of the
+/// differential geometry precomputed; larger ones recompute it per hit. Both must give the
+/// same bits, for smooth, flat, textured and flipped meshes alike.
+TEST(GeometryMesh, CachedTriangleParamsAreBitIdentical) {
+    for (int variant = 0; variant < 8; ++variant) {
+        const bool with_uv = variant & 1, face_normals = variant & 2, flip = variant & 4;
+        MeshData small = skewed_triangle(with_uv);
+        MeshData large = small;
+        // Pad with reversed copies of the triangle until the cache is off.
+        const size_t pad = TriangleMesh::kMaxCachedTriangles;
+        for (size_t i = 0; i < pad; ++i) large.triangles.push_back({0, 2, 1});
+        const TriangleMesh a(small, face_normals, flip), b(large, face_normals, flip);
+        PCG32 rng(3, 5);
+        for (int k = 0; k < 64; ++k) {
+            Vec2 q = next_2d(rng);
+            if (q.x + q.y > 1) q = Vec2(1 - q.x, 1 - q.y);
+            SurfaceInteraction sa, sb;
+            a.interaction_at(0, q, &sa);
+            b.interaction_at(0, q, &sb);
+            for (const auto& [x, y] : {std::pair{sa.p, sb.p}, {sa.ng, sb.ng}, {sa.n, sb.n},
+                                       {sa.dpdu, sb.dpdu}, {sa.dpdv, sb.dpdv}, {sa.dndu, sb.dndu},
+                                       {sa.dndv, sb.dndv}, {sa.shading.s, sb.shading.s},
+                                       {sa.shading.t, sb.shading.t}, {sa.shading.n, sb.shading.n}})
+                EXPECT_EQ(x, y) << "variant " << variant;
+            EXPECT_EQ(sa.uv, sb.uv) << "variant " << variant;
+        }
+    }
+}
