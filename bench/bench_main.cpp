@@ -171,7 +171,7 @@ const std::vector<Ray>& renderer_rays() {
                 for (int y = ty; y < std::min(kResY, ty + tile); ++y)
                     for (int x = tx; x < std::min(kResX, tx + tile); ++x)
                         for (int s = 0; s < spp; ++s) {
-                            const BSDFContext ctx{SampledWavelengths::sample_visible(rng.next_double()),
+                            const BSDFContext ctx{SampledWavelengths::sample_visible({rng.next_double(), rng.next_double()}),
                                                   TransportMode::Radiance};
                             Ray ray = cam.generate_ray(Vec2(x + rng.next_double(), y + rng.next_double()));
                             SampledSpectrum beta(1.0);

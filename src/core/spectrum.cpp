@@ -186,10 +186,25 @@ RGB clamp_rgb(const RGB& c, double lo, double hi) {
 
 }  // namespace
 
-Vec3 cie_xyz(double l) {
+static Vec3 cie_xyz_fit(double l) {
     return {1.056 * g(l, 599.8, 37.9, 31.0) + 0.362 * g(l, 442.0, 16.0, 26.7) - 0.065 * g(l, 501.1, 20.4, 26.2),
             0.821 * g(l, 568.8, 46.9, 40.5) + 0.286 * g(l, 530.9, 16.3, 31.1),
             1.217 * g(l, 437.0, 11.8, 36.0) + 0.681 * g(l, 459.0, 26.0, 13.8)};
+}
+
+Vec3 cie_xyz(double l) {
+    // The fit tabulated at 1 nm and interpolated linearly: the film converts every wavelength
+    // of every path, and the fit costs six exp() calls (relative error of the table < 1e-5).
+    static const std::vector<Vec3> table = [] {
+        std::vector<Vec3> t(static_cast<size_t>(kGrid));
+        for (int i = 0; i < kGrid; ++i) t[size_t(i)] = cie_xyz_fit(grid_lambda(i));
+        return t;
+    }();
+    if (!(l >= kLambdaMin) || !(l <= kLambdaMax)) return cie_xyz_fit(l);
+    const double x = l - kLambdaMin;
+    const int i = std::min(kGrid - 2, int(x));
+    const double t = x - i;
+    return table[size_t(i)] * (1 - t) + table[size_t(i) + 1] * t;
 }
 
 double cie_y_integral() {
@@ -215,29 +230,35 @@ Vec3 spectrum_to_xyz(const Spectrum& s) {
 
 // pbrt-v4's visible-wavelength density, proportional to 1/cosh^2(0.0072 (lambda - 538))
 // on [360, 830] nm: concentrates samples where the eye is sensitive.
-double sample_visible_wavelength(double u) {
+double sample_visible_wavelength(double u, double* pdf) {
     // The rounded constants can overshoot the range by ~1e-5 nm for u near 1; clamp so the
     // pdf below never evaluates to zero for a sampled wavelength.
-    return clamp(538.0 - 138.888889 * std::atanh(0.85691062 - 1.82750197 * u), kLambdaMin, kLambdaMax);
+    const double y = 0.85691062 - 1.82750197 * u;
+    const double lambda = 538.0 - 138.888889 * std::atanh(y);
+    const double clamped = clamp(lambda, kLambdaMin, kLambdaMax);
+    // 0.0072 * 138.888889 = 1, so cosh^2(0.0072 (lambda - 538)) = 1 / (1 - y^2): the density
+    // without a transcendental function (it is evaluated for every wavelength of every path).
+    if (pdf) *pdf = clamped == lambda ? 0.0039398042 * (1 - y * y) : visible_wavelength_pdf(clamped);
+    return clamped;
 }
 double visible_wavelength_pdf(double lambda) {
     if (lambda < kLambdaMin || lambda > kLambdaMax) return 0;
     return 0.0039398042 / sqr(std::cosh(0.0072 * (lambda - 538.0)));
 }
 
-SampledWavelengths SampledWavelengths::sample_visible(double u, int count) {
+SampledWavelengths SampledWavelengths::sample_visible(const Vec2& u, int count) {
     SampledWavelengths wl;
     wl.m_count = std::clamp(count, 1, kSpectrumSamples);
+    const int n = wl.m_count;
+    const int hero = std::min(n - 1, int(u.y * n));
     for (int i = 0; i < kSpectrumSamples; ++i) {
-        if (i >= wl.m_count) {  // unused slots repeat the hero and carry no weight
+        if (i >= n) {  // unused slots repeat the hero and carry no weight
             wl.m_lambda[size_t(i)] = wl.m_lambda[0];
             wl.m_pdf[size_t(i)] = 0;
             continue;
         }
-        double ui = u + double(i) / wl.m_count;
-        if (ui >= 1) ui -= 1;
-        wl.m_lambda[size_t(i)] = sample_visible_wavelength(ui);
-        wl.m_pdf[size_t(i)] = visible_wavelength_pdf(wl.m_lambda[size_t(i)]);
+        const double ui = (u.x + double((hero + i) % n)) / n;
+        wl.m_lambda[size_t(i)] = sample_visible_wavelength(std::min(ui, 1.0 - 0x1p-53), &wl.m_pdf[size_t(i)]);
     }
     return wl;
 }

@@ -82,7 +82,8 @@ Vec3 linear_srgb_to_xyz(const Vec3& rgb);
 
 /// Samples a wavelength over [kLambdaMin, kLambdaMax] proportionally to a smooth fit of the
 /// visual response (pbrt-v4's 1/cosh^2 density), for low colour noise.
-double sample_visible_wavelength(double u);
+/// The density at the returned wavelength goes to `pdf` when given.
+double sample_visible_wavelength(double u, double* pdf = nullptr);
 double visible_wavelength_pdf(double lambda);
 
 /// XYZ contribution of radiance `L` carried at wavelength `lambda` sampled with density

@@ -137,7 +137,7 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
                                 const FilterSample fs = filter.sample(sampler->next_2d());
                                 const Vec2 centre(fx + 0.5, fy + 0.5);
                                 const Vec2 raster = centre + fs.offset;
-                                const double u_lambda = sampler->next_1d();
+                                const Vec2 u_lambda = sampler->next_2d();
                                 sum += trace_camera_sample(scene, *camera, tracer, spectral_samples, centre, raster,
                                                            u_lambda, *sampler, splats, counters)
                                            .xyz *

@@ -114,6 +114,19 @@ inline std::vector<Estimate> block_estimates(const LoadedScene& ls, const Integr
     return out;
 }
 
+/// Whole-image mean from the blocks of block_estimates(): pixels draw from independent random
+/// streams, so block means of one replica are independent and the variances add.
+inline Estimate whole_image(const std::vector<Estimate>& blocks) {
+    Estimate e;
+    double var = 0;
+    for (const Estimate& b : blocks) e.mean += b.mean, var += b.stderr_ * b.stderr_;
+    const double nb = double(blocks.size());
+    e.mean /= nb;
+    e.stderr_ = std::sqrt(var) / nb;
+    e.n = blocks.front().n;
+    return e;
+}
+
 /// Expects that two independent estimators agree per block: Welch's t-test per block (the
 /// standard errors come from few replicas, so Student's t, not the normal), with a
 /// Bonferroni correction over the blocks at family-wise level alpha.

@@ -61,19 +61,6 @@ const char* kEnvironment = R"(<scene version="3.0.0">
   <emitter type="constant"><rgb name="radiance" value="0.5"/></emitter>
 </scene>)";
 
-// Whole-image mean from independent blocks: pixels draw from independent random streams, so
-// block means of one replica are independent and the variances add.
-Estimate whole_image(const std::vector<Estimate>& blocks) {
-    Estimate e;
-    double var = 0;
-    for (const Estimate& b : blocks) e.mean += b.mean, var += b.stderr_ * b.stderr_;
-    const double nb = double(blocks.size());
-    e.mean /= nb;
-    e.stderr_ = std::sqrt(var) / nb;
-    e.n = blocks.front().n;
-    return e;
-}
-
 void expect_bdpt_and_nee_agree(const char* xml, const Defines& d, int spp_bdpt, int spp_nee, int replicas, int block,
                                const char* what) {
     Defines db = d, dn = d;
@@ -140,9 +127,13 @@ TEST(BdptAgreement, MatchesNeeInABox) { expect_bdpt_and_nee_agree(kCornellBox, {
 // directly, are compared against `path` in test_bdpt_light_tracing.cpp: `nee` cannot reach
 // that caustic with its shadow rays and underestimates it at any affordable sample count.
 
-// Point and spot lights start light subpaths at a delta position.
+// Point and spot lights start light subpaths at a delta position. The scene has no <rfilter>,
+// so light tracing splats through Mitsuba's default gaussian. (At 32 / 64 spp the whole-image
+// comparison gave p = 0.006; at 1024 / 2048 spp the two agree to 0.1 %: bdpt 0.18793 +- 0.00017,
+// nee 0.18777 +- 0.00039 with the gaussian, 0.18844 +- 0.00013 vs 0.18849 +- 0.00035 with the
+// tent. The test now takes twice the samples.)
 TEST(BdptAgreement, MatchesNeeWithDeltaLights) {
-    expect_bdpt_and_nee_agree(kDeltaLights, {}, 32, 64, 12, 8, "delta lights");
+    expect_bdpt_and_nee_agree(kDeltaLights, {}, 64, 128, 12, 8, "delta lights");
 }
 
 TEST(BdptAgreement, MatchesNeeWithALightInsideGlass) {

@@ -120,7 +120,7 @@ TEST_P(BsdfChi2, SamplesFollowPdf) {
     std::string first_bad;
     if (c.bsdf) {
         BSDFContext ctx;
-        ctx.wl = SampledWavelengths::sample_visible(0.3);  // four distinct wavelengths
+        ctx.wl = SampledWavelengths::sample_visible(Vec2(0.3, 0.6));  // four distinct wavelengths
         ctx.mode = c.mode;
         const BSDF& b = *c.bsdf;
         r = snell::test::chi2_sphere_test(

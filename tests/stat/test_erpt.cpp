@@ -113,10 +113,10 @@ TEST(Erpt, RecordedSeedReplaysThroughEvaluate) {
         sampler.start_pixel_sample(px, py, uint64_t(i));
         const Vec2 jitter = sampler.next_2d();
         const Vec2 raster(px + jitter.x, py + jitter.y);
-        const double u_lambda = sampler.next_1d();
+        const Vec2 u_lambda = sampler.next_2d();
         const SampledWavelengths wl = SampledWavelengths::sample_visible(u_lambda);
         const Vec2 o = ls.film.sample_origin(), e = ls.film.sample_extent();
-        std::vector<double> state = {(raster.x - o.x) / e.x, (raster.y - o.y) / e.y, u_lambda};
+        std::vector<double> state = {(raster.x - o.x) / e.x, (raster.y - o.y) / e.y, u_lambda.x, u_lambda.y};
         RecordingSampler rec(sampler, state);
         const SampledSpectrum L = inner->li(camera.generate_ray(raster), *ls.scene, rec, wl);
         PrimarySampleSampler replay(1, 2, 0.0);

@@ -149,7 +149,8 @@ SampledSpectrum ErptTracer::li_splat(const CameraSample& cs, const Ray& ray, con
     const Vec2 origin = film.sample_origin(), extent = film.sample_extent();
     state.push_back(std::clamp((cs.raster.x - origin.x) / extent.x, 0.0, below_one));
     state.push_back(std::clamp((cs.raster.y - origin.y) / extent.y, 0.0, below_one));
-    state.push_back(cs.u_lambda);
+    state.push_back(cs.u_lambda.x);
+    state.push_back(cs.u_lambda.y);
     RecordingSampler recorder(sampler, state);
     const SampledSpectrum L = m_inner->li(ray, scene, recorder, cs.wl);
     const bool touched = camera_path_touched();

@@ -1,5 +1,6 @@
 #include "integrators/mnee/mnee_integrator.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/props.h"
@@ -31,6 +32,7 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     s.ignore_occluders = p.get_bool("ignore_occluders", s.ignore_occluders);
     s.cull_margin = p.get_float("cull_margin", s.cull_margin);
     s.biased = p.get_bool("biased", s.biased);
+    s.spectral_walks = p.get_bool("spectral_walks", s.spectral_walks);
     s.walk.max_iterations = int(p.get_int("max_iterations", s.walk.max_iterations));
     s.walk.threshold = p.get_float("threshold", s.walk.threshold);
     s.walk.allow_error_increase = p.get_bool("allow_error_increase", s.walk.allow_error_increase);
@@ -48,7 +50,7 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
 
 void MneeIntegrator::on_arrival(PathState& state, const SurfaceInteraction& si, const Ray& ray,
                                 const BSDFContext& ctx) const {
-    RefractiveSuffix& s = state.suffix;
+    RefractiveSuffix& s = static_cast<MneePathState&>(state).suffix;
     if (!s.has_xb || !is_manifold_interface(si.bsdf(), ctx.hero())) return;
     if (s.k >= RefractiveSuffix::kMaxVertices) {
         s.has_xb = false;
@@ -61,7 +63,7 @@ void MneeIntegrator::on_arrival(PathState& state, const SurfaceInteraction& si, 
 
 void MneeIntegrator::on_scatter(PathState& state, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFSample& bs,
                                 const BSDFContext& ctx) const {
-    RefractiveSuffix& s = state.suffix;
+    RefractiveSuffix& s = static_cast<MneePathState&>(state).suffix;
     const MediumStack media_before = state.media;
     PathTracer::on_scatter(state, si, bsdf, bs, ctx);
     if (is_manifold_interface(&bsdf, ctx.hero())) {
@@ -85,7 +87,7 @@ void MneeIntegrator::on_scatter(PathState& state, const SurfaceInteraction& si, 
 
 double MneeIntegrator::emitter_hit_weight(const Scene& scene, const PathState& state, const Light& light, const Vec3& p,
                                           const Vec3& n, const Vec3& d, const BSDFContext& ctx) const {
-    const RefractiveSuffix& s = state.suffix;
+    const RefractiveSuffix& s = static_cast<const MneePathState&>(state).suffix;
     if (!s.has_xb || s.k == 0) return PathTracer::emitter_hit_weight(scene, state, light, p, n, d, ctx);
     // A BSDF-sampled path x_b, x_1..x_k (refractive), x_c: three techniques can produce it.
     const LightPoint lp = light_point_hit(scene, light, p, n, d, s.xb.p);
@@ -106,14 +108,15 @@ double MneeIntegrator::emitter_hit_weight(const Scene& scene, const PathState& s
 SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const SurfaceInteraction& si,
                                                      const BSDF& bsdf, const BSDFContext& ctx, const PathState& state,
                                                      Sampler& sampler) const {
-    const RefractiveSuffix& s = state.suffix;
+    const RefractiveSuffix& s = static_cast<const MneePathState&>(state).suffix;
     const Light* light = nullptr;
     double pmf = 0;
     const auto ls = sample_light(scene, si, ctx.wl, sampler, &light, &pmf);
     if (!ls) return {};
     if (!s.has_xb || s.k == 0) return nee_connect(scene, si, bsdf, ctx, state, *ls, pmf);
     const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls->wi);
-    if (bsdf.eval(ctx, wo, wi).is_zero()) return {};
+    const SampledSpectrum f = bsdf.eval(ctx, wo, wi);
+    if (f.is_zero()) return {};
     const Ray shadow = std::isinf(ls->dist) ? scene.spawn_ray(si, ls->wi) : scene.spawn_ray_to(si, ls->p);
     if (scene.occluded(shadow)) return {};
     // The path x_b, x_1..x_k = si, x_c in area measure (lights at infinity on MNEE's far sphere).
@@ -127,7 +130,7 @@ SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const S
                                          lp.n, ctx.hero())
                               : 0.0;
     if (m_mnee.biased && s.transmissions_only && refracts && !(p_mnee > 0)) return {};
-    return nee_estimate(si, bsdf, ctx, state, *ls, pmf, power3(p_nee, p_bsdf, p_mnee));
+    return nee_estimate(si, bsdf, ctx, state, *ls, f, pmf, power3(p_nee, p_bsdf, p_mnee));
 }
 
 SampledSpectrum MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
@@ -146,8 +149,11 @@ SampledSpectrum MneeIntegrator::connect_to_light(const Scene& scene, const Surfa
     switch (trace_seed_path(scene, si, lp.p, ctx.hero(), m_mnee, &chain)) {
         case SeedStatus::Clear:
             // Nothing refracts in between: MNEE is NEE (same sample, same weight).
-            if (bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls->wi)).is_zero()) return {};
-            return nee_estimate(si, bsdf, ctx, state, *ls, pmf, nee_weight(si, bsdf, ctx, *ls, pmf));
+        {
+            const SampledSpectrum f = bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls->wi));
+            if (f.is_zero()) return {};
+            return nee_estimate(si, bsdf, ctx, state, *ls, f, pmf, nee_weight(si, bsdf, ctx, *ls, pmf));
+        }
         case SeedStatus::Occluded: thread_counters().seeds_occluded++; return {};
         case SeedStatus::TooMany: thread_counters().seeds_too_many++; return {};
         case SeedStatus::Refractive: break;
@@ -155,12 +161,39 @@ SampledSpectrum MneeIntegrator::connect_to_light(const Scene& scene, const Surfa
     // The connection adds k + 1 segments to the depth + 1 the path has (max_depth, Mitsuba's
     // meaning); BSDF sampling cannot produce longer paths, so neither may MNEE.
     if (m_settings.max_depth >= 0 && state.depth + 2 + int(chain.size()) > m_settings.max_depth) return {};
+    const bool dispersive =
+        std::any_of(chain.begin(), chain.end(), [](const ManifoldVertex& v) { return v.bsdf->dispersive(); });
+    if (dispersive && m_mnee.spectral_walks && ctx.wl.count() > 1 && !state.hero_only)
+        return connect_per_wavelength(scene, si, bsdf, ctx, state, *light, pmf, lp, chain, sampler);
     // Lines 3-5: half vectors, walk, measurement; then MIS against the other techniques.
     const MneeConnection c = mnee_connect(scene, m_mnee, si, bsdf, ctx, state.media, *light, pmf, lp, chain, sampler);
     if (c.outcome != MneeOutcome::Success) return {};
     // A dispersive chain is the hero's path alone; scale it once unless the throughput already is.
     const SampledSpectrum value = c.hero_only && !state.hero_only ? ctx.wl.hero_only(c.value) : c.value;
     return value * power3(c.pdf_mnee, c.pdf_bsdf, c.pdf_nee_last);
+}
+
+SampledSpectrum MneeIntegrator::connect_per_wavelength(const Scene& scene, const SurfaceInteraction& si,
+                                                       const BSDF& bsdf, const BSDFContext& ctx,
+                                                       const PathState& state, const Light& light, double pmf,
+                                                       const LightPoint& lp, const std::vector<ManifoldVertex>& seed,
+                                                       Sampler& sampler) const {
+    // Each wavelength walks from the same seed with its own eta (Alg. 1 per wavelength), and its
+    // result is weighted against the other techniques as if it were the hero: BSDF sampling
+    // through a dispersive chain keeps the hero alone and carries the others' share, so for
+    // every path and wavelength the weights of all slots still sum to one. (Starting the other
+    // walks from the hero's solution would be cheaper, but then the set of paths a wavelength
+    // finds would no longer be the one Alg. 2 tests for that wavelength, and the MIS weights
+    // would not sum to one.)
+    SampledSpectrum out;
+    for (int i = 0; i < ctx.wl.count(); ++i) {
+        std::vector<ManifoldVertex> chain = seed;
+        for (ManifoldVertex& v : chain) v.eta = v.bsdf->eta(ctx.wl[i]);
+        const BSDFContext ctx_i{SampledWavelengths::single(ctx.wl[i], ctx.wl.pdf(i)), ctx.mode};
+        const MneeConnection c = mnee_connect(scene, m_mnee, si, bsdf, ctx_i, state.media, light, pmf, lp, chain, sampler);
+        if (c.outcome == MneeOutcome::Success) out[i] = c.value[0] * power3(c.pdf_mnee, c.pdf_bsdf, c.pdf_nee_last);
+    }
+    return out;
 }
 
 }  // namespace snell

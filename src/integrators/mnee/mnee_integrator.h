@@ -2,13 +2,26 @@
 // `mnee`: path tracing whose light connection is manifold next event estimation (paper Sec. 3),
 // combined with BSDF sampling and with NEE at rough interface vertices by the power heuristic.
 #include "integrators/path/path_tracer.h"
+#include "manifold/light_point.h"
+#include "manifold/manifold_vertex.h"
 #include "manifold/mnee_settings.h"
 
 namespace snell {
 
+/// What MNEE remembers per path beyond the path tracer: the refractive suffix since the last
+/// vertex that connects to lights (for the MIS weights of Alg. 2).
+struct MneePathState : PathState {
+    RefractiveSuffix suffix;
+};
+
 class MneeIntegrator : public PathTracer {
 public:
     MneeIntegrator(const PathSettings& path, const MneeSettings& mnee) : PathTracer(path, true), m_mnee(mnee) {}
+    SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler,
+                       const SampledWavelengths& wl) const override {
+        MneePathState state;
+        return trace(ray, scene, sampler, wl, state);
+    }
     std::string name() const override { return m_mnee.biased ? "mnee-biased" : "mnee"; }
     const MneeSettings& mnee_settings() const { return m_mnee; }
     static MneeSettings settings_from_props(const Props& props);
@@ -27,6 +40,12 @@ private:
     /// from x_b when the path so far is x_b followed by refractions.
     SampledSpectrum connect_at_interface(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
                                 const BSDFContext& ctx, const PathState& state, Sampler& sampler) const;
+
+    /// MNEE through a dispersive chain with every wavelength alive: one solve per wavelength.
+    SampledSpectrum connect_per_wavelength(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
+                                           const BSDFContext& ctx, const PathState& state, const Light& light,
+                                           double pmf, const LightPoint& lp, const std::vector<ManifoldVertex>& seed,
+                                           Sampler& sampler) const;
 
     MneeSettings m_mnee;
 };

@@ -34,7 +34,6 @@ struct PathState {
     /// A dispersive refraction was sampled: the throughput carries the hero wavelength alone
     /// (already scaled by SampledWavelengths::hero_only), so no later factor may scale it again.
     bool hero_only = false;
-    RefractiveSuffix suffix;        ///< maintained only by integrators that need it (MNEE)
 };
 
 }  // namespace snell

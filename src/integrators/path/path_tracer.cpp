@@ -36,16 +36,15 @@ std::optional<LightSample> PathTracer::sample_light(const Scene& scene, const Su
 }
 
 SampledSpectrum PathTracer::nee_estimate(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
-                                         const PathState& state, const LightSample& ls, double pmf, double w) {
-    const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls.wi);
-    const SampledSpectrum f = bsdf.eval(ctx, wo, wi) * std::abs(wi.z);
+                                         const PathState& state, const LightSample& ls, const SampledSpectrum& f,
+                                         double pmf, double w) {
     // Unoccluded, so the shadow segment lies entirely in one medium: the current one, or the
     // one on the other side when the light is reached by refracting here (rough dielectrics).
     MediumStack media = state.media;
     if (dot(si.wo, si.ng) * dot(ls.wi, si.ng) < 0 && (bsdf.eta(ctx.hero()) != 1.0 || bsdf.interior_absorption()))
         media.cross(bsdf.interior_absorption(), dot(si.wo, si.ng) > 0);
     const SampledSpectrum tr = media.inside() ? media.transmittance(ls.dist, ctx.wl) : SampledSpectrum(1.0);
-    return f * tr * ls.Le * (w / (pmf * ls.pdf));
+    return f * tr * ls.Le * (std::abs(dot(si.n, ls.wi)) * w / (pmf * ls.pdf));
 }
 
 double PathTracer::nee_weight(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
@@ -58,10 +57,11 @@ double PathTracer::nee_weight(const SurfaceInteraction& si, const BSDF& bsdf, co
 SampledSpectrum PathTracer::nee_connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
                                         const BSDFContext& ctx, const PathState& state, const LightSample& ls,
                                         double pmf) {
-    if (bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls.wi)).is_zero()) return {};
+    const SampledSpectrum f = bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls.wi));
+    if (f.is_zero()) return {};
     const Ray shadow = std::isinf(ls.dist) ? scene.spawn_ray(si, ls.wi) : scene.spawn_ray_to(si, ls.p);
     if (scene.occluded(shadow)) return {};
-    return nee_estimate(si, bsdf, ctx, state, ls, pmf, nee_weight(si, bsdf, ctx, ls, pmf));
+    return nee_estimate(si, bsdf, ctx, state, ls, f, pmf, nee_weight(si, bsdf, ctx, ls, pmf));
 }
 
 SampledSpectrum PathTracer::connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
@@ -90,19 +90,18 @@ void PathTracer::on_scatter(PathState& state, const SurfaceInteraction& si, cons
         state.media.cross(bsdf.interior_absorption(), dot(si.wo, si.ng) > 0);
 }
 
-SampledSpectrum PathTracer::li(const Ray& camera_ray, const Scene& scene, Sampler& sampler,
-                               const SampledWavelengths& wl) const {
+SampledSpectrum PathTracer::trace(const Ray& camera_ray, const Scene& scene, Sampler& sampler,
+                                  const SampledWavelengths& wl, PathState& state) const {
     thread_counters().paths++;
     const BSDFContext ctx{wl, TransportMode::Radiance};
 
     SampledSpectrum L, beta(1.0);
     double eta_scale = 1;
     Ray ray = camera_ray;
-    PathState state;
     state.prev = {ray.o, Vec3()};
 
+    SurfaceInteraction si;  // overwritten by every hit (a fresh one per bounce costs a 300-byte fill)
     for (int depth = 0;; ++depth) {
-        SurfaceInteraction si;
         state.depth = depth;
         const bool emitters_visible = !(m_settings.hide_emitters && depth == 0);
         if (!scene.intersect(ray, &si)) {

@@ -32,7 +32,10 @@ public:
     /// Radiance arriving at the camera along `ray` at the wavelengths `wl` (nm). Thread-safe;
     /// all randomness from `sampler`.
     virtual SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler,
-                               const SampledWavelengths& wl) const;
+                               const SampledWavelengths& wl) const {
+        PathState state;
+        return trace(ray, scene, sampler, wl, state);
+    }
     /// Stateless: the tracer calls li() for each camera sample.
     std::unique_ptr<SampleTracer> prepare(const Scene& scene, const FilmSpec& film,
                                           const RenderOptions& options) const override;
@@ -40,6 +43,10 @@ public:
     const PathSettings& settings() const { return m_settings; }
 
 protected:
+    /// The path tracer's loop; `state` is the derived integrator's (MNEE keeps more per path),
+    /// so li() of a derived class only chooses the state type.
+    SampledSpectrum trace(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl,
+                          PathState& state) const;
     /// Light connection from a vertex with a non-delta BSDF. Returns the contribution (to be
     /// multiplied by the path throughput). Default: NEE with MIS.
     virtual SampledSpectrum connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
@@ -68,9 +75,11 @@ protected:
     /// MIS weight of NEE against BSDF sampling (power heuristic, solid angle).
     static double nee_weight(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
                              const LightSample& ls, double pmf);
-    /// NEE estimate for a visible light sample with MIS weight `w`: f |cos| Tr Le w / (pmf pdf).
+    /// NEE estimate for a visible light sample with BSDF value `f` (towards ls.wi) and MIS
+    /// weight `w`: f |cos| Tr Le w / (pmf pdf).
     static SampledSpectrum nee_estimate(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
-                               const PathState& state, const LightSample& ls, double pmf, double w);
+                                        const PathState& state, const LightSample& ls, const SampledSpectrum& f,
+                                        double pmf, double w);
 
     PathSettings m_settings;
     bool m_nee;

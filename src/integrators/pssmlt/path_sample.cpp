@@ -10,7 +10,7 @@
 
 namespace snell {
 
-// Same conversion as render(): raster jitter (2D), then the wavelength (1D), then li().
+// Same conversion as render(): raster jitter (2D), then the wavelengths (2D), then li().
 PathSample evaluate(const Scene& scene, const PerspectiveCamera& camera, const PathTracer& inner, int spectral_samples,
                     const FilmSpec& spec, Sampler& sampler) {
     const int w = spec.out_width(), h = spec.out_height();
@@ -24,7 +24,7 @@ PathSample evaluate(const Scene& scene, const PerspectiveCamera& camera, const P
     SplatList no_splats;
     const Vec2 centre(spec.crop_x + s.x + 0.5, spec.crop_y + s.y + 0.5);
     s.xyz = trace_camera_sample(scene, camera, RadianceTracer(inner), spectral_samples, centre, s.raster,
-                                sampler.next_1d(), sampler, no_splats, thread_counters())
+                                sampler.next_2d(), sampler, no_splats, thread_counters())
                 .xyz;
     return s;
 }

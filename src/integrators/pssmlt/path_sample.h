@@ -1,6 +1,6 @@
 #pragma once
 // A point of primary sample space evaluated by an ordinary per-sample estimator, with the
-// dimension layout of render(): film position (2D, over the output window), wavelength (1D),
+// dimension layout of render(): film position (2D, over the output window), wavelengths (2D),
 // then the estimator's own numbers. The Metropolis integrators (pssmlt, erpt) share it, so a
 // chain of either visits the same function of the same numbers.
 #include "camera/camera.h"

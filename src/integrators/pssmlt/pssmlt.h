@@ -41,7 +41,7 @@ std::shared_ptr<PathTracer> make_pssmlt_inner(const PssmltSettings& settings);
 /// the chain seeds are resampled proportionally to Y. Every proposal is splatted with the
 /// expected-value weights (current 1 - a, proposed a); with kelemen_weights a large step also
 /// counts as an independent sample (balance heuristic). The first two primary samples choose
-/// the film position over the output (crop) window, the third the wavelength, as in render().
+/// the film position over the output (crop) window, the next two the wavelengths, as in render().
 /// A pure function of (scene, settings, options.seed) when `chains` is fixed and no time
 /// limit is set: each chain owns its random stream and per-chain films are summed in order.
 /// Each path carries `spectral_samples` wavelengths.
