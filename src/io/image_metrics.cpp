@@ -40,6 +40,28 @@ ImageMetrics compare_images(const Image& img, const Image& ref, const Crop& crop
     m.smape = smape / n;
     m.mean = sa / n;
     m.mean_reference = sr / n;
+    // Medians of relative errors, skipping (near-)black reference pixels.
+    const auto luminance = [](const Image& im, int x, int y) {
+        return 0.2126 * im.at(x, y, 0) + 0.7152 * im.at(x, y, 1) + 0.0722 * im.at(x, y, 2);
+    };
+    const double floor_value = 1e-4 * std::max(m.mean_reference, 1e-300);
+    std::vector<double> lum, rgb;
+    for (int y = c.y; y < c.y + c.h; ++y)
+        for (int x = c.x; x < c.x + c.w; ++x) {
+            const double yr = luminance(ref, x, y);
+            if (yr > floor_value) lum.push_back(std::abs(luminance(img, x, y) - yr) / yr);
+            for (int ch = 0; ch < 3; ++ch) {
+                const double r = ref.at(x, y, ch);
+                if (r > floor_value) rgb.push_back(std::abs(img.at(x, y, ch) - r) / r);
+            }
+        }
+    const auto median = [](std::vector<double>& v) {
+        if (v.empty()) return 0.0;
+        std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+        return v[v.size() / 2];
+    };
+    m.median_rel_error = median(lum);
+    m.median_rel_error_rgb = median(rgb);
     return m;
 }
 

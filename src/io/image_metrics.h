@@ -2,6 +2,7 @@
 // Error metrics between an image and a reference, as used in rendering comparisons (the paper
 // reports PSNR; relative MSE is the usual figure for Monte Carlo noise).
 #include <string>
+#include <vector>
 
 #include "io/image.h"
 
@@ -19,6 +20,12 @@ struct ImageMetrics {
     double psnr = 0;     ///< dB, on values clamped to [0, 1] (peak 1); inf for identical images
     double smape = 0;    ///< mean of |a - r| / (|a| + |r| + 0.01), in [0, 1)
     double mean = 0, mean_reference = 0;  ///< mean values (all channels) of both images
+    /// Per-pixel median of |Y(a) - Y(r)| / Y(r) (luminance), over pixels whose reference
+    /// luminance exceeds 1e-4 of the region's mean: the typical error, which a few fireflies
+    /// cannot dominate as they dominate relMSE.
+    double median_rel_error = 0;
+    /// The same per channel: median over pixels and channels of |a - r| / r.
+    double median_rel_error_rgb = 0;
     long pixels = 0;
 };
 

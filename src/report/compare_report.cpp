@@ -24,6 +24,7 @@ nlohmann::json crop_json(const Crop& c) { return {{"x", c.x}, {"y", c.y}, {"w", 
 nlohmann::json metrics_json(const ImageMetrics& m) {
     return {{"rel_mse", number(m.rel_mse)}, {"mse", number(m.mse)},   {"rmse", number(m.rmse)},
             {"psnr", number(m.psnr)},       {"smape", number(m.smape)}, {"mean", number(m.mean)},
+            {"median_rel_error", number(m.median_rel_error)}, {"median_rel_error_rgb", number(m.median_rel_error_rgb)},
             {"mean_reference", number(m.mean_reference)}, {"pixels", m.pixels}};
 }
 

@@ -143,7 +143,11 @@ TEST_P(HeroAgreement, FourWavelengthsAgreeWithOne) {
 
 INSTANTIATE_TEST_SUITE_P(Techniques, HeroAgreement,
                          ::testing::Combine(::testing::Values("path", "nee", "mnee", "bdpt"),
-                                            ::testing::Values("0", "0.1")));
+                                            ::testing::Values("0", "0.1")),
+                         [](const auto& info) {
+                             return std::string(std::get<0>(info.param)) +
+                                    (std::string(std::get<1>(info.param)) == "0" ? "_smooth" : "_rough");
+                         });
 
 // The same comparison, per block and for the whole image, sees a light 3 % brighter (so it can
 // fail).
