@@ -31,7 +31,7 @@ test: build
 # Renders the built-in droplet scene to out/droplet.exr and out/droplet.png.
 demo: release
 	@mkdir -p out
-	$(BUILD_REL)/snell render builtin:droplet -o out/droplet.exr --stats out/droplet.json
+	$(BUILD_REL)/snell render builtin:droplet --spp 48 -o out/droplet.exr --stats out/droplet.json
 
 # Throughput of the renderer against Embree's raw closest-hit rate (never part of tests).
 bench: release

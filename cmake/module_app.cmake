@@ -56,3 +56,8 @@ if(SNELL_BUILD_TESTS)
                        FIXTURES_REQUIRED compare_report)
   add_dependencies(test_compare_cli snell)
 endif()
+
+# The layout of every tracked C++ source against .clang-format (STYLE.md habit 9).
+if(SNELL_BUILD_TESTS)
+  add_test(NAME style.clang_format COMMAND bash ${PROJECT_SOURCE_DIR}/scripts/check-format.sh)
+endif()

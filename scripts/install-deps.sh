@@ -6,6 +6,7 @@ set -euo pipefail
 
 PACKAGES=(
   g++ cmake ninja-build make pkg-config
+  clang-format         # tests: the layout check (scripts/check-format.sh)
   libembree-dev        # BVH and ray/triangle intersection (Embree 3)
   libopenexr-dev       # EXR images (film output, environment maps)
   libtbb-dev           # oneTBB: tile scheduling

@@ -16,7 +16,7 @@ T=${1:-30}
 REF_SPP=${2:-40000}
 REF_T=${3:-480}
 THREADS=${THREADS:-2}
-FLOOR=${FLOOR:-470,340,140,110}
+FLOOR=${FLOOR:-470,360,140,110}
 OUT=results/spectral_equal_time
 mkdir -p "$OUT"
 

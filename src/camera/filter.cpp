@@ -54,6 +54,8 @@ GaussianFilter::GaussianFilter(double stddev) : m_stddev(stddev) {
     m_bias = std::exp(-m_alpha * m_radius * m_radius);  // exp(-8): the window's value at the cut-off
     m_inv_norm = 1.0 / (2 * half_cdf(m_radius));
     for (int k = 0; k <= kTableSize; ++k) m_table[size_t(k)] = half_cdf(m_radius * k / kTableSize);
+    for (int k = 0; k <= kQuantiles; ++k) m_quantile[size_t(k)] = invert_half_cdf(m_table[kTableSize] * k / kQuantiles);
+    m_quantile[kQuantiles] = m_radius;
 }
 
 double GaussianFilter::window(double x) const {
@@ -67,10 +69,7 @@ double GaussianFilter::half_cdf(double t) const {
 
 double GaussianFilter::eval(const Vec2& o) const { return window(o.x) * window(o.y) * m_inv_norm * m_inv_norm; }
 
-double GaussianFilter::sample_1d(double u) const {
-    // The window is even: pick the side from u's half, then solve half_cdf(t) = |s| half_cdf(r).
-    const double s = 2 * clamp_unit(u) - 1;
-    const double target = std::abs(s) * m_table[kTableSize];
+double GaussianFilter::invert_half_cdf(double target) const {
     // Bracket from the table, initial guess by linear interpolation inside it.
     int k = int(std::upper_bound(m_table.begin(), m_table.end(), target) - m_table.begin()) - 1;
     k = std::clamp(k, 0, kTableSize - 1);
@@ -91,7 +90,25 @@ double GaussianFilter::sample_1d(double u) const {
         t = next;
         if (done) break;
     }
-    t = std::clamp(t, 0.0, m_radius);
+    return std::clamp(t, 0.0, m_radius);
+}
+
+double GaussianFilter::sample_1d(double u) const {
+    // The window is even: pick the side from u's half, then solve half_cdf(t) = |s| half_cdf(r).
+    const double s = 2 * clamp_unit(u) - 1;
+    const double q = std::abs(s) * kQuantiles;
+    const int k = std::min(kQuantiles - 1, int(q));
+    const double t0 = m_quantile[size_t(k)], t1 = m_quantile[size_t(k) + 1];
+    const double target = std::abs(s) * m_table[kTableSize];
+    double t;
+    if (t1 - t0 > 8 * m_radius / kQuantiles) {
+        t = invert_half_cdf(target);  // the far tail, where quantiles are sparse: the full solve
+    } else {
+        t = t0 + (q - k) * (t1 - t0);
+        const double g = window(t);
+        if (g > 0) t -= (half_cdf(t) - target) / g;
+        t = std::clamp(t, t0, t1);
+    }
     return s < 0 ? -t : t;
 }
 

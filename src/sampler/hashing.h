@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 #include <bit>
 #include <cstdint>
 
@@ -104,11 +105,23 @@ inline uint32_t shuffle_index(uint32_t i, int bits, uint64_t seed) {
 /// reversed index), dimension 1 is Sobol's second dimension (generator matrix: Pascal's triangle
 /// modulo 2). Both are 32-digit binary fractions; any aligned block of 2^m indices is a (0,m,2)-net.
 inline uint32_t zero_two_x(uint32_t i) { return reverse_bits(i); }
-inline uint32_t zero_two_y(uint32_t i) {
+/// Sobol's second dimension bit by bit: the reference for zero_two_y's tables.
+inline uint32_t zero_two_y_bitwise(uint32_t i) {
     uint32_t v = 0x80000000u, y = 0;
     for (; i; i >>= 1, v ^= v >> 1)
         if (i & 1u) y ^= v;
     return y;
+}
+/// The same by four byte tables: the map is linear over GF(2), so y(i) is the xor of the images of
+/// i's bytes. Shuffled indices use all 32 bits, where the bitwise loop would take 32 steps.
+inline uint32_t zero_two_y(uint32_t i) {
+    static const std::array<std::array<uint32_t, 256>, 4> table = [] {
+        std::array<std::array<uint32_t, 256>, 4> t{};
+        for (uint32_t k = 0; k < 4; ++k)
+            for (uint32_t b = 0; b < 256; ++b) t[k][b] = zero_two_y_bitwise(b << (8 * k));
+        return t;
+    }();
+    return table[0][i & 255u] ^ table[1][(i >> 8) & 255u] ^ table[2][(i >> 16) & 255u] ^ table[3][i >> 24];
 }
 
 }  // namespace snell

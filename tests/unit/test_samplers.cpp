@@ -347,6 +347,12 @@ TEST(Samplers, HashingBuildingBlocks) {
     EXPECT_EQ(zero_two_y(2), 0xc0000000u);
     EXPECT_EQ(zero_two_y(3), 0x40000000u);
     EXPECT_EQ(zero_two_y(4), 0xa0000000u);
+    // The byte tables agree with the bit-by-bit generator on full 32-bit indices.
+    PCG32 rng(9, 3);
+    for (int k = 0; k < 10000; ++k) {
+        const uint32_t i = rng.next_u32();
+        ASSERT_EQ(zero_two_y(i), zero_two_y_bitwise(i)) << i;
+    }
     EXPECT_EQ(zero_two_x(1), 0x80000000u);
     EXPECT_EQ(reverse_bits(0x1u), 0x80000000u);
 }
