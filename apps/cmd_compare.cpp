@@ -44,8 +44,9 @@ Technique parse_technique(const std::string& name) {
     if (name == "mnee-biased" || name == "mnee(biased)") return {name, "mnee", true, ""};
     if (name == "pssmlt(nee)") return {name, "pssmlt", false, "nee"};
     if (name == "pssmlt(mnee)") return {name, "pssmlt", false, "mnee"};
-    throw std::runtime_error("unknown integrator '" + name +
-                             "' (known: path, nee, bdpt, erpt, mnee, mnee-biased or mnee(biased), pssmlt(nee), pssmlt(mnee))");
+    throw std::runtime_error(
+        "unknown integrator '" + name +
+        "' (known: path, nee, bdpt, erpt, mnee, mnee-biased or mnee(biased), pssmlt(nee), pssmlt(mnee))");
 }
 
 // A loaded scene and the integrator to render it with.
@@ -223,9 +224,9 @@ int cmd_compare(const CompareOptions& opt) {
         const Prepared p = prepare(opt.scene, defines, parse_technique(opt.reference_integrator), true);
         const uint64_t ref_seed = seed ^ 0x5eed5eed5eed5eedull;
         if (!opt.quiet)
-            std::fprintf(stderr, "snell compare: reference %s, %s\n", ri.integrator.c_str(),
-                         ri.spp ? (std::to_string(ri.spp) + " spp").c_str()
-                                : (std::to_string(ri.time_limit) + " s").c_str());
+            std::fprintf(
+                stderr, "snell compare: reference %s, %s\n", ri.integrator.c_str(),
+                ri.spp ? (std::to_string(ri.spp) + " spp").c_str() : (std::to_string(ri.time_limit) + " s").c_str());
         const RenderResult r = run(p, ri.time_limit, int(ri.spp), rep.threads, ref_seed);
         ri.stats = make_report(opt.scene, ri.integrator, p, r, ri.spp, ri.time_limit, rep.threads, ref_seed);
         ref = film_to_image(r.film);
@@ -281,7 +282,8 @@ int cmd_compare(const CompareOptions& opt) {
     const fs::path json_path = dir / "report.json", html_path = dir / "report.html";
     {
         std::ofstream out(json_path);
-        if (!(out << report_json(rep).dump(2) << "\n")) throw std::runtime_error("cannot write '" + json_path.string() + "'");
+        if (!(out << report_json(rep).dump(2) << "\n"))
+            throw std::runtime_error("cannot write '" + json_path.string() + "'");
     }
     write_html_report(html_path.string(), rep);
 

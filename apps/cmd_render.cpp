@@ -50,14 +50,14 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
     std::signal(SIGINT, on_sigint);
     const int nthreads = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
     char budget_buf[64];
-    if (time_limit > 0) std::snprintf(budget_buf, sizeof(budget_buf), "%g s", time_limit);
-    else std::snprintf(budget_buf, sizeof(budget_buf), "%d spp", opt.spp);
+    if (time_limit > 0)
+        std::snprintf(budget_buf, sizeof(budget_buf), "%g s", time_limit);
+    else
+        std::snprintf(budget_buf, sizeof(budget_buf), "%d spp", opt.spp);
     const std::string budget = budget_buf;
     if (!quiet)
-        std::fprintf(stderr, "snell: %s, integrator %s, %dx%d, %s, %d threads\n", ls.path.c_str(), integ->name().c_str(),
-                     ls.film.out_width(), ls.film.out_height(),
-                     budget.c_str(),
-                     nthreads);
+        std::fprintf(stderr, "snell: %s, integrator %s, %dx%d, %s, %d threads\n", ls.path.c_str(),
+                     integ->name().c_str(), ls.film.out_width(), ls.film.out_height(), budget.c_str(), nthreads);
     const RenderResult r = render(*ls.scene, *integ, ls.film, opt, &g_cancel);
     std::signal(SIGINT, SIG_DFL);
 
@@ -67,7 +67,8 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
     if (strategies) {
         const std::vector<std::string>& layers = r.layer_names;
         if (layers.empty() && !quiet)
-            std::fprintf(stderr, "snell: --strategies: integrator %s has no per-strategy images\n", integ->name().c_str());
+            std::fprintf(stderr, "snell: --strategies: integrator %s has no per-strategy images\n",
+                         integ->name().c_str());
         for (size_t k = 0; k < layers.size(); ++k) {
             fs::path p = out_path;
             p.replace_filename(out_path.stem().string() + "_" + layers[k] + ".exr");
@@ -107,13 +108,13 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
     const double s = std::max(r.seconds, 1e-9);
     if (!quiet || r.interrupted)
         std::fprintf(stderr,
-                 "snell: %s%.2f s, %llu spp (mean %.1f), %.3g paths/s, %.3g rays/s; discarded NaN %llu, Inf %llu, "
-                 "negative %llu\n  wrote %s, %s, %s\n",
-                 r.interrupted ? "INTERRUPTED after " : "", r.seconds, (unsigned long long)r.spp_completed,
-                 r.spp_mean, r.counters.paths / s, (r.counters.rays + r.counters.shadow_rays) / s,
-                 (unsigned long long)r.counters.discarded_nan, (unsigned long long)r.counters.discarded_inf,
-                 (unsigned long long)r.counters.discarded_negative, out_path.c_str(), png_path.c_str(),
-                 stats_path.c_str());
+                     "snell: %s%.2f s, %llu spp (mean %.1f), %.3g paths/s, %.3g rays/s; discarded NaN %llu, Inf %llu, "
+                     "negative %llu\n  wrote %s, %s, %s\n",
+                     r.interrupted ? "INTERRUPTED after " : "", r.seconds, (unsigned long long)r.spp_completed,
+                     r.spp_mean, r.counters.paths / s, (r.counters.rays + r.counters.shadow_rays) / s,
+                     (unsigned long long)r.counters.discarded_nan, (unsigned long long)r.counters.discarded_inf,
+                     (unsigned long long)r.counters.discarded_negative, out_path.c_str(), png_path.c_str(),
+                     stats_path.c_str());
     return r.interrupted ? 130 : 0;
 }
 

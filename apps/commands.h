@@ -22,17 +22,17 @@ struct CompareOptions {
     std::vector<std::string> integrators;  ///< path, nee, mnee, mnee-biased
     double time = 0;                       ///< equal-time budget per integrator (s)
     std::string out_dir;
-    std::string reference_file;            ///< --reference ref.exr
+    std::string reference_file;  ///< --reference ref.exr
     std::string reference_integrator = "mnee";
-    int reference_spp = 0;                 ///< --reference-spp
-    double reference_time = 0;             ///< --reference-time
+    int reference_spp = 0;      ///< --reference-spp
+    double reference_time = 0;  ///< --reference-time
     std::vector<std::string> defines;
-    std::vector<std::string> crops;        ///< "x,y,w,h"
+    std::vector<std::string> crops;  ///< "x,y,w,h"
     int threads = 0;
     std::optional<uint64_t> seed;
     double exposure = 0;
-    int convergence_steps = 4;             ///< renders at budget/2^k, k = steps..1, before the full one
-    double error_max = 1.0;                ///< top of the false-colour error scale
+    int convergence_steps = 4;  ///< renders at budget/2^k, k = steps..1, before the full one
+    double error_max = 1.0;     ///< top of the false-colour error scale
     bool quiet = false;
 };
 

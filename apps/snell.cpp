@@ -27,11 +27,14 @@ int main(int argc, char** argv) {
     render_cmd->add_option("--time", time_limit, "render for this many seconds instead (equal-time comparisons)")
         ->check(CLI::PositiveNumber)
         ->excludes(spp_opt);
-    render_cmd->add_option("-t,--threads", threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
-    auto* seed_opt = render_cmd->add_option("--seed", seed, "sampler seed (default: the scene's <sampler> seed, else 0)");
+    render_cmd->add_option("-t,--threads", threads, "worker threads (default: all cores)")
+        ->check(CLI::NonNegativeNumber);
+    auto* seed_opt =
+        render_cmd->add_option("--seed", seed, "sampler seed (default: the scene's <sampler> seed, else 0)");
     render_cmd->add_option("--exposure", exposure, "PNG exposure in stops");
     render_cmd->add_option("--stats", stats_path, "stats JSON path (default: beside the EXR)");
-    render_cmd->add_option("-D,--define", defines, "override a scene <default>: -D name=value")->allow_extra_args(false);
+    render_cmd->add_option("-D,--define", defines, "override a scene <default>: -D name=value")
+        ->allow_extra_args(false);
     render_cmd->add_flag("-q,--quiet", quiet, "no progress bar or summary");
     render_cmd->add_flag("--strategies", strategies,
                          "bdpt: also write each strategy's weighted contribution, OUT_d<k>_s<s>_t<t>.exr");
@@ -45,15 +48,19 @@ int main(int argc, char** argv) {
     diff_cmd->add_option("--crop", diff_crops, "also report the rectangle x,y,w,h (repeatable)");
     diff_cmd->add_flag("--json", diff_json, "print JSON instead of text");
 
-    CLI::App* cmp_cmd = app.add_subcommand(
-        "compare", "equal-time comparison of integrators against a reference, with an HTML report");
+    CLI::App* cmp_cmd =
+        app.add_subcommand("compare", "equal-time comparison of integrators against a reference, with an HTML report");
     CompareOptions cmp;
     uint64_t cmp_seed = 0;
     cmp_cmd->add_option("scene", cmp.scene, "scene file, or builtin:droplet")->required();
-    cmp_cmd->add_option("--integrators", cmp.integrators, "comma-separated: path, nee, bdpt, mnee, mnee-biased, pssmlt(nee), pssmlt(mnee)")
+    cmp_cmd
+        ->add_option("--integrators", cmp.integrators,
+                     "comma-separated: path, nee, bdpt, mnee, mnee-biased, pssmlt(nee), pssmlt(mnee)")
         ->required()
         ->delimiter(',');
-    cmp_cmd->add_option("--time", cmp.time, "wall-clock seconds per integrator")->required()->check(CLI::PositiveNumber);
+    cmp_cmd->add_option("--time", cmp.time, "wall-clock seconds per integrator")
+        ->required()
+        ->check(CLI::PositiveNumber);
     cmp_cmd->add_option("-o,--out", cmp.out_dir, "report folder (created)")->required();
     auto* ref_file = cmp_cmd->add_option("--reference", cmp.reference_file, "reference EXR");
     auto* ref_integ = cmp_cmd->add_option("--reference-integrator", cmp.reference_integrator,
@@ -64,14 +71,16 @@ int main(int argc, char** argv) {
                          ->check(CLI::PositiveNumber);
     ref_file->excludes(ref_integ)->excludes(ref_spp)->excludes(ref_time);
     ref_spp->excludes(ref_time);
-    cmp_cmd->add_option("-D,--define", cmp.defines, "override a scene <default>: -D name=value")->allow_extra_args(false);
+    cmp_cmd->add_option("-D,--define", cmp.defines, "override a scene <default>: -D name=value")
+        ->allow_extra_args(false);
     cmp_cmd->add_option("--crop", cmp.crops, "also evaluate and show the rectangle x,y,w,h (repeatable)");
     cmp_cmd->add_option("-t,--threads", cmp.threads, "worker threads, the same for every integrator (default: all)")
         ->check(CLI::NonNegativeNumber);
     auto* cmp_seed_opt = cmp_cmd->add_option("--seed", cmp_seed, "sampler seed (default: the scene's, else 0)");
     cmp_cmd->add_option("--exposure", cmp.exposure, "PNG exposure in stops");
-    cmp_cmd->add_option("--convergence-steps", cmp.convergence_steps,
-                        "extra renders at budget/2^k, k = N..1, for the convergence plot (0: none)")
+    cmp_cmd
+        ->add_option("--convergence-steps", cmp.convergence_steps,
+                     "extra renders at budget/2^k, k = N..1, for the convergence plot (0: none)")
         ->check(CLI::Range(0, 20));
     cmp_cmd->add_option("--error-max", cmp.error_max, "relative error at the top of the false-colour scale")
         ->check(CLI::PositiveNumber);
@@ -86,8 +95,8 @@ int main(int argc, char** argv) {
         if (diff_cmd->parsed()) return cmd_diff(diff_a, diff_b, diff_crops, diff_json);
         if (render_cmd->parsed())
             return cmd_render(scene_arg, out, spp, time_limit, threads,
-                              seed_opt->count() ? std::optional<uint64_t>(seed) : std::nullopt, exposure,
-                              stats_path, quiet, defines, strategies);
+                              seed_opt->count() ? std::optional<uint64_t>(seed) : std::nullopt, exposure, stats_path,
+                              quiet, defines, strategies);
         if (cmp_cmd->parsed()) {
             if (cmp_seed_opt->count()) cmp.seed = cmp_seed;
             if (cmp.reference_file.empty() && cmp.reference_spp == 0 && cmp.reference_time == 0)

@@ -61,8 +61,9 @@ LoadedScene& demo_scene(const std::string& integrator) {
     auto it = cache.find(integrator);
     if (it == cache.end()) {
         Defines d{{"integrator", integrator}, {"res_x", std::to_string(kResX)}, {"res_y", std::to_string(kResY)}};
-        it = cache.emplace(integrator, load_scene_string(*builtin_scene("droplet"), "builtin:droplet",
-                                                         std::filesystem::current_path().string(), d))
+        it = cache
+                 .emplace(integrator, load_scene_string(*builtin_scene("droplet"), "builtin:droplet",
+                                                        std::filesystem::current_path().string(), d))
                  .first;
     }
     return it->second;
@@ -171,8 +172,9 @@ const std::vector<Ray>& renderer_rays() {
                 for (int y = ty; y < std::min(kResY, ty + tile); ++y)
                     for (int x = tx; x < std::min(kResX, tx + tile); ++x)
                         for (int s = 0; s < spp; ++s) {
-                            const BSDFContext ctx{SampledWavelengths::sample_visible({rng.next_double(), rng.next_double()}),
-                                                  TransportMode::Radiance};
+                            const BSDFContext ctx{
+                                SampledWavelengths::sample_visible({rng.next_double(), rng.next_double()}),
+                                TransportMode::Radiance};
                             Ray ray = cam.generate_ray(Vec2(x + rng.next_double(), y + rng.next_double()));
                             SampledSpectrum beta(1.0);
                             double eta_scale = 1;
@@ -208,7 +210,8 @@ void BM_EmbreeRawRandomRays(benchmark::State& state) {
 void embree_raw_renderer_rays(benchmark::State& state, bool serial) {
     const RTCScene s = demo_scene("path").scene->rtc_scene();
     const std::vector<Ray>& rays = renderer_rays();
-    replay(state, rays, [s](const Ray& r) { return embree_closest_hit(s, r); }, serial);
+    replay(
+        state, rays, [s](const Ray& r) { return embree_closest_hit(s, r); }, serial);
     state.counters["rays/path"] = double(rays.size()) / double(kResX * kResY * 4);
 }
 void BM_EmbreeRawRendererRays(benchmark::State& state) { embree_raw_renderer_rays(state, false); }

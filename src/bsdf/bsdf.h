@@ -35,11 +35,11 @@ struct BSDFContext {
 };
 
 struct BSDFSample {
-    Vec3 wi;             ///< sampled direction (local)
+    Vec3 wi;                 ///< sampled direction (local)
     SampledSpectrum weight;  ///< f * |cos theta_i| / pdf per wavelength (for deltas: the discrete weight)
-    double pdf = 0;      ///< solid angle density; for deltas the discrete lobe probability
-    double eta = 1;      ///< relative IOR across the sampled transmission (1 for reflection)
-    uint32_t lobe = 0;   ///< BSDFFlags of the sampled lobe
+    double pdf = 0;          ///< solid angle density; for deltas the discrete lobe probability
+    double eta = 1;          ///< relative IOR across the sampled transmission (1 for reflection)
+    uint32_t lobe = 0;       ///< BSDFFlags of the sampled lobe
     /// The direction exists for the hero wavelength only (refraction through a dispersive
     /// interface): `weight` holds the hero's value, the integrator drops the others
     /// (SampledWavelengths::hero_only) once per path.

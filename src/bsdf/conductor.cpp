@@ -13,12 +13,12 @@ double ConductorBSDF::pdf(const BSDFContext&, const Vec3&, const Vec3&) const { 
 SampledSpectrum ConductorBSDF::reflectance(const SampledWavelengths& wl, double cos_theta) const {
     SampledSpectrum F(1.0);
     if (m_ior)
-        for (int i = 0; i < kSpectrumSamples; ++i) F[i] = fresnel_conductor(cos_theta, m_ior->eta(wl[i]), m_ior->k(wl[i]));
+        for (int i = 0; i < kSpectrumSamples; ++i)
+            F[i] = fresnel_conductor(cos_theta, m_ior->eta(wl[i]), m_ior->k(wl[i]));
     return F * m_specular_reflectance.eval(wl);
 }
 
-std::optional<BSDFSample> ConductorBSDF::sample(const BSDFContext& ctx, const Vec3& wo, double,
-                                                const Vec2&) const {
+std::optional<BSDFSample> ConductorBSDF::sample(const BSDFContext& ctx, const Vec3& wo, double, const Vec2&) const {
     if (wo.z <= 0) return std::nullopt;
     BSDFSample s;
     s.wi = reflect(wo);

@@ -11,13 +11,11 @@ class ConductorBSDF final : public BSDF {
 public:
     /// `ior`: complex IOR (eta, k) relative to the exterior; std::nullopt is Mitsuba's
     /// material "none", a perfect mirror (F = 1). `specular_reflectance` scales the result.
-    explicit ConductorBSDF(std::optional<ConductorIOR> ior,
-                           Spectrum specular_reflectance = Spectrum::constant(1.0));
+    explicit ConductorBSDF(std::optional<ConductorIOR> ior, Spectrum specular_reflectance = Spectrum::constant(1.0));
 
     SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
-    std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc,
-                                     const Vec2& u) const override;
+    std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc, const Vec2& u) const override;
     uint32_t flags() const override { return kReflection | kSpecular; }
 
     /// Fresnel reflectance times specular_reflectance at cos(theta) in [0, 1].

@@ -15,8 +15,7 @@ DielectricBSDF::DielectricBSDF(Spectrum int_ior, Spectrum ext_ior, Spectrum spec
 SampledSpectrum DielectricBSDF::eval(const BSDFContext&, const Vec3&, const Vec3&) const { return {}; }
 double DielectricBSDF::pdf(const BSDFContext&, const Vec3&, const Vec3&) const { return 0; }
 
-std::optional<BSDFSample> DielectricBSDF::sample(const BSDFContext& ctx, const Vec3& wo,
-                                                 double uc, const Vec2&) const {
+std::optional<BSDFSample> DielectricBSDF::sample(const BSDFContext& ctx, const Vec3& wo, double uc, const Vec2&) const {
     if (wo.z == 0) return std::nullopt;
     // The lobe is chosen by the hero's Fresnel term; the other wavelengths weight by theirs.
     const DielectricFresnel f = fresnel_dielectric(wo.z, eta(ctx.hero()));

@@ -14,8 +14,7 @@ double DiffuseBSDF::pdf(const BSDFContext&, const Vec3& wo, const Vec3& wi) cons
     return warp::square_to_cosine_hemisphere_pdf(wi);
 }
 
-std::optional<BSDFSample> DiffuseBSDF::sample(const BSDFContext& ctx, const Vec3& wo, double,
-                                              const Vec2& u) const {
+std::optional<BSDFSample> DiffuseBSDF::sample(const BSDFContext& ctx, const Vec3& wo, double, const Vec2& u) const {
     if (wo.z <= 0) return std::nullopt;
     BSDFSample s;
     s.wi = warp::square_to_cosine_hemisphere(u);

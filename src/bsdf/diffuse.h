@@ -11,8 +11,7 @@ public:
 
     SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
-    std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc,
-                                     const Vec2& u) const override;
+    std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc, const Vec2& u) const override;
     uint32_t flags() const override { return kReflection | kDiffuse; }
 
     const Spectrum& reflectance() const { return m_reflectance; }

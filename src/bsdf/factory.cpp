@@ -50,8 +50,7 @@ DielectricParams read_dielectric(const Props& p, bool extensions) {
     }
     d.int_ior = Spectrum::from_ior_abbe(int_ior, abbe);
     d.ext_ior = Spectrum::constant(ext_ior);
-    d.specular_reflectance =
-        p.get_spectrum("specular_reflectance", SpectrumUse::Reflectance, Spectrum::constant(1.0));
+    d.specular_reflectance = p.get_spectrum("specular_reflectance", SpectrumUse::Reflectance, Spectrum::constant(1.0));
     d.specular_transmittance =
         p.get_spectrum("specular_transmittance", SpectrumUse::Reflectance, Spectrum::constant(1.0));
     return d;
@@ -103,8 +102,8 @@ std::shared_ptr<BSDF> build(const Props& p) {
     }
     if (type == "dielectric") {
         auto d = read_dielectric(p, true);
-        return std::make_shared<DielectricBSDF>(d.int_ior, d.ext_ior, d.specular_reflectance,
-                                                d.specular_transmittance, d.sigma_a);
+        return std::make_shared<DielectricBSDF>(d.int_ior, d.ext_ior, d.specular_reflectance, d.specular_transmittance,
+                                                d.sigma_a);
     }
     if (type == "thindielectric") {
         auto d = read_dielectric(p, false);
@@ -114,8 +113,7 @@ std::shared_ptr<BSDF> build(const Props& p) {
     if (type == "roughdielectric") {
         auto distr = read_distribution(p);
         auto d = read_dielectric(p, true);
-        return std::make_shared<RoughDielectricBSDF>(distr, d.int_ior, d.ext_ior,
-                                                     d.specular_reflectance,
+        return std::make_shared<RoughDielectricBSDF>(distr, d.int_ior, d.ext_ior, d.specular_reflectance,
                                                      d.specular_transmittance, d.sigma_a);
     }
     if (type == "conductor") {
@@ -127,23 +125,21 @@ std::shared_ptr<BSDF> build(const Props& p) {
         auto distr = read_distribution(p);
         auto ior = read_conductor(p);
         return std::make_shared<RoughConductorBSDF>(
-            distr, ior,
-            p.get_spectrum("specular_reflectance", SpectrumUse::Reflectance, Spectrum::constant(1.0)));
+            distr, ior, p.get_spectrum("specular_reflectance", SpectrumUse::Reflectance, Spectrum::constant(1.0)));
     }
     if (type == "plastic") {
         const double int_ior = read_ior(p, "int_ior", "polypropylene");
         const double ext_ior = read_ior(p, "ext_ior", "air");
         return std::make_shared<PlasticBSDF>(
             p.get_spectrum("diffuse_reflectance", SpectrumUse::Reflectance, Spectrum::constant(0.5)),
-            p.get_spectrum("specular_reflectance", SpectrumUse::Reflectance, Spectrum::constant(1.0)),
-            int_ior, ext_ior, p.get_bool("nonlinear", false));
+            p.get_spectrum("specular_reflectance", SpectrumUse::Reflectance, Spectrum::constant(1.0)), int_ior, ext_ior,
+            p.get_bool("nonlinear", false));
     }
     if (type == "twosided") {
         auto kids = p.children<BSDF>();
         if (kids.empty() || kids.size() > 2) p.raise("twosided needs one or two nested BSDFs");
         for (auto& k : kids)
-            if (k->is_transmissive())
-                p.raise("twosided: only BSDFs without transmission can be nested");
+            if (k->is_transmissive()) p.raise("twosided: only BSDFs without transmission can be nested");
         return std::make_shared<TwoSidedBSDF>(kids[0], kids.size() == 2 ? kids[1] : nullptr);
     }
     p.raise("unknown BSDF type '" + type +

@@ -5,10 +5,9 @@ namespace snell {
 double fresnel_diffuse_reflectance(double eta) {
     // 5-point Gauss-Legendre on equal panels. Below the critical cosine (eta < 1) R = 1
     // exactly; above it R has a square-root kink, removed by mu = mu_c + (1 - mu_c) t^2.
-    static const double x[5] = {-0.9061798459386640, -0.5384693101056831, 0.0,
-                                0.5384693101056831, 0.9061798459386640};
-    static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
-                                0.4786286704993665, 0.2369268850561891};
+    static const double x[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831, 0.9061798459386640};
+    static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                                0.2369268850561891};
     const double mu_c = eta < 1 ? std::sqrt(1 - eta * eta) : 0.0;
     double sum = mu_c * mu_c;  // integral of 2 mu over [0, mu_c] with R = 1
     const int panels = 64;

@@ -68,9 +68,7 @@ inline Vec3 reflect(const Vec3& w) { return {-w.x, -w.y, w.z}; }
 /// Mirror direction of `w` about the (unit) microfacet normal `m`.
 inline Vec3 reflect(const Vec3& w, const Vec3& m) { return m * (2 * dot(w, m)) - w; }
 /// Refraction through the shading normal, with `cos_t`/`eta_ti` from fresnel_dielectric.
-inline Vec3 refract(const Vec3& w, double cos_t, double eta_ti) {
-    return {-eta_ti * w.x, -eta_ti * w.y, cos_t};
-}
+inline Vec3 refract(const Vec3& w, double cos_t, double eta_ti) { return {-eta_ti * w.x, -eta_ti * w.y, cos_t}; }
 /// Refraction of `w` through the microfacet normal `m` (any orientation), with `cos_t`/`eta_ti`
 /// from fresnel_dielectric(dot(w, m), eta). The result points away from the surface.
 inline Vec3 refract(const Vec3& w, const Vec3& m, double cos_t, double eta_ti) {

@@ -5,8 +5,7 @@
 
 namespace snell {
 
-MicrofacetDistribution::MicrofacetDistribution(Type type, double alpha_u, double alpha_v,
-                                               bool sample_visible)
+MicrofacetDistribution::MicrofacetDistribution(Type type, double alpha_u, double alpha_v, bool sample_visible)
     : m_type(type),
       // Very small roughness makes D overflow; Mitsuba clamps the same way.
       m_alpha_u(std::max(alpha_u, 1e-4)),
@@ -54,9 +53,7 @@ double MicrofacetDistribution::G1(const Vec3& w, const Vec3& m) const {
     return 1.0 / (1.0 + lambda(w));
 }
 
-double MicrofacetDistribution::G(const Vec3& wo, const Vec3& wi, const Vec3& m) const {
-    return G1(wo, m) * G1(wi, m);
-}
+double MicrofacetDistribution::G(const Vec3& wo, const Vec3& wi, const Vec3& m) const { return G1(wo, m) * G1(wi, m); }
 
 Vec3 MicrofacetDistribution::sample_m(const Vec2& u) const {
     // Azimuth: uniform for isotropic; for anisotropy the stretched-ellipse azimuth, and the

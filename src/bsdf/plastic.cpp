@@ -5,8 +5,8 @@
 
 namespace snell {
 
-PlasticBSDF::PlasticBSDF(Spectrum diffuse_reflectance, Spectrum specular_reflectance,
-                         double int_ior, double ext_ior, bool nonlinear)
+PlasticBSDF::PlasticBSDF(Spectrum diffuse_reflectance, Spectrum specular_reflectance, double int_ior, double ext_ior,
+                         bool nonlinear)
     : m_diffuse_reflectance(std::move(diffuse_reflectance)),
       m_specular_reflectance(std::move(specular_reflectance)),
       m_eta(int_ior / ext_ior),
@@ -40,8 +40,7 @@ double PlasticBSDF::pdf(const BSDFContext&, const Vec3& wo, const Vec3& wi) cons
     return (1 - ps) * warp::square_to_cosine_hemisphere_pdf(wi);
 }
 
-std::optional<BSDFSample> PlasticBSDF::sample(const BSDFContext& ctx, const Vec3& wo, double uc,
-                                              const Vec2& u) const {
+std::optional<BSDFSample> PlasticBSDF::sample(const BSDFContext& ctx, const Vec3& wo, double uc, const Vec2& u) const {
     if (wo.z <= 0) return std::nullopt;
     const double F = fresnel_dielectric(wo.z, m_eta).R;
     const double ps = specular_probability(F);

@@ -10,15 +10,14 @@ class PlasticBSDF final : public BSDF {
 public:
     /// `int_ior`/`ext_ior`: coating and exterior IOR (Mitsuba: polypropylene 1.49 / air);
     /// `nonlinear`: account for colour shifts of the inter-reflections (Mitsuba's flag).
-    PlasticBSDF(Spectrum diffuse_reflectance, Spectrum specular_reflectance, double int_ior,
-                double ext_ior, bool nonlinear = false);
+    PlasticBSDF(Spectrum diffuse_reflectance, Spectrum specular_reflectance, double int_ior, double ext_ior,
+                bool nonlinear = false);
 
     /// The diffuse part only (the coating's mirror reflection is a delta).
     SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     /// Density of the diffuse lobe times its selection probability.
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
-    std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc,
-                                     const Vec2& u) const override;
+    std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc, const Vec2& u) const override;
     uint32_t flags() const override { return kReflection | kSpecular | kDiffuse; }
 
 private:

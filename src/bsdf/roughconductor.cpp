@@ -4,12 +4,9 @@
 
 namespace snell {
 
-RoughConductorBSDF::RoughConductorBSDF(MicrofacetDistribution distribution,
-                                       std::optional<ConductorIOR> ior,
+RoughConductorBSDF::RoughConductorBSDF(MicrofacetDistribution distribution, std::optional<ConductorIOR> ior,
                                        Spectrum specular_reflectance)
-    : m_distr(distribution),
-      m_ior(std::move(ior)),
-      m_specular_reflectance(std::move(specular_reflectance)) {}
+    : m_distr(distribution), m_ior(std::move(ior)), m_specular_reflectance(std::move(specular_reflectance)) {}
 
 SampledSpectrum RoughConductorBSDF::eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
     if (wo.z <= 0 || wi.z <= 0) return {};
@@ -20,7 +17,8 @@ SampledSpectrum RoughConductorBSDF::eval(const BSDFContext& ctx, const Vec3& wo,
     const double c = dot(wo, m);
     SampledSpectrum F(1.0);
     if (m_ior)
-        for (int i = 0; i < kSpectrumSamples; ++i) F[i] = fresnel_conductor(c, m_ior->eta(ctx.wl[i]), m_ior->k(ctx.wl[i]));
+        for (int i = 0; i < kSpectrumSamples; ++i)
+            F[i] = fresnel_conductor(c, m_ior->eta(ctx.wl[i]), m_ior->k(ctx.wl[i]));
     return m_specular_reflectance.eval(ctx.wl) * F * (D * G / (4 * wo.z * wi.z));
 }
 
@@ -32,8 +30,8 @@ double RoughConductorBSDF::pdf(const BSDFContext&, const Vec3& wo, const Vec3& w
     return m_distr.pdf(wo, m) / (4 * dm);
 }
 
-std::optional<BSDFSample> RoughConductorBSDF::sample(const BSDFContext& ctx, const Vec3& wo,
-                                                     double, const Vec2& u) const {
+std::optional<BSDFSample> RoughConductorBSDF::sample(const BSDFContext& ctx, const Vec3& wo, double,
+                                                     const Vec2& u) const {
     if (wo.z <= 0) return std::nullopt;
     const auto [m, pm] = m_distr.sample(wo, u);
     if (!(pm > 0) || dot(wo, m) <= 0) return std::nullopt;

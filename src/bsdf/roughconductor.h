@@ -19,8 +19,7 @@ public:
     SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     /// Density of m times the reflection Jacobian 1 / (4 |wi.m|), in solid angle of wi.
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
-    std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc,
-                                     const Vec2& u) const override;
+    std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc, const Vec2& u) const override;
     uint32_t flags() const override { return kReflection | kGlossy; }
 
     const MicrofacetDistribution& distribution() const { return m_distr; }

@@ -4,9 +4,8 @@
 
 namespace snell {
 
-RoughDielectricBSDF::RoughDielectricBSDF(MicrofacetDistribution distribution, Spectrum int_ior,
-                                         Spectrum ext_ior, Spectrum specular_reflectance,
-                                         Spectrum specular_transmittance,
+RoughDielectricBSDF::RoughDielectricBSDF(MicrofacetDistribution distribution, Spectrum int_ior, Spectrum ext_ior,
+                                         Spectrum specular_reflectance, Spectrum specular_transmittance,
                                          std::optional<Spectrum> sigma_a)
     : m_distr(distribution),
       m_int_ior(std::move(int_ior)),
@@ -57,8 +56,8 @@ double RoughDielectricBSDF::eval_scalar(double eta, TransportMode mode, const Ve
     // Walter et al. Eq. 21.
     const double eta_it = cos_o > 0 ? eta : 1.0 / eta;
     const double denom = dot(wo, m) + eta_it * dot(wi, m);
-    const double value = std::abs(dot(wo, m) * dot(wi, m) / (cos_o * cos_i)) * sqr(eta_it) *
-                         (1 - F) * D * G / sqr(denom);
+    const double value =
+        std::abs(dot(wo, m) * dot(wi, m) / (cos_o * cos_i)) * sqr(eta_it) * (1 - F) * D * G / sqr(denom);
     const double scale = mode == TransportMode::Radiance ? 1.0 / sqr(eta_it) : 1.0;
     return value * scale;
 }
@@ -86,8 +85,8 @@ double RoughDielectricBSDF::pdf(const BSDFContext& ctx, const Vec3& wo, const Ve
     return pm * (reflect ? F : 1 - F) * dm_dwi;
 }
 
-std::optional<BSDFSample> RoughDielectricBSDF::sample(const BSDFContext& ctx, const Vec3& wo,
-                                                      double uc, const Vec2& u) const {
+std::optional<BSDFSample> RoughDielectricBSDF::sample(const BSDFContext& ctx, const Vec3& wo, double uc,
+                                                      const Vec2& u) const {
     if (wo.z == 0) return std::nullopt;
     const double eta = this->eta(ctx.hero());
     const Vec3 wo_up = wo.z > 0 ? wo : -wo;

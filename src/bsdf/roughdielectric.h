@@ -24,15 +24,12 @@ public:
     /// Solid-angle density of sample(): microfacet density times the half-vector Jacobian,
     /// times the Fresnel lobe-selection probability.
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
-    std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc,
-                                     const Vec2& u) const override;
+    std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc, const Vec2& u) const override;
     uint32_t flags() const override { return kReflection | kTransmission | kGlossy; }
 
     double eta(double lambda) const override { return m_int_ior(lambda) / m_ext_ior(lambda); }
     bool dispersive() const override { return !m_int_ior.is_constant() || !m_ext_ior.is_constant(); }
-    const Spectrum* interior_absorption() const override {
-        return m_sigma_a ? &*m_sigma_a : nullptr;
-    }
+    const Spectrum* interior_absorption() const override { return m_sigma_a ? &*m_sigma_a : nullptr; }
     const MicrofacetDistribution& distribution() const { return m_distr; }
     const MicrofacetDistribution* microfacet() const override { return &m_distr; }
 

@@ -4,8 +4,7 @@
 
 namespace snell {
 
-ThinDielectricBSDF::ThinDielectricBSDF(Spectrum int_ior, Spectrum ext_ior,
-                                       Spectrum specular_reflectance,
+ThinDielectricBSDF::ThinDielectricBSDF(Spectrum int_ior, Spectrum ext_ior, Spectrum specular_reflectance,
                                        Spectrum specular_transmittance)
     : m_int_ior(std::move(int_ior)),
       m_ext_ior(std::move(ext_ior)),
@@ -29,8 +28,8 @@ SampledSpectrum ThinDielectricBSDF::slab_reflectance(const SampledWavelengths& w
     return R;
 }
 
-std::optional<BSDFSample> ThinDielectricBSDF::sample(const BSDFContext& ctx, const Vec3& wo,
-                                                     double uc, const Vec2&) const {
+std::optional<BSDFSample> ThinDielectricBSDF::sample(const BSDFContext& ctx, const Vec3& wo, double uc,
+                                                     const Vec2&) const {
     if (wo.z == 0) return std::nullopt;
     // The slab neither bends nor disperses a ray: every wavelength follows the hero's lobe,
     // weighted by its own reflectance over the hero's.

@@ -8,14 +8,12 @@ namespace snell {
 class ThinDielectricBSDF final : public BSDF {
 public:
     /// IORs as for DielectricBSDF; transmitted rays leave along -wo.
-    ThinDielectricBSDF(Spectrum int_ior, Spectrum ext_ior,
-                       Spectrum specular_reflectance = Spectrum::constant(1.0),
+    ThinDielectricBSDF(Spectrum int_ior, Spectrum ext_ior, Spectrum specular_reflectance = Spectrum::constant(1.0),
                        Spectrum specular_transmittance = Spectrum::constant(1.0));
 
     SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
-    std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc,
-                                     const Vec2& u) const override;
+    std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc, const Vec2& u) const override;
     uint32_t flags() const override { return kReflection | kTransmission | kSpecular; }
     // eta() stays 1: the slab does not change the direction or the medium of a path.
 

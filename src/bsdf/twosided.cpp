@@ -21,8 +21,7 @@ double TwoSidedBSDF::pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi)
     return 0;
 }
 
-std::optional<BSDFSample> TwoSidedBSDF::sample(const BSDFContext& ctx, const Vec3& wo, double uc,
-                                               const Vec2& u) const {
+std::optional<BSDFSample> TwoSidedBSDF::sample(const BSDFContext& ctx, const Vec3& wo, double uc, const Vec2& u) const {
     if (wo.z > 0) return m_front->sample(ctx, wo, uc, u);
     if (wo.z == 0) return std::nullopt;
     auto s = m_back->sample(ctx, flip(wo), uc, u);

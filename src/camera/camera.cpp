@@ -5,9 +5,8 @@
 
 namespace snell {
 
-PerspectiveCamera::PerspectiveCamera(const Transform& to_world, double fov_deg,
-                                     const std::string& fov_axis, const FilmSpec& film,
-                                     double near_clip, double far_clip)
+PerspectiveCamera::PerspectiveCamera(const Transform& to_world, double fov_deg, const std::string& fov_axis,
+                                     const FilmSpec& film, double near_clip, double far_clip)
     : m_to_world(to_world), m_to_camera(to_world.inverse()), m_film(film), m_near(near_clip), m_far(far_clip) {
     const double aspect = double(film.width) / double(film.height);
     const double t = std::tan(0.5 * fov_deg * kPi / 180.0);

@@ -29,15 +29,17 @@ struct FilmSpec {
     }
     /// The output window grown by filter_margin(), in full-film raster coordinates.
     Vec2 sample_origin() const { return Vec2(crop_x - filter_margin().x, crop_y - filter_margin().y); }
-    Vec2 sample_extent() const { return Vec2(out_width() + 2 * filter_margin().x, out_height() + 2 * filter_margin().y); }
+    Vec2 sample_extent() const {
+        return Vec2(out_width() + 2 * filter_margin().x, out_height() + 2 * filter_margin().y);
+    }
 };
 
 /// Mitsuba's `perspective` sensor: pinhole camera looking down +z in camera space,
 /// +x to the left, +y up; `fov` along `fov_axis` (x, y, smaller, larger, diagonal).
 class PerspectiveCamera : public Object {
 public:
-    PerspectiveCamera(const Transform& to_world, double fov_deg, const std::string& fov_axis,
-                      const FilmSpec& film, double near_clip = 1e-2, double far_clip = 1e4);
+    PerspectiveCamera(const Transform& to_world, double fov_deg, const std::string& fov_axis, const FilmSpec& film,
+                      double near_clip = 1e-2, double far_clip = 1e4);
     /// Primary ray through continuous full-film raster position (x right, y down, pixels).
     Ray generate_ray(const Vec2& raster) const;
     const FilmSpec& film() const { return m_film; }

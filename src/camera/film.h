@@ -15,7 +15,8 @@ namespace snell {
 /// images (BDPT's per-strategy contributions) that are not part of the image.
 class Film {
 public:
-    Film(int width, int height) : m_w(width), m_h(height), m_xyz(size_t(width) * height), m_n(size_t(width) * height, 0) {}
+    Film(int width, int height)
+        : m_w(width), m_h(height), m_xyz(size_t(width) * height), m_n(size_t(width) * height, 0) {}
     int width() const { return m_w; }
     int height() const { return m_h; }
     void add(int x, int y, const Vec3& xyz) {

@@ -26,9 +26,7 @@ FilterSample BoxFilter::sample(const Vec2& u) const {
 
 // --- tent --------------------------------------------------------------------------------
 
-TentFilter::TentFilter(double radius) : m_radius(radius), m_inv_radius(1.0 / radius) {
-    assert(radius > 0);
-}
+TentFilter::TentFilter(double radius) : m_radius(radius), m_inv_radius(1.0 / radius) { assert(radius > 0); }
 
 double TentFilter::eval_1d(double x) const {
     const double a = std::abs(x);

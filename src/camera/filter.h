@@ -101,8 +101,8 @@ private:
     double invert_half_cdf(double target) const;
     double sample_1d(double u) const;
     double m_stddev, m_radius, m_alpha, m_bias, m_inv_norm;  // m_inv_norm = 1 / Z
-    std::array<double, kTableSize + 1> m_table;  // half_cdf at t = r k / kTableSize
-    std::array<double, kQuantiles + 1> m_quantile;  // t with half_cdf(t) = half_cdf(r) k / kQuantiles
+    std::array<double, kTableSize + 1> m_table;              // half_cdf at t = r k / kTableSize
+    std::array<double, kQuantiles + 1> m_quantile;           // t with half_cdf(t) = half_cdf(r) k / kQuantiles
 };
 
 /// The one-pixel box, shared (the default of a FilmSpec without a filter).

@@ -17,8 +17,7 @@ struct Frame {
         const double sign = std::copysign(1.0, n.z);
         const double a = -1.0 / (sign + n.z);
         const double b = n.x * n.y * a;
-        return {Vec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
-                Vec3(b, sign + n.y * n.y * a, -n.y), n};
+        return {Vec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x), Vec3(b, sign + n.y * n.y * a, -n.y), n};
     }
     /// Frame aligned with a surface tangent: s follows dp/du projected onto the tangent
     /// plane (Gram-Schmidt). Used for shading frames so that tangent frames are smooth over

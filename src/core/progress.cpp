@@ -25,8 +25,7 @@ std::string format_duration(double s) {
     return buf;
 }
 
-std::string format_progress_line(const std::string& label, double fraction, double elapsed, double eta,
-                                 int bar_width) {
+std::string format_progress_line(const std::string& label, double fraction, double elapsed, double eta, int bar_width) {
     const double f = std::isnan(fraction) ? 0.0 : std::clamp(fraction, 0.0, 1.0);
     const int filled = std::clamp(int(f * bar_width), 0, bar_width);
     std::string line = label;

@@ -13,8 +13,8 @@ namespace snell {
 /// One progress line, e.g. "render [#####-----]  50.0%  elapsed 1m02s  ETA 1m02s".
 /// `fraction` is clamped to [0,1]; `eta_seconds` < 0 prints "ETA --" (unknown).
 /// `bar_width` is the number of characters between the brackets.
-std::string format_progress_line(const std::string& label, double fraction, double elapsed_seconds,
-                                 double eta_seconds, int bar_width = 30);
+std::string format_progress_line(const std::string& label, double fraction, double elapsed_seconds, double eta_seconds,
+                                 int bar_width = 30);
 
 /// Human-readable duration: "42s", "3m07s", "2h05m" (negative or NaN: "--").
 std::string format_duration(double seconds);

@@ -8,8 +8,8 @@ namespace {
 
 /// The scene-file word for each alternative of Props::Value (same order as the variant).
 const char* value_type_name(const Props::Value& v) {
-    static const char* names[] = {"boolean", "integer", "float",     "string",
-                                  "point/vector", "rgb", "transform", "spectrum"};
+    static const char* names[] = {"boolean",      "integer", "float",     "string",
+                                  "point/vector", "rgb",     "transform", "spectrum"};
     static_assert(std::variant_size_v<Props::Value> == 8, "keep names in sync with Props::Value");
     return names[v.index()];
 }
@@ -47,9 +47,9 @@ const T* Props::get_as(const std::string& name, const char* type_name) const {
     if (!e) return nullptr;
     e->used = true;
     if (const T* p = std::get_if<T>(&e->value)) return p;
-    throw SceneError(e->loc, m_tag,
-                     "parameter '" + name + "' has the wrong type: expected " + type_name + ", got " +
-                         value_type_name(e->value));
+    throw SceneError(
+        e->loc, m_tag,
+        "parameter '" + name + "' has the wrong type: expected " + type_name + ", got " + value_type_name(e->value));
 }
 
 void Props::raise_param(const std::string& name, const std::string& what) const {
@@ -135,9 +135,12 @@ Spectrum Props::get_spectrum(const std::string& name, SpectrumUse use, const Spe
     if (const int64_t* i = std::get_if<int64_t>(&v)) return grey(double(*i));
     if (const RGB* c = std::get_if<RGB>(&v)) {
         switch (use) {
-            case SpectrumUse::Reflectance: return Spectrum::from_rgb_reflectance(*c);
-            case SpectrumUse::Unbounded: return Spectrum::from_rgb_unbounded(*c);
-            case SpectrumUse::Illuminant: return Spectrum::from_rgb_illuminant(*c);
+            case SpectrumUse::Reflectance:
+                return Spectrum::from_rgb_reflectance(*c);
+            case SpectrumUse::Unbounded:
+                return Spectrum::from_rgb_unbounded(*c);
+            case SpectrumUse::Illuminant:
+                return Spectrum::from_rgb_illuminant(*c);
         }
     }
     if (const SpectrumData* s = std::get_if<SpectrumData>(&v)) {
@@ -149,9 +152,9 @@ Spectrum Props::get_spectrum(const std::string& name, SpectrumUse use, const Spe
                 throw SceneError(e->loc, m_tag, "spectrum '" + name + "': wavelengths must increase");
         return Spectrum::tabulated(s->lambda, s->values);
     }
-    throw SceneError(e->loc, m_tag,
-                     "parameter '" + name + "' has the wrong type: expected float, rgb or spectrum, got " +
-                         value_type_name(v));
+    throw SceneError(
+        e->loc, m_tag,
+        "parameter '" + name + "' has the wrong type: expected float, rgb or spectrum, got " + value_type_name(v));
 }
 
 RGB Props::get_rgb(const std::string& name, const RGB& def) const {
@@ -195,13 +198,13 @@ void Props::check_unused() const {
     std::string known;
     for (const auto& q : m_queried)  // "__" names are internal (e.g. the loader's __base_dir)
         if (q.rfind("__", 0) != 0) known += (known.empty() ? "" : ", ") + q;
-    const std::string suffix = known.empty() ? std::string(" (it takes no parameters)")
-                                             : " (known parameters: " + known + ")";
+    const std::string suffix =
+        known.empty() ? std::string(" (it takes no parameters)") : " (known parameters: " + known + ")";
     if (first && (!first_child || first->loc.line <= first_child->loc.line))
-        throw SceneError(first->loc, m_tag,
-                         "unused parameter '" + first_name + "' for type '" + m_type + "'" + suffix);
+        throw SceneError(first->loc, m_tag, "unused parameter '" + first_name + "' for type '" + m_type + "'" + suffix);
     if (first_child) {
-        const std::string what = first_child->name.empty() ? "a nested object" : "nested object '" + first_child->name + "'";
+        const std::string what =
+            first_child->name.empty() ? "a nested object" : "nested object '" + first_child->name + "'";
         throw SceneError(first_child->loc, m_tag, "unused " + what + " for type '" + m_type + "' (not accepted here)");
     }
 }

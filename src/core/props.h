@@ -44,7 +44,8 @@ public:
     using Value = std::variant<bool, int64_t, double, std::string, Vec3, RGB, Transform, SpectrumData>;
 
     Props() = default;
-    Props(std::string tag, std::string type, SourceLoc loc) : m_tag(std::move(tag)), m_type(std::move(type)), m_loc(std::move(loc)) {}
+    Props(std::string tag, std::string type, SourceLoc loc)
+        : m_tag(std::move(tag)), m_type(std::move(type)), m_loc(std::move(loc)) {}
 
     const std::string& tag() const { return m_tag; }    ///< "bsdf", "shape", ...
     const std::string& type() const { return m_type; }  ///< plugin type, e.g. "dielectric"

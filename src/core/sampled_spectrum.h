@@ -26,14 +26,14 @@ public:
     double operator[](int i) const { return m_v[size_t(i)]; }
     double& operator[](int i) { return m_v[size_t(i)]; }
 
-#define SNELL_SAMPLED_OP(op)                                                                    \
-    SampledSpectrum& operator op##=(const SampledSpectrum& o) {                                 \
-        for (int i = 0; i < kSpectrumSamples; ++i) m_v[size_t(i)] op## = o.m_v[size_t(i)];       \
-        return *this;                                                                           \
-    }                                                                                           \
-    SampledSpectrum operator op(const SampledSpectrum& o) const {                               \
-        SampledSpectrum r = *this;                                                              \
-        return r op## = o;                                                                      \
+#define SNELL_SAMPLED_OP(op)                                                               \
+    SampledSpectrum& operator op##=(const SampledSpectrum& o) {                            \
+        for (int i = 0; i < kSpectrumSamples; ++i) m_v[size_t(i)] op## = o.m_v[size_t(i)]; \
+        return *this;                                                                      \
+    }                                                                                      \
+    SampledSpectrum operator op(const SampledSpectrum& o) const {                          \
+        SampledSpectrum r = *this;                                                         \
+        return r op## = o;                                                                 \
     }
     SNELL_SAMPLED_OP(+)
     SNELL_SAMPLED_OP(-)

@@ -41,12 +41,10 @@ Vec3 mat3(const double m[3][3], const Vec3& v) {
             m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
 }
 // sRGB (Rec. 709 primaries, D65) <-> XYZ, IEC 61966-2-1.
-constexpr double kXyzToSrgb[3][3] = {{3.2404542, -1.5371385, -0.4985314},
-                                     {-0.9692660, 1.8760108, 0.0415560},
-                                     {0.0556434, -0.2040259, 1.0572252}};
-constexpr double kSrgbToXyz[3][3] = {{0.4124564, 0.3575761, 0.1804375},
-                                     {0.2126729, 0.7151522, 0.0721750},
-                                     {0.0193339, 0.1191920, 0.9503041}};
+constexpr double kXyzToSrgb[3][3] = {
+    {3.2404542, -1.5371385, -0.4985314}, {-0.9692660, 1.8760108, 0.0415560}, {0.0556434, -0.2040259, 1.0572252}};
+constexpr double kSrgbToXyz[3][3] = {
+    {0.4124564, 0.3575761, 0.1804375}, {0.2126729, 0.7151522, 0.0721750}, {0.0193339, 0.1191920, 0.9503041}};
 
 // Linear sRGB of sigmoid(c) weighted by spectrum w (w == nullptr: equal energy), normalised
 // so that a constant 1 gives Y = 1 under that weight.
@@ -73,9 +71,9 @@ bool solve3(double a[3][3], double b[3], double x[3]) {
         double m[3][3];
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) m[i][j] = j == k ? b[i] : a[i][j];
-        x[k] = (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-                m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])) / det;
+        x[k] = (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])) /
+               det;
     }
     return true;
 }
@@ -360,8 +358,7 @@ Spectrum Spectrum::tabulated(std::vector<double> lambda, std::vector<double> val
     if (lambda.empty() || lambda.size() != values.size())
         throw std::invalid_argument("tabulated spectrum: need equally many wavelengths and values");
     for (size_t i = 1; i < lambda.size(); ++i)
-        if (!(lambda[i] > lambda[i - 1]))
-            throw std::invalid_argument("tabulated spectrum: wavelengths must increase");
+        if (!(lambda[i] > lambda[i - 1])) throw std::invalid_argument("tabulated spectrum: wavelengths must increase");
     Spectrum s;
     s.m_kind = Kind::Tabulated;
     s.m_lambda = std::make_shared<const std::vector<double>>(std::move(lambda));
@@ -428,14 +425,14 @@ Spectrum Spectrum::scaled(double f) const {
 double named_ior(const std::string& name) {
     // Mitsuba's table of named dielectrics (IOR at the sodium d line).
     static const std::map<std::string, double> table = {
-        {"vacuum", 1.0},          {"helium", 1.00004},       {"hydrogen", 1.00013},
-        {"air", 1.00028},         {"carbon dioxide", 1.00045}, {"water", 1.3330},
-        {"acetone", 1.36},        {"ethanol", 1.361},        {"carbon tetrachloride", 1.461},
-        {"glycerol", 1.4729},     {"benzene", 1.501},        {"silicone oil", 1.52045},
-        {"bromine", 1.661},       {"water ice", 1.31},       {"fused quartz", 1.458},
-        {"pyrex", 1.470},         {"acrylic glass", 1.49},   {"polypropylene", 1.49},
-        {"bk7", 1.5046},          {"sodium chloride", 1.544}, {"amber", 1.55},
-        {"pet", 1.5750},          {"diamond", 2.419},
+        {"vacuum", 1.0},      {"helium", 1.00004},         {"hydrogen", 1.00013},
+        {"air", 1.00028},     {"carbon dioxide", 1.00045}, {"water", 1.3330},
+        {"acetone", 1.36},    {"ethanol", 1.361},          {"carbon tetrachloride", 1.461},
+        {"glycerol", 1.4729}, {"benzene", 1.501},          {"silicone oil", 1.52045},
+        {"bromine", 1.661},   {"water ice", 1.31},         {"fused quartz", 1.458},
+        {"pyrex", 1.470},     {"acrylic glass", 1.49},     {"polypropylene", 1.49},
+        {"bk7", 1.5046},      {"sodium chloride", 1.544},  {"amber", 1.55},
+        {"pet", 1.5750},      {"diamond", 2.419},
     };
     auto it = table.find(name);
     if (it == table.end()) {

@@ -6,11 +6,11 @@
 namespace snell {
 
 struct Counters {
-    uint64_t rays = 0;           ///< closest-hit queries
-    uint64_t shadow_rays = 0;    ///< any-hit queries
-    uint64_t paths = 0;          ///< camera paths traced
-    uint64_t discarded_nan = 0;  ///< samples dropped because they were NaN
-    uint64_t discarded_inf = 0;  ///< samples dropped because they were infinite
+    uint64_t rays = 0;                ///< closest-hit queries
+    uint64_t shadow_rays = 0;         ///< any-hit queries
+    uint64_t paths = 0;               ///< camera paths traced
+    uint64_t discarded_nan = 0;       ///< samples dropped because they were NaN
+    uint64_t discarded_inf = 0;       ///< samples dropped because they were infinite
     uint64_t discarded_negative = 0;  ///< samples dropped because they were negative
 
     // Manifold walks (MNEE, paper Table 1): outcomes by kind, iterations, time.
@@ -21,14 +21,14 @@ struct Counters {
     uint64_t walk_fail_no_convergence = 0;
     uint64_t walk_fail_singular = 0;
     uint64_t walk_fail_projection = 0;
-    uint64_t walk_fail_scattering = 0;     ///< converged to a reflection or a non-physical refraction
-    uint64_t walk_fail_occluded = 0;       ///< admissible path blocked
+    uint64_t walk_fail_scattering = 0;  ///< converged to a reflection or a non-physical refraction
+    uint64_t walk_fail_occluded = 0;    ///< admissible path blocked
     uint64_t walk_time_ns = 0;
-    uint64_t seeds_occluded = 0;           ///< seed segment blocked by an opaque surface
-    uint64_t seeds_too_many = 0;           ///< seed with more refractive vertices than allowed
-    uint64_t seeds_culled = 0;             ///< seed culled at x_b (Fig. 3 margin)
-    uint64_t pdf_walks = 0;                ///< Alg. 2 walks (MIS densities of BSDF-sampled paths)
-    uint64_t pdf_walks_found = 0;          ///< ... that reproduced the input path
+    uint64_t seeds_occluded = 0;   ///< seed segment blocked by an opaque surface
+    uint64_t seeds_too_many = 0;   ///< seed with more refractive vertices than allowed
+    uint64_t seeds_culled = 0;     ///< seed culled at x_b (Fig. 3 margin)
+    uint64_t pdf_walks = 0;        ///< Alg. 2 walks (MIS densities of BSDF-sampled paths)
+    uint64_t pdf_walks_found = 0;  ///< ... that reproduced the input path
     uint64_t iteration_histogram[kIterationBins] = {};
 
     Counters& operator+=(const Counters& o) {

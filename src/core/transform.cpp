@@ -106,9 +106,7 @@ Transform Transform::look_at(const Vec3& origin, const Vec3& target, const Vec3&
     return Transform(m);
 }
 
-Transform Transform::operator*(const Transform& o) const {
-    return {mul(m_m, o.m_m), mul(o.m_inv, m_inv)};
-}
+Transform Transform::operator*(const Transform& o) const { return {mul(m_m, o.m_m), mul(o.m_inv, m_inv)}; }
 
 bool Transform::is_identity() const { return m_m == identity(); }
 
@@ -133,8 +131,7 @@ Vec3 Transform::normal(const Vec3& n) const {
 
 double Transform::det3() const {
     const Mat& m = m_m;
-    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
            m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
 }
 

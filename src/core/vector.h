@@ -25,8 +25,16 @@ struct Vec2 {
     constexpr Vec2 operator-(const Vec2& o) const { return {x - o.x, y - o.y}; }
     constexpr Vec2 operator*(double s) const { return {x * s, y * s}; }
     constexpr Vec2 operator/(double s) const { return {x / s, y / s}; }
-    Vec2& operator+=(const Vec2& o) { x += o.x; y += o.y; return *this; }
-    Vec2& operator-=(const Vec2& o) { x -= o.x; y -= o.y; return *this; }
+    Vec2& operator+=(const Vec2& o) {
+        x += o.x;
+        y += o.y;
+        return *this;
+    }
+    Vec2& operator-=(const Vec2& o) {
+        x -= o.x;
+        y -= o.y;
+        return *this;
+    }
     constexpr bool operator==(const Vec2& o) const { return x == o.x && y == o.y; }
 };
 constexpr Vec2 operator*(double s, const Vec2& v) { return v * s; }
@@ -46,10 +54,30 @@ struct Vec3 {
     constexpr Vec3 operator*(const Vec3& o) const { return {x * o.x, y * o.y, z * o.z}; }
     constexpr Vec3 operator*(double s) const { return {x * s, y * s, z * s}; }
     constexpr Vec3 operator/(double s) const { return {x / s, y / s, z / s}; }
-    Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
-    Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-    Vec3& operator*=(double s) { x *= s; y *= s; z *= s; return *this; }
-    Vec3& operator/=(double s) { x /= s; y /= s; z /= s; return *this; }
+    Vec3& operator+=(const Vec3& o) {
+        x += o.x;
+        y += o.y;
+        z += o.z;
+        return *this;
+    }
+    Vec3& operator-=(const Vec3& o) {
+        x -= o.x;
+        y -= o.y;
+        z -= o.z;
+        return *this;
+    }
+    Vec3& operator*=(double s) {
+        x *= s;
+        y *= s;
+        z *= s;
+        return *this;
+    }
+    Vec3& operator/=(double s) {
+        x /= s;
+        y /= s;
+        z /= s;
+        return *this;
+    }
     constexpr bool operator==(const Vec3& o) const { return x == o.x && y == o.y && z == o.z; }
     constexpr bool operator!=(const Vec3& o) const { return !(*this == o); }
 };
@@ -62,16 +90,10 @@ constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
 inline double length_squared(const Vec3& a) { return dot(a, a); }
 inline double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
 inline Vec3 normalize(const Vec3& a) { return a / length(a); }
-inline Vec3 vmin(const Vec3& a, const Vec3& b) {
-    return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)};
-}
-inline Vec3 vmax(const Vec3& a, const Vec3& b) {
-    return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)};
-}
+inline Vec3 vmin(const Vec3& a, const Vec3& b) { return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)}; }
+inline Vec3 vmax(const Vec3& a, const Vec3& b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
 inline double max_component(const Vec3& a) { return std::max(a.x, std::max(a.y, a.z)); }
-inline bool is_finite(const Vec3& a) {
-    return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
-}
+inline bool is_finite(const Vec3& a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 /// Flip `v` to the hemisphere of `ref`.
 inline Vec3 face_forward(const Vec3& v, const Vec3& ref) { return dot(v, ref) < 0 ? -v : v; }
 
@@ -87,15 +109,23 @@ struct Vec3f {
 /// Axis-aligned bounding box.
 struct Bounds3 {
     Vec3 lo{kInfinity}, hi{-kInfinity};
-    void expand(const Vec3& p) { lo = vmin(lo, p); hi = vmax(hi, p); }
-    void expand(const Bounds3& b) { lo = vmin(lo, b.lo); hi = vmax(hi, b.hi); }
+    void expand(const Vec3& p) {
+        lo = vmin(lo, p);
+        hi = vmax(hi, p);
+    }
+    void expand(const Bounds3& b) {
+        lo = vmin(lo, b.lo);
+        hi = vmax(hi, b.hi);
+    }
     bool valid() const { return lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z; }
     Vec3 center() const { return (lo + hi) * 0.5; }
     Vec3 extent() const { return hi - lo; }
 };
 
 template <typename T>
-constexpr T sqr(T v) { return v * v; }
+constexpr T sqr(T v) {
+    return v * v;
+}
 inline double clamp(double v, double lo, double hi) { return std::min(std::max(v, lo), hi); }
 inline double safe_sqrt(double v) { return std::sqrt(std::max(0.0, v)); }
 inline double lerp(double t, double a, double b) { return (1 - t) * a + t * b; }

@@ -24,8 +24,7 @@ MeshData make_disk(const Transform& to_world, int segments) {
         m.positions.push_back({x, y, 0});
         m.uvs.push_back({0.5 * (x + 1), 0.5 * (y + 1)});
     }
-    for (int i = 0; i < segments; ++i)
-        m.triangles.push_back({0, uint32_t(1 + i), uint32_t(1 + (i + 1) % segments)});
+    for (int i = 0; i < segments; ++i) m.triangles.push_back({0, uint32_t(1 + i), uint32_t(1 + (i + 1) % segments)});
     transform_mesh(m, to_world);
     return m;
 }

@@ -18,9 +18,7 @@ struct RayContext {
     unsigned geom_exact = RTC_INVALID_GEOMETRY_ID;
 
     explicit RayContext(const Ray& r) : ray(&r) { rtcInitIntersectContext(&ctx); }
-    static const RayContext* from(const RTCIntersectContext* c) {
-        return reinterpret_cast<const RayContext*>(c);
-    }
+    static const RayContext* from(const RTCIntersectContext* c) { return reinterpret_cast<const RayContext*>(c); }
     static RayContext* from(RTCIntersectContext* c) { return reinterpret_cast<RayContext*>(c); }
 };
 

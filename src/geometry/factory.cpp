@@ -22,11 +22,9 @@ std::shared_ptr<Shape> make_sphere(const Props& props, const Transform& xf, bool
     const Vec3 ax = xf.vector({1, 0, 0}), ay = xf.vector({0, 1, 0}), az = xf.vector({0, 0, 1});
     const double s = length(ax);
     const double tol = 1e-6 * s;
-    if (std::abs(length(ay) - s) > tol || std::abs(length(az) - s) > tol ||
-        std::abs(dot(ax, ay)) > tol * s || std::abs(dot(ax, az)) > tol * s ||
-        std::abs(dot(ay, az)) > tol * s || !(s > 0))
-        props.raise_param("to_world",
-                          "a sphere's to_world may only rotate, translate and scale uniformly");
+    if (std::abs(length(ay) - s) > tol || std::abs(length(az) - s) > tol || std::abs(dot(ax, ay)) > tol * s ||
+        std::abs(dot(ax, az)) > tol * s || std::abs(dot(ay, az)) > tol * s || !(s > 0))
+        props.raise_param("to_world", "a sphere's to_world may only rotate, translate and scale uniformly");
     return std::make_shared<Sphere>(xf.point(c), r * s, flip);
 }
 
@@ -47,8 +45,7 @@ std::shared_ptr<Shape> create_shape(const Props& props) {
     std::shared_ptr<Shape> shape;
     if (type == "sphere") {
         shape = make_sphere(props, xf, flip);
-    } else if (type == "rectangle" || type == "disk" || type == "cube" || type == "obj" ||
-               type == "ply") {
+    } else if (type == "rectangle" || type == "disk" || type == "cube" || type == "obj" || type == "ply") {
         const bool face_normals = props.get_bool("face_normals", false);
         MeshData data;
         std::string name = type;

@@ -32,8 +32,7 @@ Vec2 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
     return {vb * inv, vc * inv};
 }
 
-TriangleMesh::TriangleMesh(MeshData data, bool face_normals, bool flip_normals,
-                           const std::string& name)
+TriangleMesh::TriangleMesh(MeshData data, bool face_normals, bool flip_normals, const std::string& name)
     : m_flip(flip_normals), m_name(name) {
     validate_mesh(data, name);
     m_pos.reserve(data.positions.size() + 1);
@@ -77,8 +76,8 @@ TriangleMesh::~TriangleMesh() {
 
 RTCGeometry TriangleMesh::make_geometry(RTCDevice device) const {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m_pos.data(), 0,
-                               sizeof(Vec3f), vertex_count());
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m_pos.data(), 0, sizeof(Vec3f),
+                               vertex_count());
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m_tris.data(), 0,
                                sizeof(std::array<uint32_t, 3>), m_tris.size());
     rtcCommitGeometry(g);
@@ -199,8 +198,8 @@ void TriangleMesh::interaction_at(uint32_t prim, const Vec2& b, SurfaceInteracti
     si->dndu = dndu;
     si->dndv = dndv;
     si->uv = uv;
-    si->shading = tp->flat_s_valid ? Frame(tp->flat_s, cross(n, tp->flat_s), n)
-                                   : Frame::from_normal_tangent(n, tp->dpdu);
+    si->shading =
+        tp->flat_s_valid ? Frame(tp->flat_s, cross(n, tp->flat_s), n) : Frame::from_normal_tangent(n, tp->dpdu);
     si->shape = this;
     si->prim = prim;
 }
@@ -270,8 +269,8 @@ bool TriangleMesh::closest_point(const Vec3& p, double radius, SurfaceInteractio
     q.p = p;
     q.best_d2 = radius * radius;
     // Float rounding of the query point moves it by ~6e-8 |p| per axis; 1e-6 covers that.
-    q.pad = 1e-6 * (max_component(Vec3(std::abs(p.x), std::abs(p.y), std::abs(p.z))) +
-                    max_component(m_bounds.extent()));
+    q.pad =
+        1e-6 * (max_component(Vec3(std::abs(p.x), std::abs(p.y), std::abs(p.z))) + max_component(m_bounds.extent()));
     if (m_query_scene) {
         RTCPointQuery query;
         query.x = float(p.x);

@@ -23,11 +23,10 @@ namespace snell {
 /// dn/du = (dN/du - n (n . dN/du)) / |N| (derivative of the normalised normal). With
 /// `face_normals` (or no vertex normals) n = ng and dn/du = dn/dv = 0.
 class TriangleMesh final : public Shape {
-  public:
+public:
     /// Takes world-space data (see transform_mesh). Throws std::runtime_error("<name>: ...")
     /// on invalid data.
-    TriangleMesh(MeshData data, bool face_normals = false, bool flip_normals = false,
-                 const std::string& name = "mesh");
+    TriangleMesh(MeshData data, bool face_normals = false, bool flip_normals = false, const std::string& name = "mesh");
     ~TriangleMesh() override;
 
     /// Attaches to `scene` and, once, builds a private Embree scene holding only this mesh
@@ -61,14 +60,14 @@ class TriangleMesh final : public Shape {
     /// ones recompute it at every hit rather than double their memory.
     static constexpr size_t kMaxCachedTriangles = size_t(1) << 16;
 
-  private:
+private:
     /// Everything interaction_at needs that depends on the triangle alone, not on the
     /// barycentrics: computed by triangle_params() the same way whether cached or not, so
     /// both paths give bit-identical results.
     struct TriangleParams {
-        Vec3 ng;          ///< unit winding normal, before face_forward and flipping
-        Vec3 dpdu, dpdv;  ///< position derivatives in the chosen parametrisation
-        Vec3 dNdu, dNdv;  ///< derivatives of the unnormalised blended normal (smooth only)
+        Vec3 ng;              ///< unit winding normal, before face_forward and flipping
+        Vec3 dpdu, dpdv;      ///< position derivatives in the chosen parametrisation
+        Vec3 dNdu, dNdv;      ///< derivatives of the unnormalised blended normal (smooth only)
         bool uv_map = false;  ///< the texture map parametrises this triangle
         /// Flat shading (no vertex normals): the frame's s axis, which is then constant.
         Vec3 flat_s;

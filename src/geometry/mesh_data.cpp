@@ -22,16 +22,15 @@ void validate_mesh(const MeshData& mesh, const std::string& what) {
     const size_t nv = mesh.positions.size();
     if (nv == 0) fail("mesh has no vertices");
     if (mesh.triangles.empty()) fail("mesh has no faces");
-    if (!mesh.normals.empty() && mesh.normals.size() != nv)
-        fail("normal count differs from vertex count");
+    if (!mesh.normals.empty() && mesh.normals.size() != nv) fail("normal count differs from vertex count");
     if (!mesh.uvs.empty() && mesh.uvs.size() != nv) fail("uv count differs from vertex count");
     for (const Vec3& p : mesh.positions)
         if (!is_finite(p)) fail("non-finite vertex position");
     for (size_t i = 0; i < mesh.triangles.size(); ++i)
         for (uint32_t k : mesh.triangles[i])
             if (k >= nv)
-                fail("face " + std::to_string(i) + " references vertex " + std::to_string(k) +
-                     " of " + std::to_string(nv));
+                fail("face " + std::to_string(i) + " references vertex " + std::to_string(k) + " of " +
+                     std::to_string(nv));
 }
 
 }  // namespace snell

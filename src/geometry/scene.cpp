@@ -68,8 +68,7 @@ void Scene::build() {
         m_bounds.expand(s->bounds());
     }
     rtcCommitScene(m_scene);
-    if (rtcGetDeviceError(m_device) != RTC_ERROR_NONE)
-        throw std::runtime_error("Embree failed to build the scene");
+    if (rtcGetDeviceError(m_device) != RTC_ERROR_NONE) throw std::runtime_error("Embree failed to build the scene");
 
     if (!m_bounds.valid()) m_bounds.expand(Vec3(0, 0, 0));  // empty scene
     m_radius = 0.5 * length(m_bounds.extent());

@@ -16,8 +16,8 @@ class Light;
 /// A point sampled on a shape, with its density.
 struct ShapeSample {
     Vec3 p;
-    Vec3 n;           ///< unit (shading-side) normal at p
-    double pdf = 0;   ///< area measure for sample_area; solid angle for sample_from
+    Vec3 n;          ///< unit (shading-side) normal at p
+    double pdf = 0;  ///< area measure for sample_area; solid angle for sample_from
 };
 
 /// Interface of a geometric primitive (sphere, triangle mesh). Shapes own their BSDF and,

@@ -72,8 +72,7 @@ void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
     const auto* s = static_cast<const Sphere*>(args->geometryUserPtr);
     auto* r = reinterpret_cast<RTCRay*>(args->ray);
     const Ray ray = query_ray(args->context, *r);
-    if (nearest_root(*s, ray, std::max<double>(ray.tmin, r->tnear),
-                     std::min<double>(ray.tmax, r->tfar)) >= 0)
+    if (nearest_root(*s, ray, std::max<double>(ray.tmin, r->tnear), std::min<double>(ray.tmax, r->tfar)) >= 0)
         r->tfar = -kInfinity;  // Embree's "occluded" marker
 }
 
@@ -102,8 +101,7 @@ Bounds3 Sphere::bounds() const {
     // Padded by a relative 1e-5: Embree culls boxes with the float copy of the ray, which
     // deviates from the double ray by float roundoff of origin and direction; the padding
     // keeps grazing hits of the double ray from being culled.
-    const double mag = m_radius + max_component(Vec3(std::abs(m_center.x), std::abs(m_center.y),
-                                                     std::abs(m_center.z)));
+    const double mag = m_radius + max_component(Vec3(std::abs(m_center.x), std::abs(m_center.y), std::abs(m_center.z)));
     const Vec3 r(m_radius + 1e-5 * mag);
     Bounds3 b;
     b.expand(m_center - r);
@@ -157,8 +155,7 @@ void Sphere::fill_interaction(const Vec3& p, SurfaceInteraction* si) const {
     si->prim = 0;
 }
 
-void Sphere::compute_interaction(const Ray& ray, double t, uint32_t, const Vec2&,
-                                 SurfaceInteraction* si) const {
+void Sphere::compute_interaction(const Ray& ray, double t, uint32_t, const Vec2&, SurfaceInteraction* si) const {
     // Re-project the hit point: its error is then that of one normalisation, independent of t.
     Vec3 l = ray.at(t) - m_center;
     const double len = length(l);
@@ -205,14 +202,12 @@ std::optional<ShapeSample> Sphere::sample_from(const Vec3& ref, const Vec2& u) c
     const double cos_theta = 1 - one_minus_cos;
     const double sin2_theta = one_minus_cos * (2 - one_minus_cos);
     // Law of sines/cosines in the triangle (ref, centre, point) for the nearer intersection.
-    const double cos_alpha =
-        sin2_theta / sin_max + cos_theta * safe_sqrt(1 - sin2_theta / sin2_max);
+    const double cos_alpha = sin2_theta / sin_max + cos_theta * safe_sqrt(1 - sin2_theta / sin2_max);
     const double sin_alpha = safe_sqrt(1 - cos_alpha * cos_alpha);
     const double phi = 2 * kPi * u.y;
 
     const Frame f = Frame::from_normal(dc_vec / dc);  // n axis points from ref to the centre
-    const Vec3 w =
-        f.to_world(Vec3(sin_alpha * std::cos(phi), sin_alpha * std::sin(phi), -cos_alpha));
+    const Vec3 w = f.to_world(Vec3(sin_alpha * std::cos(phi), sin_alpha * std::sin(phi), -cos_alpha));
     ShapeSample s;
     s.p = m_center + w * m_radius;
     s.n = m_flip ? -w : w;

@@ -10,7 +10,7 @@ namespace snell {
 /// dp/dv = pi (..), n = (p-c)/r and dn/du = dp/du / r, dn/dv = dp/dv / r (all negated when
 /// `flip_normals`: the normal then points inwards). At the poles dp/du vanishes.
 class Sphere final : public Shape {
-  public:
+public:
     /// `radius` > 0 in world units; `flip_normals` makes n point towards the centre.
     Sphere(const Vec3& center, double radius, bool flip_normals = false);
 
@@ -40,7 +40,7 @@ class Sphere final : public Shape {
     /// Fills `si` (t = 0, wo unset) for a point assumed to lie on the sphere.
     void fill_interaction(const Vec3& p, SurfaceInteraction* si) const;
 
-  private:
+private:
     Vec3 m_center;
     double m_radius;
     bool m_flip;

@@ -2,9 +2,9 @@
 #include <map>
 
 #include "core/props.h"
-#include "integrators/integrator.h"
 #include "integrators/bdpt/bdpt.h"
 #include "integrators/erpt/erpt.h"
+#include "integrators/integrator.h"
 #include "integrators/mnee/mnee_integrator.h"
 #include "integrators/path/path_tracer.h"
 #include "integrators/pssmlt/pssmlt.h"
@@ -22,8 +22,10 @@ const std::map<std::string, Factory>& registry() {
         {"erpt", [](const Props& p) { return std::make_shared<ErptIntegrator>(ErptSettings::from_props(p)); }},
         {"path", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), false); }},
         {"nee", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), true); }},
-        {"mnee", [](const Props& p) {
-             return std::make_shared<MneeIntegrator>(PathSettings::from_props(p), MneeIntegrator::settings_from_props(p));
+        {"mnee",
+         [](const Props& p) {
+             return std::make_shared<MneeIntegrator>(PathSettings::from_props(p),
+                                                     MneeIntegrator::settings_from_props(p));
          }},
         {"pssmlt", [](const Props& p) { return std::make_shared<PssmltIntegrator>(PssmltSettings::from_props(p)); }},
     };
@@ -43,7 +45,8 @@ std::shared_ptr<Integrator> create_integrator(const Props& props) {
     // Every technique: wavelengths per path (1 reproduces the paper's single-wavelength set-up).
     const int64_t n = props.get_int("spectral_samples", kSpectrumSamples);
     if (n < 1 || n > kSpectrumSamples)
-        props.raise_param("spectral_samples", "spectral_samples must lie in [1, " + std::to_string(kSpectrumSamples) + "]");
+        props.raise_param("spectral_samples",
+                          "spectral_samples must lie in [1, " + std::to_string(kSpectrumSamples) + "]");
     integ->set_spectral_samples(int(n));
     props.check_unused();
     return integ;

@@ -48,8 +48,7 @@ void write_exr(const std::string& path, const Image& img) {
         // The interleaved buffer is described with strides; OpenEXR does not write through it.
         char* base = reinterpret_cast<char*>(const_cast<float*>(img.rgb.data()));
         const size_t xs = 3 * sizeof(float), ys = xs * size_t(img.width);
-        for (int c = 0; c < 3; ++c)
-            fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
+        for (int c = 0; c < 3; ++c) fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
         Imf::OutputFile file(path.c_str(), header);
         file.setFrameBuffer(fb);
         file.writePixels(img.height);

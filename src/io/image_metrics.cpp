@@ -10,14 +10,15 @@ namespace snell {
 
 ImageMetrics compare_images(const Image& img, const Image& ref, const Crop& crop_in) {
     if (img.width != ref.width || img.height != ref.height)
-        throw std::invalid_argument("image sizes differ: " + std::to_string(img.width) + "x" + std::to_string(img.height) +
-                                    " vs " + std::to_string(ref.width) + "x" + std::to_string(ref.height));
+        throw std::invalid_argument("image sizes differ: " + std::to_string(img.width) + "x" +
+                                    std::to_string(img.height) + " vs " + std::to_string(ref.width) + "x" +
+                                    std::to_string(ref.height));
     Crop c = crop_in;
     if (c.w == 0) c = {0, 0, img.width, img.height};
     if (c.x < 0 || c.y < 0 || c.w <= 0 || c.h <= 0 || c.x + c.w > img.width || c.y + c.h > img.height)
-        throw std::invalid_argument("crop " + std::to_string(c.x) + "," + std::to_string(c.y) + "," + std::to_string(c.w) +
-                                    "," + std::to_string(c.h) + " is outside the " + std::to_string(img.width) + "x" +
-                                    std::to_string(img.height) + " image");
+        throw std::invalid_argument("crop " + std::to_string(c.x) + "," + std::to_string(c.y) + "," +
+                                    std::to_string(c.w) + "," + std::to_string(c.h) + " is outside the " +
+                                    std::to_string(img.width) + "x" + std::to_string(img.height) + " image");
     ImageMetrics m;
     double rel = 0, se = 0, se_clamped = 0, smape = 0, sa = 0, sr = 0;
     for (int y = c.y; y < c.y + c.h; ++y)

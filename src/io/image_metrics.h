@@ -17,8 +17,8 @@ struct ImageMetrics {
     double rel_mse = 0;  ///< mean of (a - r)^2 / (r^2 + 0.01) over pixels and channels
     double mse = 0;
     double rmse = 0;
-    double psnr = 0;     ///< dB, on values clamped to [0, 1] (peak 1); inf for identical images
-    double smape = 0;    ///< mean of |a - r| / (|a| + |r| + 0.01), in [0, 1)
+    double psnr = 0;                      ///< dB, on values clamped to [0, 1] (peak 1); inf for identical images
+    double smape = 0;                     ///< mean of |a - r| / (|a| + |r| + 0.01), in [0, 1)
     double mean = 0, mean_reference = 0;  ///< mean values (all channels) of both images
     /// Per-pixel median of |Y(a) - Y(r)| / Y(r) (luminance), over pixels whose reference
     /// luminance exceeds 1e-4 of the region's mean: the typical error, which a few fireflies

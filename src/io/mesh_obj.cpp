@@ -10,8 +10,7 @@
 namespace snell {
 
 MeshData load_obj(const std::string& path) {
-    if (!std::filesystem::is_regular_file(path))
-        throw std::runtime_error(path + ": mesh file not found");
+    if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path + ": mesh file not found");
 
     tinyobj::ObjReaderConfig cfg;
     cfg.triangulate = true;
@@ -45,8 +44,7 @@ MeshData load_obj(const std::string& path) {
         const uint32_t id = uint32_t(m.positions.size());
         const size_t v = size_t(idx.vertex_index);
         m.positions.emplace_back(a.vertices[3 * v], a.vertices[3 * v + 1], a.vertices[3 * v + 2]);
-        if (has_n)
-            m.normals.emplace_back(a.normals[3 * ni], a.normals[3 * ni + 1], a.normals[3 * ni + 2]);
+        if (has_n) m.normals.emplace_back(a.normals[3 * ni], a.normals[3 * ni + 1], a.normals[3 * ni + 2]);
         if (has_uv) m.uvs.emplace_back(a.texcoords[2 * ti], a.texcoords[2 * ti + 1]);
         remap.emplace(key, id);
         return id;

@@ -61,9 +61,8 @@ enum class PlyFormat { Ascii, BinaryLE, BinaryBE };
 /// Reads scalar values of the body in any of the three encodings, as doubles (exact for
 /// every PLY integer type and float).
 class PlyBody {
-  public:
-    PlyBody(std::istream& in, PlyFormat fmt, const std::string& path)
-        : m_in(in), m_fmt(fmt), m_path(path) {}
+public:
+    PlyBody(std::istream& in, PlyFormat fmt, const std::string& path) : m_in(in), m_fmt(fmt), m_path(path) {}
 
     double read(PlyType t, const std::string& where) {
         if (m_fmt == PlyFormat::Ascii) {
@@ -120,10 +119,9 @@ class PlyBody {
         }
     }
 
-  private:
+private:
     [[noreturn]] void fail(const std::string& where) const {
-        throw std::runtime_error(m_path + ": unexpected end of file or bad value in PLY element '" +
-                                 where + "'");
+        throw std::runtime_error(m_path + ": unexpected end of file or bad value in PLY element '" + where + "'");
     }
     std::istream& m_in;
     PlyFormat m_fmt;
@@ -133,13 +131,10 @@ class PlyBody {
 }  // namespace
 
 MeshData load_ply(const std::string& path) {
-    if (!std::filesystem::is_regular_file(path))
-        throw std::runtime_error(path + ": mesh file not found");
+    if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path + ": mesh file not found");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::runtime_error(path + ": cannot open mesh file");
-    auto fail = [&](const std::string& msg) -> void {
-        throw std::runtime_error(path + ": " + msg);
-    };
+    auto fail = [&](const std::string& msg) -> void { throw std::runtime_error(path + ": " + msg); };
 
     // ---- header
     std::string line;
@@ -261,8 +256,7 @@ MeshData load_ply(const std::string& path) {
             saw_face = true;
             bool found = false;
             for (const PlyProperty& p : e.props)
-                found = found ||
-                        (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index"));
+                found = found || (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index"));
             if (!found) fail("PLY face element lacks a 'vertex_indices' list");
             std::vector<uint32_t> poly;
             for (size_t k = 0; k < e.count; ++k) {
@@ -280,10 +274,8 @@ MeshData load_ply(const std::string& path) {
                         poly.push_back(uint32_t(idx));
                     }
                     if (p.name != "vertex_indices" && p.name != "vertex_index") continue;
-                    if (poly.size() < 3)
-                        fail("PLY face " + std::to_string(k) + " has fewer than 3 vertices");
-                    for (size_t j = 1; j + 1 < poly.size(); ++j)
-                        m.triangles.push_back({poly[0], poly[j], poly[j + 1]});
+                    if (poly.size() < 3) fail("PLY face " + std::to_string(k) + " has fewer than 3 vertices");
+                    for (size_t j = 1; j + 1 < poly.size(); ++j) m.triangles.push_back({poly[0], poly[j], poly[j + 1]});
                 }
             }
         } else {

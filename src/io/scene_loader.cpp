@@ -43,11 +43,13 @@ public:
         for (const auto& c : root.children) {
             const XmlObject& o = *c.obj;
             if (o.tag == "sensor") {
-                if (sensor) throw SceneError(o.loc, o.tag, "more than one <sensor> (first at " + sensor->loc.str() + ")");
+                if (sensor)
+                    throw SceneError(o.loc, o.tag, "more than one <sensor> (first at " + sensor->loc.str() + ")");
                 sensor = &o;
             } else if (o.tag == "integrator") {
                 if (integrator)
-                    throw SceneError(o.loc, o.tag, "more than one <integrator> (first at " + integrator->loc.str() + ")");
+                    throw SceneError(o.loc, o.tag,
+                                     "more than one <integrator> (first at " + integrator->loc.str() + ")");
                 integrator = &o;
             } else if (o.tag == "bsdf") {
                 bsdf(o);  // instantiated even if unused, so its errors are reported
@@ -110,10 +112,12 @@ private:
                 p.add_child(c.name, bsdf(*c.obj), c.loc);
             } else {  // emitter (the parser allows nothing else here)
                 if (emitter)
-                    throw SceneError(c.obj->loc, "emitter", "a shape has at most one emitter (first at " + emitter->loc.str() + ")");
-                if (c.obj->type != "area")
                     throw SceneError(c.obj->loc, "emitter",
-                                     "only type=\"area\" emitters can be nested in a <shape>, not '" + c.obj->type + "'");
+                                     "a shape has at most one emitter (first at " + emitter->loc.str() + ")");
+                if (c.obj->type != "area")
+                    throw SceneError(
+                        c.obj->loc, "emitter",
+                        "only type=\"area\" emitters can be nested in a <shape>, not '" + c.obj->type + "'");
                 emitter = c.obj.get();
             }
         }
@@ -139,8 +143,7 @@ private:
         static const std::set<std::string> axes = {"x", "y", "smaller", "larger", "diagonal"};
         if (!axes.count(axis)) p.raise_param("fov_axis", "fov_axis must be x, y, smaller, larger or diagonal");
         const double near_clip = p.get_float("near_clip", 1e-2), far_clip = p.get_float("far_clip", 1e4);
-        if (!(near_clip > 0 && far_clip > near_clip))
-            p.raise_param("near_clip", "need 0 < near_clip < far_clip");
+        if (!(near_clip > 0 && far_clip > near_clip)) p.raise_param("near_clip", "need 0 < near_clip < far_clip");
         const Transform to_world = p.get_transform("to_world");
 
         FilmSpec film;
@@ -155,7 +158,8 @@ private:
         if (sampler_obj) read_sampler(*sampler_obj);
         p.check_unused();
         m_out.film = film;
-        return located(o, [&] { return std::make_shared<PerspectiveCamera>(to_world, fov, axis, film, near_clip, far_clip); });
+        return located(
+            o, [&] { return std::make_shared<PerspectiveCamera>(to_world, fov, axis, film, near_clip, far_clip); });
     }
 
     static FilmSpec read_film(const XmlObject& o) {
@@ -169,8 +173,8 @@ private:
         const int cw = int(p.get_int("crop_width", f.width - cx)), ch = int(p.get_int("crop_height", f.height - cy));
         if (cx < 0 || cy < 0 || cw <= 0 || ch <= 0 || cx + cw > f.width || cy + ch > f.height)
             p.raise("crop window (offset " + std::to_string(cx) + "," + std::to_string(cy) + ", size " +
-                    std::to_string(cw) + "x" + std::to_string(ch) + ") does not fit the " +
-                    std::to_string(f.width) + "x" + std::to_string(f.height) + " film");
+                    std::to_string(cw) + "x" + std::to_string(ch) + ") does not fit the " + std::to_string(f.width) +
+                    "x" + std::to_string(f.height) + " film");
         if (cx != 0 || cy != 0 || cw != f.width || ch != f.height) {
             f.crop_x = cx;
             f.crop_y = cy;
@@ -178,7 +182,8 @@ private:
             f.crop_h = ch;
         }
         // Accepted for compatibility with Mitsuba files; the output format is chosen by the app.
-        static const std::set<std::string> pixel_formats = {"rgb", "rgba", "luminance", "luminance_alpha", "xyz", "xyza"};
+        static const std::set<std::string> pixel_formats = {"rgb", "rgba", "luminance", "luminance_alpha",
+                                                            "xyz", "xyza"};
         static const std::set<std::string> component_formats = {"float16", "float32", "uint32"};
         if (!pixel_formats.count(p.get_string("pixel_format", "rgb")))
             p.raise_param("pixel_format", "unknown pixel_format (rgb, rgba, luminance, luminance_alpha, xyz, xyza)");
@@ -186,7 +191,8 @@ private:
             p.raise_param("component_format", "unknown component_format (float16, float32, uint32)");
         f.filter = default_filter();
         for (const auto& c : o.children) f.filter = read_rfilter(*c.obj);
-        if (o.children.size() > 1) throw SceneError(o.children[1].loc, "rfilter", "more than one <rfilter> in the film");
+        if (o.children.size() > 1)
+            throw SceneError(o.children[1].loc, "rfilter", "more than one <rfilter> in the film");
         p.check_unused();
         return f;
     }

@@ -15,10 +15,10 @@ namespace snell {
 struct LoadedScene {
     std::unique_ptr<Scene> scene;  ///< built (BVH committed), camera and integrator set
     FilmSpec film;
-    int spp = 16;                  ///< sampler sample_count
-    uint64_t seed = 0;             ///< sampler seed (offsets every random stream of the render)
-    SamplerSpec sampler;           ///< sampler type and jitter; `independent` without a <sampler> (Mitsuba's default)
-    std::string path;              ///< file it came from ("builtin:<name>" for built-ins)
+    int spp = 16;         ///< sampler sample_count
+    uint64_t seed = 0;    ///< sampler seed (offsets every random stream of the render)
+    SamplerSpec sampler;  ///< sampler type and jitter; `independent` without a <sampler> (Mitsuba's default)
+    std::string path;     ///< file it came from ("builtin:<name>" for built-ins)
 };
 
 /// Parameter overrides (-D name=value), applied like Mitsuba's <default> substitution.
@@ -27,7 +27,7 @@ using Defines = std::map<std::string, std::string>;
 /// Loads a Mitsuba 2/3-style XML scene. Errors are SceneError "file:line: <element>: what".
 LoadedScene load_scene_file(const std::string& path, const Defines& defines = {});
 /// Loads from a string; relative paths resolve against `base_dir`; `name` labels errors.
-LoadedScene load_scene_string(const std::string& xml, const std::string& name,
-                              const std::string& base_dir, const Defines& defines = {});
+LoadedScene load_scene_string(const std::string& xml, const std::string& name, const std::string& base_dir,
+                              const Defines& defines = {});
 
 }  // namespace snell

@@ -16,9 +16,7 @@ void RenderReport::set_counters(const Counters& c) {
 
 double RenderReport::paths_per_second() const { return seconds > 0 ? double(paths) / seconds : 0.0; }
 
-double RenderReport::rays_per_second() const {
-    return seconds > 0 ? double(rays + shadow_rays) / seconds : 0.0;
-}
+double RenderReport::rays_per_second() const { return seconds > 0 ? double(rays + shadow_rays) / seconds : 0.0; }
 
 void to_json(nlohmann::json& j, const RenderReport& r) {
     j = nlohmann::json{

@@ -25,10 +25,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::set<std::string> kObjectTags = {"integrator", "sensor", "film", "sampler",
+const std::set<std::string> kObjectTags = {"integrator", "sensor", "film",  "sampler",
                                            "rfilter",    "bsdf",   "shape", "emitter"};
-const std::set<std::string> kValueTags = {"float", "integer", "boolean", "string", "point",
-                                          "vector", "rgb", "spectrum", "transform"};
+const std::set<std::string> kValueTags = {"float",  "integer", "boolean",  "string",   "point",
+                                          "vector", "rgb",     "spectrum", "transform"};
 const std::set<std::string> kTransformOps = {"lookat", "translate", "rotate", "scale", "matrix"};
 
 /// Which object tags may be nested (or referenced) inside which.
@@ -80,7 +80,8 @@ struct FileCtx {
     std::string dir;
     std::vector<size_t> line_starts;
 
-    FileCtx(std::string name_, std::string dir_, const std::string& text) : name(std::move(name_)), dir(std::move(dir_)) {
+    FileCtx(std::string name_, std::string dir_, const std::string& text)
+        : name(std::move(name_)), dir(std::move(dir_)) {
         line_starts.push_back(0);
         for (size_t i = 0; i < text.size(); ++i)
             if (text[i] == '\n') line_starts.push_back(i + 1);
@@ -162,8 +163,9 @@ private:
             throw SceneError(loc, "scene", "cannot read version '" + v + "'");
         if (major < 2)
             throw SceneError(loc, "scene",
-                             "version " + v + ": Mitsuba 0.x scenes (camelCase names such as toWorld, "
-                             "sampleCount) are not supported; use the Mitsuba 2/3 format (version 2.x or 3.x)");
+                             "version " + v +
+                                 ": Mitsuba 0.x scenes (camelCase names such as toWorld, "
+                                 "sampleCount) are not supported; use the Mitsuba 2/3 format (version 2.x or 3.x)");
         if (major > 3) throw SceneError(loc, "scene", "version " + v + " is not supported (2.x and 3.x are)");
     }
 
@@ -195,7 +197,8 @@ private:
             if (c.type() == pugi::node_pcdata || c.type() == pugi::node_cdata) {
                 const std::string t = c.value();
                 if (t.find_first_not_of(" \t\r\n") != std::string::npos)
-                    throw SceneError(f.at(c), node.name(), "unexpected text '" + t + "' (values go in a value=\"...\" attribute)");
+                    throw SceneError(f.at(c), node.name(),
+                                     "unexpected text '" + t + "' (values go in a value=\"...\" attribute)");
                 continue;
             }
             if (c.type() != pugi::node_element) continue;
@@ -220,14 +223,16 @@ private:
                 XmlParam p = parse_value(c, f);
                 for (const auto& q : obj.params)
                     if (q.name == p.name)
-                        throw SceneError(loc, tag, "duplicate parameter '" + p.name + "' (first given at " + q.loc.str() + ")");
+                        throw SceneError(loc, tag,
+                                         "duplicate parameter '" + p.name + "' (first given at " + q.loc.str() + ")");
                 obj.params.push_back(std::move(p));
             } else if (kObjectTags.count(tag)) {
                 if (!allowed_children(obj.tag).count(tag))
-                    throw SceneError(loc, tag, "<" + tag + "> cannot be nested inside <" + obj.tag + ">" +
-                                                   (allowed_children(obj.tag).empty()
-                                                        ? std::string(" (it takes no nested objects)")
-                                                        : " (allowed: " + join(allowed_children(obj.tag)) + ")"));
+                    throw SceneError(loc, tag,
+                                     "<" + tag + "> cannot be nested inside <" + obj.tag + ">" +
+                                         (allowed_children(obj.tag).empty()
+                                              ? std::string(" (it takes no nested objects)")
+                                              : " (allowed: " + join(allowed_children(obj.tag)) + ")"));
                 std::string name;
                 auto child = parse_object(c, f, &name);
                 obj.children.push_back({name, child, loc});
@@ -236,7 +241,8 @@ private:
                                  "participating media are not supported; for absorbing glass give the "
                                  "dielectric BSDF a 'sigma_a' (see docs/scene-format.md)");
             } else if (tag == "texture") {
-                throw SceneError(loc, tag, "textures are not supported; give the parameter as <float>, <rgb> or <spectrum>");
+                throw SceneError(loc, tag,
+                                 "textures are not supported; give the parameter as <float>, <rgb> or <spectrum>");
             } else if (kTransformOps.count(tag)) {
                 throw SceneError(loc, tag, "<" + tag + "> must be inside <transform>");
             } else if (tag == "scene") {
@@ -253,7 +259,8 @@ private:
         const std::string name = require(a, "name", loc, "default");
         const std::string value = require(a, "value", loc, "default");
         if (auto it = m_default_locs.find(name); it != m_default_locs.end())
-            throw SceneError(loc, "default", "duplicate <default> for '" + name + "' (first at " + it->second.str() + ")");
+            throw SceneError(loc, "default",
+                             "duplicate <default> for '" + name + "' (first at " + it->second.str() + ")");
         m_default_locs[name] = loc;
         m_declared.insert(name);
         m_params.emplace(name, value);  // a -D define of the same name wins
@@ -273,7 +280,8 @@ private:
             if (obj->id.empty()) throw SceneError(obj->loc, obj->tag, "empty id");
             auto [it, fresh] = m_ids.emplace(obj->id, obj);
             if (!fresh)
-                throw SceneError(obj->loc, obj->tag, "duplicate id '" + obj->id + "' (first used at " + it->second->loc.str() + ")");
+                throw SceneError(obj->loc, obj->tag,
+                                 "duplicate id '" + obj->id + "' (first used at " + it->second->loc.str() + ")");
         }
         parse_children(n, *obj, f);
         return obj;
@@ -304,8 +312,7 @@ private:
             errno = 0;
             char* end = nullptr;
             const long long v = std::strtoll(s.c_str(), &end, 10);
-            if (s.empty() || errno || !only_space(end))
-                throw SceneError(loc, tag, "'" + s + "' is not an integer");
+            if (s.empty() || errno || !only_space(end)) throw SceneError(loc, tag, "'" + s + "' is not an integer");
             p.value = int64_t(v);
         } else if (tag == "boolean") {
             std::string s = require(a, "value", loc, tag);
@@ -318,9 +325,12 @@ private:
             p.value = vec3(a, loc, tag, 0.0);
         } else if (tag == "rgb") {
             const auto v = numbers(require(a, "value", loc, tag), loc, tag);
-            if (v.size() == 1) p.value = RGB(v[0]);
-            else if (v.size() == 3) p.value = RGB(v[0], v[1], v[2]);
-            else throw SceneError(loc, tag, "rgb needs 1 or 3 values, got " + std::to_string(v.size()));
+            if (v.size() == 1)
+                p.value = RGB(v[0]);
+            else if (v.size() == 3)
+                p.value = RGB(v[0], v[1], v[2]);
+            else
+                throw SceneError(loc, tag, "rgb needs 1 or 3 values, got " + std::to_string(v.size()));
         } else if (tag == "spectrum") {
             p.value = spectrum(require(a, "value", loc, tag), loc, tag);
         } else {  // transform
@@ -409,7 +419,8 @@ private:
             } else if (v.size() == 9) {
                 for (int i = 0; i < 9; ++i) m[i / 3][i % 3] = v[i];
             } else {
-                throw SceneError(loc, tag, "matrix needs 16 (4x4) or 9 (3x3) values, row-major; got " + std::to_string(v.size()));
+                throw SceneError(loc, tag,
+                                 "matrix needs 16 (4x4) or 9 (3x3) values, row-major; got " + std::to_string(v.size()));
             }
             return Transform(m);
         } else {  // lookat
@@ -476,8 +487,9 @@ private:
             if (name.empty()) throw SceneError(loc, tag, "stray '$' in \"" + s + "\"");
             auto it = m_params.find(name);
             if (it == m_params.end())
-                throw SceneError(loc, tag, "unknown parameter $" + name + " (declare <default name=\"" + name +
-                                               "\" value=\"...\"/> before its use, or pass -D " + name + "=...)");
+                throw SceneError(loc, tag,
+                                 "unknown parameter $" + name + " (declare <default name=\"" + name +
+                                     "\" value=\"...\"/> before its use, or pass -D " + name + "=...)");
             m_used.insert(name);
             out += it->second;
             i = j;
@@ -493,8 +505,11 @@ private:
 
     static void check_name(const std::string& name, const SourceLoc& loc, const std::string& tag) {
         if (std::any_of(name.begin(), name.end(), [](unsigned char c) { return std::isupper(c); }))
-            throw SceneError(loc, tag, "parameter name '" + name + "' is Mitsuba 0.6 camelCase, which is not supported; "
-                                       "Mitsuba 2/3 spell it '" + snake_case(name) + "'");
+            throw SceneError(loc, tag,
+                             "parameter name '" + name +
+                                 "' is Mitsuba 0.6 camelCase, which is not supported; "
+                                 "Mitsuba 2/3 spell it '" +
+                                 snake_case(name) + "'");
     }
 
     /// Value tags and transform operations are empty elements: anything inside is an error.
@@ -553,8 +568,9 @@ private:
             if (it == m_ids.end()) throw SceneError(r.loc, "ref", "unknown id '" + r.id + "'");
             const std::string& tag = it->second->tag;
             if (!allowed_children(r.parent->tag).count(tag))
-                throw SceneError(r.loc, "ref", "id '" + r.id + "' is a <" + tag + ">, which cannot be used inside <" +
-                                                   r.parent->tag + ">");
+                throw SceneError(
+                    r.loc, "ref",
+                    "id '" + r.id + "' is a <" + tag + ">, which cannot be used inside <" + r.parent->tag + ">");
             r.parent->children[r.index].obj = it->second;
         }
     }
@@ -579,7 +595,8 @@ private:
 
 }  // namespace
 
-std::shared_ptr<XmlObject> parse_scene_xml_file(const std::string& path, const std::map<std::string, std::string>& defines) {
+std::shared_ptr<XmlObject> parse_scene_xml_file(const std::string& path,
+                                                const std::map<std::string, std::string>& defines) {
     bool ok = false;
     const std::string text = read_file(path, &ok);
     if (!ok) throw SceneError("cannot open scene file '" + path + "'");

@@ -26,13 +26,13 @@ struct XmlObject {
     struct Child {
         std::string name;  ///< the `name` attribute of the nested element or <ref> (may be empty)
         std::shared_ptr<XmlObject> obj;
-        SourceLoc loc;     ///< where it was nested or referenced
+        SourceLoc loc;  ///< where it was nested or referenced
     };
-    std::string tag;       ///< element name, e.g. "bsdf"
-    std::string type;      ///< `type` attribute (empty for <scene>)
-    std::string id;        ///< `id` attribute, empty if none
-    SourceLoc loc;         ///< the element itself
-    std::string base_dir;  ///< folder of the file the element was written in
+    std::string tag;               ///< element name, e.g. "bsdf"
+    std::string type;              ///< `type` attribute (empty for <scene>)
+    std::string id;                ///< `id` attribute, empty if none
+    SourceLoc loc;                 ///< the element itself
+    std::string base_dir;          ///< folder of the file the element was written in
     std::vector<XmlParam> params;  ///< value tags in file order (names unique)
     std::vector<Child> children;   ///< nested objects and resolved refs in file order
 

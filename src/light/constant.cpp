@@ -28,7 +28,9 @@ double ConstantLight::pdf_li(const LightSampleContext&, const Vec3&, const Vec3&
     return warp::square_to_uniform_sphere_pdf();
 }
 
-SampledSpectrum ConstantLight::le_escaped(const Vec3& /*d*/, const SampledWavelengths& wl) const { return m_radiance.eval(wl); }
+SampledSpectrum ConstantLight::le_escaped(const Vec3& /*d*/, const SampledWavelengths& wl) const {
+    return m_radiance.eval(wl);
+}
 
 double ConstantLight::power() const { return m_radiance.average() * 4 * kPi * kPi * sqr(m_sphere.radius); }
 

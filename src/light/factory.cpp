@@ -34,8 +34,10 @@ std::shared_ptr<Light> make_point(const Props& props) {
     exclusive(props, "position", "to_world");
     const Spectrum intensity = emission(props, "intensity");
     Vec3 pos;
-    if (props.has("position")) pos = props.get_vec3("position");
-    else pos = props.get_transform("to_world").point(Vec3(0, 0, 0));
+    if (props.has("position"))
+        pos = props.get_vec3("position");
+    else
+        pos = props.get_transform("to_world").point(Vec3(0, 0, 0));
     return std::make_shared<PointLight>(intensity, pos);
 }
 
@@ -45,7 +47,8 @@ std::shared_ptr<Light> make_spot(const Props& props) {
     const double cutoff = props.get_float("cutoff_angle", 20.0);
     const double beam = props.get_float("beam_width", cutoff * 0.75);
     if (!(cutoff > 0 && cutoff <= 180)) props.raise_param("cutoff_angle", "cutoff_angle must lie in (0, 180] degrees");
-    if (!(beam >= 0 && beam <= cutoff)) props.raise_param("beam_width", "beam_width must lie in [0, cutoff_angle] degrees");
+    if (!(beam >= 0 && beam <= cutoff))
+        props.raise_param("beam_width", "beam_width must lie in [0, cutoff_angle] degrees");
     return std::make_shared<SpotLight>(intensity, to_world, cutoff, beam);
 }
 
@@ -53,8 +56,10 @@ std::shared_ptr<Light> make_directional(const Props& props) {
     exclusive(props, "direction", "to_world");
     const Spectrum irradiance = emission(props, "irradiance");
     Vec3 dir;
-    if (props.has("direction")) dir = props.get_vec3("direction");
-    else dir = props.get_transform("to_world").vector(Vec3(0, 0, 1));
+    if (props.has("direction"))
+        dir = props.get_vec3("direction");
+    else
+        dir = props.get_transform("to_world").vector(Vec3(0, 0, 1));
     if (!(length(dir) > 0) || !is_finite(dir)) props.raise_param("direction", "direction must be a non-zero vector");
     return std::make_shared<DirectionalLight>(irradiance, dir);
 }
@@ -84,20 +89,28 @@ std::shared_ptr<Light> make_envmap(const Props& props) {
 std::shared_ptr<Light> create_light(const Props& props) {
     const std::string& t = props.type();
     std::shared_ptr<Light> light;
-    if (t == "point") light = make_point(props);
-    else if (t == "spot") light = make_spot(props);
-    else if (t == "directional") light = make_directional(props);
-    else if (t == "constant") light = std::make_shared<ConstantLight>(emission(props, "radiance"));
-    else if (t == "envmap") light = make_envmap(props);
-    else if (t == "area") props.raise("an area emitter must be nested inside a shape");
-    else props.raise("unknown emitter type '" + t + "' (known: point, spot, directional, constant, envmap, area)");
+    if (t == "point")
+        light = make_point(props);
+    else if (t == "spot")
+        light = make_spot(props);
+    else if (t == "directional")
+        light = make_directional(props);
+    else if (t == "constant")
+        light = std::make_shared<ConstantLight>(emission(props, "radiance"));
+    else if (t == "envmap")
+        light = make_envmap(props);
+    else if (t == "area")
+        props.raise("an area emitter must be nested inside a shape");
+    else
+        props.raise("unknown emitter type '" + t + "' (known: point, spot, directional, constant, envmap, area)");
     props.check_unused();
     light->set_id(props.id());
     return light;
 }
 
 std::shared_ptr<Light> create_area_light(const Props& props, const std::shared_ptr<Shape>& shape) {
-    if (props.type() != "area") props.raise("only emitters of type 'area' can be nested in a shape, got '" + props.type() + "'");
+    if (props.type() != "area")
+        props.raise("only emitters of type 'area' can be nested in a shape, got '" + props.type() + "'");
     if (!shape) props.raise("area emitter without a shape");
     auto light = std::make_shared<AreaLight>(emission(props, "radiance"), shape);
     props.check_unused();

@@ -19,16 +19,16 @@ struct LightSampleContext {
 };
 
 struct LightSample {
-    Vec3 p;                  ///< point on the light (for directional/infinite: far away along wi)
-    Vec3 n;                  ///< light normal at p (zero for point/spot/directional/infinite)
-    Vec3 wi;                 ///< unit direction from the reference point towards the light
-    double dist = kInfinity; ///< distance to p (infinite for directional/infinite lights)
+    Vec3 p;                   ///< point on the light (for directional/infinite: far away along wi)
+    Vec3 n;                   ///< light normal at p (zero for point/spot/directional/infinite)
+    Vec3 wi;                  ///< unit direction from the reference point towards the light
+    double dist = kInfinity;  ///< distance to p (infinite for directional/infinite lights)
     /// Incident radiance for area and infinite lights. For delta lights the factor that makes
     /// the estimate f |cos| Le / pdf correct: point/spot intensity / dist^2, directional irradiance.
     SampledSpectrum Le;
-    double pdf = 0;          ///< solid-angle density at the reference point (1 for delta lights)
-    double pdf_area = 0;     ///< area density of p on the light (area lights; 0 otherwise)
-    bool delta = false;      ///< position or direction is a Dirac delta (no MIS with BSDF sampling)
+    double pdf = 0;       ///< solid-angle density at the reference point (1 for delta lights)
+    double pdf_area = 0;  ///< area density of p on the light (area lights; 0 otherwise)
+    bool delta = false;   ///< position or direction is a Dirac delta (no MIS with BSDF sampling)
 };
 
 class Light : public Object {
@@ -45,11 +45,13 @@ public:
                                                  const SampledWavelengths& wl) const = 0;
     /// Solid-angle density that sample_li(ref) returns the point p (normal n) in direction wi.
     /// For infinite lights p and n are ignored. 0 for delta lights.
-    virtual double pdf_li(const LightSampleContext& ref, const Vec3& p, const Vec3& n,
-                          const Vec3& wi) const = 0;
+    virtual double pdf_li(const LightSampleContext& ref, const Vec3& p, const Vec3& n, const Vec3& wi) const = 0;
 
     /// Area lights: radiance leaving point p (normal n) in unit direction w (away from the light).
-    virtual SampledSpectrum le(const Vec3& /*p*/, const Vec3& /*n*/, const Vec3& /*w*/, const SampledWavelengths& /*wl*/) const { return {}; }
+    virtual SampledSpectrum le(const Vec3& /*p*/, const Vec3& /*n*/, const Vec3& /*w*/,
+                               const SampledWavelengths& /*wl*/) const {
+        return {};
+    }
     /// Infinite lights: radiance arriving along a ray escaping the scene in unit direction d.
     virtual SampledSpectrum le_escaped(const Vec3& /*d*/, const SampledWavelengths& /*wl*/) const { return {}; }
 

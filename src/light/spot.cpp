@@ -56,7 +56,8 @@ double SpotLight::power() const {
     // 2 pi [ (1 - cos b) + int_b^c (c - t) / (c - b) sin t dt ] with beam b and cutoff c, where
     // int_b^c (c - t) sin t dt = [-(c - t) cos t - sin t]_b^c = (c - b) cos b + sin b - sin c.
     double ramp = 0;
-    if (m_cutoff > m_beam) ramp = ((m_cutoff - m_beam) * m_cos_beam + std::sin(m_beam) - std::sin(m_cutoff)) / (m_cutoff - m_beam);
+    if (m_cutoff > m_beam)
+        ramp = ((m_cutoff - m_beam) * m_cos_beam + std::sin(m_beam) - std::sin(m_cutoff)) / (m_cutoff - m_beam);
     return 2 * kPi * ((1 - m_cos_beam) + ramp) * m_intensity.average();
 }
 

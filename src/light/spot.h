@@ -12,8 +12,7 @@ namespace snell {
 class SpotLight final : public Light {
 public:
     /// Angles in degrees, 0 < beam_width <= cutoff_angle <= 90 (validated by the factory).
-    SpotLight(const Spectrum& intensity, const Transform& to_world, double cutoff_angle_deg,
-              double beam_width_deg);
+    SpotLight(const Spectrum& intensity, const Transform& to_world, double cutoff_angle_deg, double beam_width_deg);
 
     LightKind kind() const override { return LightKind::Spot; }
     /// Delta sample: Le = I falloff / dist^2, pdf = 1; nullopt outside the cone.
@@ -35,7 +34,7 @@ private:
     Spectrum m_intensity;
     Transform m_to_world, m_to_local;
     Vec3 m_position;
-    double m_cutoff, m_beam;          // radians
+    double m_cutoff, m_beam;  // radians
     double m_cos_cutoff, m_cos_beam;
 };
 

@@ -10,8 +10,8 @@
 namespace snell {
 
 struct ChainJacobians {
-    double dH_dX = 0;     ///< |dH/dX|: half vectors (projected solid angle) per vertex area (Eq. 8)
-    double do_b_dx_c = 0; ///< |do_b/dx_c|: solid angle at x_b per unit area of x_c (transfer matrix)
+    double dH_dX = 0;      ///< |dH/dX|: half vectors (projected solid angle) per vertex area (Eq. 8)
+    double do_b_dx_c = 0;  ///< |do_b/dx_c|: solid angle at x_b per unit area of x_c (transfer matrix)
     bool valid = false;
 };
 

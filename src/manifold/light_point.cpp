@@ -4,9 +4,7 @@
 
 namespace snell {
 
-double far_light_distance(const Scene& scene) {
-    return 1e6 * (scene.scene_radius() + length(scene.bounds().center()));
-}
+double far_light_distance(const Scene& scene) { return 1e6 * (scene.scene_radius() + length(scene.bounds().center())); }
 
 LightPoint light_point(const Scene& scene, const Light& light, const LightSample& ls, const Vec3& ref) {
     LightPoint lp;
@@ -49,8 +47,8 @@ double light_point_pdf(const Scene& scene, const Light& light, const Vec3& ref, 
     (void)scene;
 }
 
-SampledSpectrum light_point_emission(const Light& light, const Vec3& p, const Vec3& n, const Vec3& w, const Vec3& center,
-                                            const SampledWavelengths& wl) {
+SampledSpectrum light_point_emission(const Light& light, const Vec3& p, const Vec3& n, const Vec3& w,
+                                     const Vec3& center, const SampledWavelengths& wl) {
     const SampledSpectrum e = light.emitted(p, n, w, wl);
     // A directional light's irradiance E is the intensity E D^2 of a point at distance D.
     return light.kind() == LightKind::Directional ? e * length_squared(p - center) : e;

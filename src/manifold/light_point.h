@@ -15,9 +15,9 @@ namespace snell {
 class Scene;
 
 struct LightPoint {
-    Vec3 p, n;          ///< position and normal (facing the scene for far points)
-    double pdf = 0;     ///< area density of p, or 1 for delta positions
-    bool delta = false; ///< position (point, spot) or direction (directional) is a delta
+    Vec3 p, n;           ///< position and normal (facing the scene for far points)
+    double pdf = 0;      ///< area density of p, or 1 for delta positions
+    bool delta = false;  ///< position (point, spot) or direction (directional) is a delta
 };
 
 /// Radius of the far sphere for lights at infinity.

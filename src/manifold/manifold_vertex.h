@@ -17,16 +17,16 @@ class BSDF;
 inline Vec3 constraint_frame_reference() { return normalize(Vec3(0.5366, 0.6331, 0.5577)); }
 
 struct ManifoldVertex {
-    Vec3 p;           ///< position
-    Vec3 n;           ///< unit shading normal
-    Vec3 ng;          ///< unit geometric normal (outward side of the shape)
-    Vec3 dp_ds, dp_dt;  ///< orthonormal basis of the tangent plane: vertex displacements are
-                        ///< p + dp_ds * a + dp_dt * b, so (a, b) measure area
-    Vec3 dn_ds, dn_dt;  ///< derivative of n along dp_ds and dp_dt (shape operator)
-    Vec3 s, t;          ///< constraint frame: s = normalize(a - n (n.a)), t = n x s
+    Vec3 p;                           ///< position
+    Vec3 n;                           ///< unit shading normal
+    Vec3 ng;                          ///< unit geometric normal (outward side of the shape)
+    Vec3 dp_ds, dp_dt;                ///< orthonormal basis of the tangent plane: vertex displacements are
+                                      ///< p + dp_ds * a + dp_dt * b, so (a, b) measure area
+    Vec3 dn_ds, dn_dt;                ///< derivative of n along dp_ds and dp_dt (shape operator)
+    Vec3 s, t;                        ///< constraint frame: s = normalize(a - n (n.a)), t = n x s
     Vec3 ds_ds, ds_dt, dt_ds, dt_dt;  ///< frame derivatives along dp_ds and dp_dt
-    double eta = 1;     ///< IOR inside / outside at the path's wavelength (1: reflection only)
-    Vec2 h_target;      ///< target tangential half vector (0,0) for specular vertices
+    double eta = 1;                   ///< IOR inside / outside at the path's wavelength (1: reflection only)
+    Vec2 h_target;                    ///< target tangential half vector (0,0) for specular vertices
     const Shape* shape = nullptr;
     const BSDF* bsdf = nullptr;
     SurfaceInteraction si;  ///< full hit record at p

@@ -21,7 +21,8 @@ bool build_constraints(const Vec3& x_b, const std::vector<ManifoldVertex>& chain
         // x_b's basis is never used (no A block in the first row).
         const TangentBasis prev = i == 0 ? TangentBasis{x_b, Vec3(), Vec3()}
                                          : TangentBasis{chain[i - 1].p, chain[i - 1].dp_ds, chain[i - 1].dp_dt};
-        const TangentBasis next = i + 1 == k ? x_c : TangentBasis{chain[i + 1].p, chain[i + 1].dp_ds, chain[i + 1].dp_dt};
+        const TangentBasis next =
+            i + 1 == k ? x_c : TangentBasis{chain[i + 1].p, chain[i + 1].dp_ds, chain[i + 1].dp_dt};
         const ConstraintBlocks b = half_vector_constraint(prev, chain[i], next);
         if (!b.valid) return false;
         m->A[i] = b.A;
@@ -107,16 +108,20 @@ WalkResult manifold_walk(const Scene* scene, const Vec3& x_b, std::vector<Manifo
         bool projected = true;
         for (size_t i = 0; i < chain.size() && projected; ++i) {
             const Vec3 prev = i == 0 ? x_b : proposal[i - 1].p;
-            projected = project_vertex(scene, chain[i], prev, chain[i].offset(dx[i] * beta), st.projection, &proposal[i]);
+            projected =
+                project_vertex(scene, chain[i], prev, chain[i].offset(dx[i] * beta), st.projection, &proposal[i]);
         }
         const double new_err = projected ? constraint_error(x_b, proposal, x_c.p) : kInfinity;
         if (new_err < err || (st.allow_error_increase && std::isfinite(new_err))) {
             // Accept. Newton's full step is right once the error falls fast (quadratic phase);
             // variant B over-relaxes (step > 1) only while progress is slow, to jump across
             // the local minima of Fig. 4, and halves the step after an accepted increase.
-            if (new_err >= err) beta *= 0.5;
-            else if (new_err < 0.5 * err) beta = std::min(1.0, beta * 2.0);
-            else beta = std::min(beta_max, beta * 2.0);
+            if (new_err >= err)
+                beta *= 0.5;
+            else if (new_err < 0.5 * err)
+                beta = std::min(1.0, beta * 2.0);
+            else
+                beta = std::min(beta_max, beta * 2.0);
             chain.swap(proposal);
             err = new_err;
         } else {

@@ -21,8 +21,8 @@ enum class Projection {
 };
 
 struct WalkSettings {
-    int max_iterations = 15;     ///< paper Sec. 3.4: 15 works well in practice
-    double threshold = 1e-6;     ///< convergence: max over vertices of |c_i| (dimensionless)
+    int max_iterations = 15;            ///< paper Sec. 3.4: 15 works well in practice
+    double threshold = 1e-6;            ///< convergence: max over vertices of |c_i| (dimensionless)
     bool allow_error_increase = false;  ///< Table 1 variant B: over-relaxed, error may grow
     Projection projection = Projection::ClosestPoint;
 };

@@ -48,7 +48,8 @@ void vertex_directions(const Vec3& xb, const std::vector<ManifoldVertex>& chain,
 }
 
 uint64_t elapsed_ns(std::chrono::steady_clock::time_point t0) {
-    return uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count());
+    return uint64_t(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count());
 }
 
 }  // namespace
@@ -124,10 +125,20 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     const WalkResult walk = manifold_walk(&scene, xb.p, chain, seed_basis, st.walk);
     counters.walk_time_ns += elapsed_ns(t0);
     switch (walk.outcome) {
-        case WalkOutcome::Converged: break;
-        case WalkOutcome::MaxIterations: counters.walk_fail_no_convergence++; out.outcome = MneeOutcome::NoConvergence; return out;
-        case WalkOutcome::SingularMatrix: counters.walk_fail_singular++; out.outcome = MneeOutcome::Singular; return out;
-        case WalkOutcome::ProjectionFailed: counters.walk_fail_projection++; out.outcome = MneeOutcome::ProjectionFailed; return out;
+        case WalkOutcome::Converged:
+            break;
+        case WalkOutcome::MaxIterations:
+            counters.walk_fail_no_convergence++;
+            out.outcome = MneeOutcome::NoConvergence;
+            return out;
+        case WalkOutcome::SingularMatrix:
+            counters.walk_fail_singular++;
+            out.outcome = MneeOutcome::Singular;
+            return out;
+        case WalkOutcome::ProjectionFailed:
+            counters.walk_fail_projection++;
+            out.outcome = MneeOutcome::ProjectionFailed;
+            return out;
     }
     const Vec3 xc = lp.p;
     if (!admissible(xb.p, chain, xc)) {
@@ -196,11 +207,12 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     }
     out.outcome = MneeOutcome::Success;
     out.value = f_b * throughput * Le * tr * (jac.do_b_dx_c / (pmf * p_point));  // Alg. 1, last line
-    out.pdf_mnee = pmf * p_point * p_dH * jac.dH_dX;                          // Eq. 7 with Eq. 8
+    out.pdf_mnee = pmf * p_point * p_dH * jac.dH_dX;                             // Eq. 7 with Eq. 8
     // Delta lights cannot be hit by BSDF sampling.
     out.pdf_bsdf = lp.delta ? 0.0 : p_bsdf;
     // NEE from a rough last vertex competes for the same path.
-    if (!is_specular(chain[k - 1])) out.pdf_nee_last = p_prefix_k * pmf * light_point_pdf(scene, light, chain[k - 1].p, xc, lp.n);
+    if (!is_specular(chain[k - 1]))
+        out.pdf_nee_last = p_prefix_k * pmf * light_point_pdf(scene, light, chain[k - 1].p, xc, lp.n);
     return out;
 }
 

@@ -44,8 +44,8 @@ struct MneeConnection {
     /// The chain disperses: the path was solved for the hero wavelength and `value` holds
     /// the hero's alone (see SampledWavelengths::hero_only).
     bool hero_only = false;
-    double pdf_mnee = 0;   ///< area density of this technique (Eq. 7 with Eq. 8)
-    double pdf_bsdf = 0;   ///< area density of BSDF sampling x_1..x_k, x_c from x_b
+    double pdf_mnee = 0;      ///< area density of this technique (Eq. 7 with Eq. 8)
+    double pdf_bsdf = 0;      ///< area density of BSDF sampling x_1..x_k, x_c from x_b
     double pdf_nee_last = 0;  ///< area density of NEE from x_k (0 unless x_k is rough)
 };
 
@@ -78,8 +78,8 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& settings, co
 /// the hero wavelength `lambda`.
 /// 0 if the seed path from x_b to x_c walks to a different path (or none).
 double mnee_pdf(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb, const BSDF& bsdf_b,
-                const SurfaceInteraction* chain, int k, const Light& light, double pmf, const Vec3& xc,
-                const Vec3& nc, double lambda);
+                const SurfaceInteraction* chain, int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
+                double lambda);
 
 /// Culling of a seed at x_b with the tolerance margin of Fig. 3.
 bool mnee_seed_culled(const SurfaceInteraction& xb, const BSDF& bsdf_b, const Vec3& xc, double margin);

@@ -12,12 +12,12 @@ struct MneeSettings {
     /// (as -cos) is culled; > 0 keeps lights that are reachable only through the refracted
     /// path (Fig. 3). 1 disables culling.
     double cull_margin = 0.5;
-    bool biased = false;            ///< (biased) outlier removal of Sec. 3.5
+    bool biased = false;  ///< (biased) outlier removal of Sec. 3.5
     /// (spectral_walks) through a dispersive chain every wavelength of the path solves its own
     /// chain from the same seed and light point, with its own contribution and density; false:
     /// the hero's solution alone, carrying the others' share (cheaper, colour noisier).
     bool spectral_walks = true;
-    WalkSettings walk;              ///< (max_iterations, threshold, allow_error_increase, projection)
+    WalkSettings walk;  ///< (max_iterations, threshold, allow_error_increase, projection)
 };
 
 }  // namespace snell

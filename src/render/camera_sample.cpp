@@ -33,8 +33,8 @@ bool is_valid_radiance(const SampledSpectrum& L) {
 }
 
 TracedSample trace_camera_sample(const Scene& scene, const PerspectiveCamera& camera, const SampleTracer& tracer,
-                                 int spectral_samples, const Vec2& pixel_centre, const Vec2& raster, const Vec2& u_lambda,
-                                 Sampler& sampler, SplatList& splats, Counters& counters) {
+                                 int spectral_samples, const Vec2& pixel_centre, const Vec2& raster,
+                                 const Vec2& u_lambda, Sampler& sampler, SplatList& splats, Counters& counters) {
     TracedSample t;
     t.cs.raster = raster;
     t.cs.pixel_centre = pixel_centre;

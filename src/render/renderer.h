@@ -13,12 +13,12 @@ namespace snell {
 class Scene;
 
 struct RenderOptions {
-    int spp = 16;              ///< samples per pixel (spp mode)
-    double time_limit = 0;     ///< > 0: render until this many seconds have passed (equal-time mode)
-    int threads = 0;           ///< 0: all hardware threads
-    uint64_t seed = 0;         ///< sampler seed; the image is a pure function of (scene, seed, spp)
-    SamplerSpec sampler;       ///< pixel sampler (the scene's <sampler> type); built with create_sampler(sampler, spp, seed)
-    bool progress = true;      ///< progress bar on a terminal
+    int spp = 16;           ///< samples per pixel (spp mode)
+    double time_limit = 0;  ///< > 0: render until this many seconds have passed (equal-time mode)
+    int threads = 0;        ///< 0: all hardware threads
+    uint64_t seed = 0;      ///< sampler seed; the image is a pure function of (scene, seed, spp)
+    SamplerSpec sampler;  ///< pixel sampler (the scene's <sampler> type); built with create_sampler(sampler, spp, seed)
+    bool progress = true;  ///< progress bar on a terminal
     int tile_size = 16;
     bool debug_layers = false;  ///< integrators fill their debug layers (BDPT: per-strategy images)
 };
@@ -26,9 +26,9 @@ struct RenderOptions {
 struct RenderResult {
     Film film{1, 1};
     double seconds = 0;
-    uint64_t spp_completed = 0;   ///< samples every pixel received (complete passes)
-    double spp_mean = 0;          ///< mean samples per pixel, partial passes included
-    bool interrupted = false;     ///< cancelled (Ctrl-C) before the requested spp
+    uint64_t spp_completed = 0;  ///< samples every pixel received (complete passes)
+    double spp_mean = 0;         ///< mean samples per pixel, partial passes included
+    bool interrupted = false;    ///< cancelled (Ctrl-C) before the requested spp
     Counters counters;
     std::vector<std::string> layer_names;  ///< names of the film's debug layers 1, 2, ...
 };

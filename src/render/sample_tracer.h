@@ -18,7 +18,7 @@ class Scene;
 struct CameraSample {
     Vec2 raster;
     Vec2 pixel_centre;  ///< centre (full-film raster) of the pixel whose estimate this sample is
-    Vec2 u_lambda;  ///< the pair behind `wl` (SampledWavelengths::sample_visible)
+    Vec2 u_lambda;      ///< the pair behind `wl` (SampledWavelengths::sample_visible)
     SampledWavelengths wl;
 };
 

@@ -22,10 +22,16 @@ nlohmann::json crop_json(const Crop& c) { return {{"x", c.x}, {"y", c.y}, {"w", 
 }  // namespace
 
 nlohmann::json metrics_json(const ImageMetrics& m) {
-    return {{"rel_mse", number(m.rel_mse)}, {"mse", number(m.mse)},   {"rmse", number(m.rmse)},
-            {"psnr", number(m.psnr)},       {"smape", number(m.smape)}, {"mean", number(m.mean)},
-            {"median_rel_error", number(m.median_rel_error)}, {"median_rel_error_rgb", number(m.median_rel_error_rgb)},
-            {"mean_reference", number(m.mean_reference)}, {"pixels", m.pixels}};
+    return {{"rel_mse", number(m.rel_mse)},
+            {"mse", number(m.mse)},
+            {"rmse", number(m.rmse)},
+            {"psnr", number(m.psnr)},
+            {"smape", number(m.smape)},
+            {"mean", number(m.mean)},
+            {"median_rel_error", number(m.median_rel_error)},
+            {"median_rel_error_rgb", number(m.median_rel_error_rgb)},
+            {"mean_reference", number(m.mean_reference)},
+            {"pixels", m.pixels}};
 }
 
 nlohmann::json report_json(const CompareReport& r) {
@@ -47,9 +53,12 @@ nlohmann::json report_json(const CompareReport& r) {
     }
 
     const ReferenceInfo& ref = r.reference;
-    nlohmann::json jr = {{"source", ref.source}, {"image_exr", ref.image_exr}, {"image_png", ref.image_png},
+    nlohmann::json jr = {{"source", ref.source},
+                         {"image_exr", ref.image_exr},
+                         {"image_png", ref.image_png},
                          {"crop_pngs", ref.crop_pngs}};
-    if (ref.source == "file") jr["file"] = ref.file;
+    if (ref.source == "file")
+        jr["file"] = ref.file;
     else {
         jr["integrator"] = ref.integrator;
         jr["spp"] = ref.spp;

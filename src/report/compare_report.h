@@ -29,12 +29,12 @@ struct ConvergencePoint {
 
 /// One technique of the comparison.
 struct IntegratorResult {
-    std::string name;     ///< as given on the command line, e.g. "mnee-biased"
-    std::string type;     ///< integrator type it was built as, e.g. "mnee"
-    bool biased = false;  ///< mnee's biased outlier removal switched on
-    RenderReport stats;   ///< the equal-time render (MNEE walk statistics under extra["mnee"])
-    std::vector<RegionMetrics> regions;         ///< [0] is the whole image, then the crops in order
-    std::vector<ConvergencePoint> convergence;  ///< increasing time; the last is the equal-time render
+    std::string name;                             ///< as given on the command line, e.g. "mnee-biased"
+    std::string type;                             ///< integrator type it was built as, e.g. "mnee"
+    bool biased = false;                          ///< mnee's biased outlier removal switched on
+    RenderReport stats;                           ///< the equal-time render (MNEE walk statistics under extra["mnee"])
+    std::vector<RegionMetrics> regions;           ///< [0] is the whole image, then the crops in order
+    std::vector<ConvergencePoint> convergence;    ///< increasing time; the last is the equal-time render
     std::string image_exr, image_png, error_png;  ///< relative to the report folder
     std::vector<std::string> crop_pngs;           ///< enlarged crops, one per crop
 };
@@ -58,8 +58,8 @@ struct CompareReport {
     double time_budget = 0;  ///< equal-time budget per integrator (s)
     int threads = 0;
     uint64_t seed = 0;
-    double exposure = 0;     ///< PNG exposure in stops
-    double error_max = 1;    ///< relative error shown as the top of the false-colour map
+    double exposure = 0;   ///< PNG exposure in stops
+    double error_max = 1;  ///< relative error shown as the top of the false-colour map
     std::vector<Crop> crops;
     std::vector<int> crop_scales;  ///< enlargement factor of each crop's PNGs
     ReferenceInfo reference;

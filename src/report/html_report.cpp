@@ -56,8 +56,8 @@ int display_width(int w) { return w >= 256 ? w : w * std::max(1, 320 / std::max(
 
 std::string figure(const std::string& src, const std::string& alt, int width, const std::string& caption,
                    const std::string& overlay = "") {
-    std::string s = "<figure><div class=\"frame\"><img src=\"" + esc(src) + "\" alt=\"" + esc(alt) +
-                    "\" width=\"" + std::to_string(width) + "\">" + overlay + "</div>";
+    std::string s = "<figure><div class=\"frame\"><img src=\"" + esc(src) + "\" alt=\"" + esc(alt) + "\" width=\"" +
+                    std::to_string(width) + "\">" + overlay + "</div>";
     s += "<figcaption>" + caption + "</figcaption></figure>\n";
     return s;
 }
@@ -69,7 +69,8 @@ std::string html_report(const CompareReport& r) {
     const int dw = display_width(r.width);
     std::string h;
     h += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
-    h += "<title>snell compare: " + esc(r.scene) + "</title>\n<style>" + std::string(k_css) + "</style>\n</head>\n<body>\n";
+    h += "<title>snell compare: " + esc(r.scene) + "</title>\n<style>" + std::string(k_css) +
+         "</style>\n</head>\n<body>\n";
 
     // Header: what was compared and how.
     h += "<h1>Equal-time comparison: " + esc(r.scene) + "</h1>\n<p class=\"meta\">";
@@ -78,7 +79,8 @@ std::string html_report(const CompareReport& r) {
          ", PNG exposure " + fmt("%+g", r.exposure) + " stops";
     for (const std::string& d : r.defines) h += ", -D " + esc(d);
     h += ".<br>Reference: ";
-    if (r.reference.source == "file") h += "file " + esc(r.reference.file);
+    if (r.reference.source == "file")
+        h += "file " + esc(r.reference.file);
     else {
         h += esc(r.reference.integrator) + " rendered with ";
         h += r.reference.spp > 0 ? std::to_string(r.reference.spp) + " spp" : fmt("%g", r.reference.time_limit) + " s";
@@ -112,17 +114,17 @@ std::string html_report(const CompareReport& r) {
         for (size_t c = 0; c < r.crops.size(); ++c) {
             const Crop& cr = r.crops[c];
             const int scale = c < r.crop_scales.size() ? r.crop_scales[c] : 1;
-            h += "<p class=\"meta\">Crop " + std::to_string(c + 1) + ": x=" + std::to_string(cr.x) + ", y=" +
-                 std::to_string(cr.y) + ", " + std::to_string(cr.w) + "&times;" + std::to_string(cr.h) + " pixels, shown " +
-                 std::to_string(scale) + "&times;</p>\n<div class=\"row\">\n";
+            h += "<p class=\"meta\">Crop " + std::to_string(c + 1) + ": x=" + std::to_string(cr.x) +
+                 ", y=" + std::to_string(cr.y) + ", " + std::to_string(cr.w) + "&times;" + std::to_string(cr.h) +
+                 " pixels, shown " + std::to_string(scale) + "&times;</p>\n<div class=\"row\">\n";
             h += figure(r.reference.crop_pngs.at(c), "reference crop " + std::to_string(c + 1), cr.w * scale,
                         "<b>reference</b>");
             for (size_t k : order) {
                 const IntegratorResult& it = r.integrators[k];
                 const ImageMetrics& m = it.regions.at(c + 1).metrics;
-                h += figure(it.crop_pngs.at(c), it.name + " crop " + std::to_string(c + 1), cr.w * scale,
-                            "<b>" + esc(it.name) + "</b>PSNR " + fmt("%.2f", m.psnr) + " dB, relMSE " +
-                                fmt("%.4g", m.rel_mse));
+                h += figure(
+                    it.crop_pngs.at(c), it.name + " crop " + std::to_string(c + 1), cr.w * scale,
+                    "<b>" + esc(it.name) + "</b>PSNR " + fmt("%.2f", m.psnr) + " dB, relMSE " + fmt("%.4g", m.rel_mse));
             }
             h += "</div>\n";
         }
@@ -130,8 +132,10 @@ std::string html_report(const CompareReport& r) {
     }
 
     // False-colour relative error.
-    h += "<h2>Relative error</h2>\n<p class=\"meta\">Per pixel sqrt(mean over RGB of (a&minus;r)&sup2;/(r&sup2;+0.01)), "
-         "viridis colour map from 0 (dark purple) to " + fmt("%g", r.error_max) + " or more (yellow).</p>\n";
+    h +=
+        "<h2>Relative error</h2>\n<p class=\"meta\">Per pixel sqrt(mean over RGB of (a&minus;r)&sup2;/(r&sup2;+0.01)), "
+        "viridis colour map from 0 (dark purple) to " +
+        fmt("%g", r.error_max) + " or more (yellow).</p>\n";
     h += "<div class=\"colourbar\" style=\"background:" + viridis_gradient() + "\"></div>\n";
     h += "<div class=\"cbar-labels\"><span>0</span><span>" + fmt("%g", r.error_max / 2) + "</span><span>&ge;" +
          fmt("%g", r.error_max) + "</span></div>\n";
@@ -165,7 +169,8 @@ std::string html_report(const CompareReport& r) {
     bool any_mnee = false;
     for (const IntegratorResult& it : r.integrators) any_mnee |= it.stats.extra.contains("mnee");
     if (any_mnee) {
-        h += "<h2>Manifold walk statistics</h2>\n<table id=\"mnee-stats\">\n<thead><tr><th class=\"name\">integrator</th>"
+        h += "<h2>Manifold walk statistics</h2>\n<table id=\"mnee-stats\">\n<thead><tr><th "
+             "class=\"name\">integrator</th>"
              "<th class=\"name\">statistic</th><th>value</th></tr></thead>\n<tbody>\n";
         for (size_t k : order) {
             const IntegratorResult& it = r.integrators[k];

@@ -12,12 +12,23 @@ std::string xml_escape(const std::string& text) {
     out.reserve(text.size());
     for (char c : text) {
         switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&#39;"; break;
-            default: out += c;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            case '\'':
+                out += "&#39;";
+                break;
+            default:
+                out += c;
         }
     }
     return out;
@@ -80,10 +91,10 @@ std::string render_svg(const LogLogPlot& plot) {
     // Grid and tick labels at powers of ten.
     for (int e = int(lx0); e <= int(lx1); ++e) {
         const double x = left + (e - lx0) / (lx1 - lx0) * pw;
-        s += "<line x1=\"" + fmt("%.1f", x) + "\" y1=\"" + fmt("%.1f", top) + "\" x2=\"" + fmt("%.1f", x) +
-             "\" y2=\"" + fmt("%.1f", top + ph) + "\" stroke=\"#ddd\"/>\n";
-        s += "<text x=\"" + fmt("%.1f", x) + "\" y=\"" + fmt("%.1f", top + ph + 16) +
-             "\" text-anchor=\"middle\">" + decade_label(e) + "</text>\n";
+        s += "<line x1=\"" + fmt("%.1f", x) + "\" y1=\"" + fmt("%.1f", top) + "\" x2=\"" + fmt("%.1f", x) + "\" y2=\"" +
+             fmt("%.1f", top + ph) + "\" stroke=\"#ddd\"/>\n";
+        s += "<text x=\"" + fmt("%.1f", x) + "\" y=\"" + fmt("%.1f", top + ph + 16) + "\" text-anchor=\"middle\">" +
+             decade_label(e) + "</text>\n";
     }
     for (int e = int(ly0); e <= int(ly1); ++e) {
         const double y = top + ph - (e - ly0) / (ly1 - ly0) * ph;
@@ -92,12 +103,13 @@ std::string render_svg(const LogLogPlot& plot) {
         s += "<text x=\"" + fmt("%.1f", left - 6) + "\" y=\"" + fmt("%.1f", y + 4) + "\" text-anchor=\"end\">" +
              decade_label(e) + "</text>\n";
     }
-    s += "<rect x=\"" + fmt("%g", left) + "\" y=\"" + fmt("%g", top) + "\" width=\"" + fmt("%g", pw) +
-         "\" height=\"" + fmt("%g", ph) + "\" fill=\"none\" stroke=\"black\"/>\n";
+    s += "<rect x=\"" + fmt("%g", left) + "\" y=\"" + fmt("%g", top) + "\" width=\"" + fmt("%g", pw) + "\" height=\"" +
+         fmt("%g", ph) + "\" fill=\"none\" stroke=\"black\"/>\n";
     s += "<text class=\"xlabel\" x=\"" + fmt("%g", left + pw / 2) + "\" y=\"" + fmt("%g", H - 10) +
          "\" text-anchor=\"middle\">" + xml_escape(plot.x_label) + "</text>\n";
-    s += "<text class=\"ylabel\" x=\"16\" y=\"" + fmt("%g", top + ph / 2) + "\" text-anchor=\"middle\" transform=\"rotate(-90 16 " +
-         fmt("%g", top + ph / 2) + ")\">" + xml_escape(plot.y_label) + "</text>\n";
+    s += "<text class=\"ylabel\" x=\"16\" y=\"" + fmt("%g", top + ph / 2) +
+         "\" text-anchor=\"middle\" transform=\"rotate(-90 16 " + fmt("%g", top + ph / 2) + ")\">" +
+         xml_escape(plot.y_label) + "</text>\n";
 
     for (size_t k = 0; k < plot.series.size(); ++k) {
         const PlotSeries& ser = plot.series[k];
@@ -112,8 +124,9 @@ std::string render_svg(const LogLogPlot& plot) {
         s += "<polyline class=\"series\" data-name=\"" + xml_escape(ser.name) + "\" fill=\"none\" stroke=\"" + colour +
              "\" stroke-width=\"2\" points=\"" + points + "\"/>\n" + markers;
         const double ly = top + 10 + 18 * double(k);
-        s += "<line x1=\"" + fmt("%g", left + pw + 12) + "\" y1=\"" + fmt("%g", ly) + "\" x2=\"" + fmt("%g", left + pw + 36) +
-             "\" y2=\"" + fmt("%g", ly) + "\" stroke=\"" + colour + "\" stroke-width=\"2\"/>\n";
+        s += "<line x1=\"" + fmt("%g", left + pw + 12) + "\" y1=\"" + fmt("%g", ly) + "\" x2=\"" +
+             fmt("%g", left + pw + 36) + "\" y2=\"" + fmt("%g", ly) + "\" stroke=\"" + colour +
+             "\" stroke-width=\"2\"/>\n";
         s += "<text x=\"" + fmt("%g", left + pw + 42) + "\" y=\"" + fmt("%g", ly + 4) + "\">" + xml_escape(ser.name) +
              "</text>\n";
     }

@@ -28,9 +28,7 @@ uint64_t sample_hash(uint64_t first, Ts... rest) {
 }
 
 /// Hash of the seed and pixel; the per-pixel randomisation of every sampler starts from it.
-inline uint64_t pixel_hash(uint64_t seed, int px, int py) {
-    return sample_hash(seed, uint32_t(px), uint32_t(py));
-}
+inline uint64_t pixel_hash(uint64_t seed, int px, int py) { return sample_hash(seed, uint32_t(px), uint32_t(py)); }
 
 /// Uniform in [0, 1) from the top 32 bits of a hash. A 32-bit jitter keeps `stratum + jitter`
 /// exact in a double, so a jittered point can never round into the next stratum.

@@ -16,7 +16,6 @@ void SobolSampler::start_pixel_sample(int px, int py, uint64_t index) {
     m_dim = 0;
 }
 
-
 // One hash per dimension; the scrambles' keys are that hash times odd constants (bijections of
 // a well-mixed word). The sampler runs for every dimension of every path: hash chains per key
 // made it a sixth of `nee`'s time.

@@ -165,8 +165,9 @@ TEST(CompareCli, ErrorsAreClearAndExitNonZero) {
     // A reference of another size (the 64x48 one from the first test against a 32x24 render).
     const fs::path ref = dir / "reference.exr";
     if (fs::exists(ref)) {
-        const CommandResult r = run(snell + " compare builtin:droplet --time 0.1 -D res_x=32 -D res_y=24 -q --integrators path" +
-                          " --reference " + quote(ref.string()) + " --out " + quote(scratch.string()));
+        const CommandResult r =
+            run(snell + " compare builtin:droplet --time 0.1 -D res_x=32 -D res_y=24 -q --integrators path" +
+                " --reference " + quote(ref.string()) + " --out " + quote(scratch.string()));
         EXPECT_NE(r.status, 0);
         EXPECT_NE(r.output.find("reference is 64x48 but the scene renders 32x24"), std::string::npos) << r.output;
     }
@@ -184,9 +185,10 @@ TEST(CompareHtml, ChromiumFindsTableAndImages) {
                   "(scripts/install-deps.sh installs it)";
     const fs::path profile = dir.string() + "_chromium_profile";
     fs::remove_all(profile);
-    const CommandResult r = run("timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-background-networking "
-                      "--disable-component-update --disable-sync --no-first-run --user-data-dir=" +
-                      quote(profile.string()) + " --dump-dom " + quote("file://" + page.string()) + " 2>/dev/null");
+    const CommandResult r =
+        run("timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-background-networking "
+            "--disable-component-update --disable-sync --no-first-run --user-data-dir=" +
+            quote(profile.string()) + " --dump-dom " + quote("file://" + page.string()) + " 2>/dev/null");
     fs::remove_all(profile);
     ASSERT_EQ(r.status, 0) << r.output;
     const std::string& dom = r.output;
@@ -197,7 +199,8 @@ TEST(CompareHtml, ChromiumFindsTableAndImages) {
     const std::string table = dom.substr(t0, t1 - t0);
     const std::regex row("<tr[ >]");
     EXPECT_EQ(std::distance(std::sregex_iterator(table.begin(), table.end(), row), std::sregex_iterator()), 1 + 3 * 2);
-    for (const char* name : k_integrators) EXPECT_NE(table.find(std::string(">") + name + "<"), std::string::npos) << name;
+    for (const char* name : k_integrators)
+        EXPECT_NE(table.find(std::string(">") + name + "<"), std::string::npos) << name;
 
     // Images: reference + 3 renders, (1 + 3) crops, 3 error maps; every file exists.
     const std::regex img("<img [^>]*src=\"([^\"]+)\"");

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "geometry/mesh.h"
 #include "geometry/builders.h"
+#include "geometry/mesh.h"
 #include "geometry/sphere.h"
 #include "manifold/constraints.h"
 #include "manifold/manifold_vertex.h"

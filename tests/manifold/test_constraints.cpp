@@ -5,9 +5,9 @@
 #include <functional>
 
 #include "manifold/block_tridiagonal.h"
+#include "manifold/chain_fixture.h"
 #include "manifold/generalized_geometry.h"
 #include "manifold/manifold_walk.h"
-#include "manifold/chain_fixture.h"
 
 using namespace snell;
 using namespace snell::test;
@@ -58,10 +58,14 @@ void check_blocks(const Vec3& xb, const std::vector<ManifoldVertex>& chain, cons
         }
         for (size_t i = 0; i < k; ++i) {
             const Mat2 fd = Mat2::from_columns(col[0][i], col[1][i]);
-            if (i == j) expect_mat_near(m.B[i], fd, 1e-5, "B_" + std::to_string(i));
-            else if (i == j + 1) expect_mat_near(m.A[i], fd, 1e-5, "A_" + std::to_string(i));
-            else if (j == i + 1) expect_mat_near(m.C[i], fd, 1e-5, "C_" + std::to_string(i));
-            else expect_mat_near(Mat2(), fd, 1e-5, "zero block");
+            if (i == j)
+                expect_mat_near(m.B[i], fd, 1e-5, "B_" + std::to_string(i));
+            else if (i == j + 1)
+                expect_mat_near(m.A[i], fd, 1e-5, "A_" + std::to_string(i));
+            else if (j == i + 1)
+                expect_mat_near(m.C[i], fd, 1e-5, "C_" + std::to_string(i));
+            else
+                expect_mat_near(Mat2(), fd, 1e-5, "zero block");
         }
     }
     // C block of the last vertex with respect to the light point x_c.
@@ -129,10 +133,9 @@ TEST(Constraints, DeterminantIsProductOfPivots) {
     Sphere s(Vec3(0, 0, 0), 1.0);
     Sphere inner(Vec3(0.05, 0, 0), 0.5);
     const Vec3 xb(0.3, -0.2, -2.5);
-    std::vector<ManifoldVertex> chain = {vertex_on(s, Vec3(0.1, 0.05, -1), 1.33, Vec2(0.05, -0.02)),
-                                         vertex_on(inner, Vec3(0.1, 0.0, -0.5), 1.2),
-                                         vertex_on(inner, Vec3(0.15, 0.0, 0.5), 1.2),
-                                         vertex_on(s, Vec3(0.2, -0.1, 1), 1.33, Vec2(-0.03, 0.04))};
+    std::vector<ManifoldVertex> chain = {
+        vertex_on(s, Vec3(0.1, 0.05, -1), 1.33, Vec2(0.05, -0.02)), vertex_on(inner, Vec3(0.1, 0.0, -0.5), 1.2),
+        vertex_on(inner, Vec3(0.15, 0.0, 0.5), 1.2), vertex_on(s, Vec3(0.2, -0.1, 1), 1.33, Vec2(-0.03, 0.04))};
     const TangentBasis xc = endpoint(Vec3(0.5, 0.4, 3), Vec3(0, 0, -1));
     BlockTridiagonal m;
     std::vector<Vec2> c;

@@ -24,7 +24,10 @@ double bisect(F f, double lo, double hi) {
     const double flo = f(lo);
     for (int i = 0; i < 200; ++i) {
         const double mid = 0.5 * (lo + hi);
-        if ((f(mid) > 0) == (flo > 0)) lo = mid; else hi = mid;
+        if ((f(mid) > 0) == (flo > 0))
+            lo = mid;
+        else
+            hi = mid;
     }
     return 0.5 * (lo + hi);
 }
@@ -46,10 +49,12 @@ TEST(ManifoldWalk, FlatInterfaceConvergesToSnellsLaw) {
     // eta sin(theta_water) = sin(theta_air) (Snell), found by bisection.
     const Vec3 a(xb.x, xb.y, 0), b(xc.x, xc.y, 0);
     const double D = length(b - a), hb = -xb.z, hc = xc.z;
-    const double s = bisect([&](double x) {
-        const double sin_w = x / std::sqrt(x * x + hb * hb), sin_a = (D - x) / std::sqrt(sqr(D - x) + hc * hc);
-        return eta * sin_w - sin_a;
-    }, 0.0, D);
+    const double s = bisect(
+        [&](double x) {
+            const double sin_w = x / std::sqrt(x * x + hb * hb), sin_a = (D - x) / std::sqrt(sqr(D - x) + hc * hc);
+            return eta * sin_w - sin_a;
+        },
+        0.0, D);
     const Vec3 expected = a + (b - a) * (s / D);
     EXPECT_NEAR(length(chain[0].p - expected), 0.0, 1e-9);
 }
@@ -57,7 +62,8 @@ TEST(ManifoldWalk, FlatInterfaceConvergesToSnellsLaw) {
 TEST(ManifoldWalk, SlabOfTwoInterfacesConvergesToClosedForm) {
     // Glass slab between z = 0 and z = 0.5 (eta 1.5), normals pointing out of the slab.
     TriangleMesh bottom(make_rectangle(Transform::scale({10, 10, 1})), true, true, "bottom");  // normal -z
-    TriangleMesh top(make_rectangle(Transform::translate({0, 0, 0.5}) * Transform::scale({10, 10, 1})), true, false, "top");
+    TriangleMesh top(make_rectangle(Transform::translate({0, 0, 0.5}) * Transform::scale({10, 10, 1})), true, false,
+                     "top");
     const double eta = 1.5, t1 = 1.0, t2 = 0.5, t3 = 1.2, D = 1.5;
     const Vec3 xb(0, 0, -t1), xc(D, 0, t2 + t3);
     // Seed: the straight segment's crossings (paper Sec. 3.1).
@@ -67,10 +73,12 @@ TEST(ManifoldWalk, SlabOfTwoInterfacesConvergesToClosedForm) {
     const WalkResult r = manifold_walk(nullptr, xb, chain, endpoint(xc, Vec3(0, 0, -1)), precise());
     ASSERT_EQ(r.outcome, WalkOutcome::Converged) << "error " << r.error;
     // Closed form: sin(theta_air) = eta sin(theta_glass), horizontal distances add up to D.
-    const double th = bisect([&](double theta) {
-        const double sg = std::sin(theta) / eta;
-        return t1 * std::tan(theta) + t2 * sg / std::sqrt(1 - sg * sg) + t3 * std::tan(theta) - D;
-    }, 0.0, 1.5);
+    const double th = bisect(
+        [&](double theta) {
+            const double sg = std::sin(theta) / eta;
+            return t1 * std::tan(theta) + t2 * sg / std::sqrt(1 - sg * sg) + t3 * std::tan(theta) - D;
+        },
+        0.0, 1.5);
     EXPECT_NEAR(chain[0].p.x, t1 * std::tan(th), 1e-9);
     EXPECT_NEAR(chain[1].p.x, D - t3 * std::tan(th), 1e-9);
     EXPECT_NEAR(chain[0].p.y, 0.0, 1e-9);
@@ -94,7 +102,8 @@ TEST(ManifoldWalk, SphereMatchesBruteForceSearch) {
         const double lo_ph = level ? ph0 - 10 * step : -kPi, hi_ph = level ? ph0 + 10 * step : kPi;
         for (double th = lo_th; th <= hi_th; th += step)
             for (double ph = lo_ph; ph <= hi_ph; ph += step) {
-                const Vec3 p = s.center() + Vec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
+                const Vec3 p =
+                    s.center() + Vec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
                 const ManifoldVertex v = vertex_on(s, p, eta);
                 const Vec2 c = half_vector_constraint_value(xb, v, xc);
                 const double e = c.x * c.x + c.y * c.y;
@@ -117,8 +126,9 @@ TEST(ManifoldWalk, SphereInSphereConverges) {
     Sphere inner(Vec3(0, 0, 0.05), 0.45);
     const double e_out = 1.33, e_in = 1.5 / 1.33;
     const Vec3 xb(0.3, 0.1, -2.0), xc(-0.6, 0.4, 4.0);
-    std::vector<ManifoldVertex> chain = {vertex_on(outer, Vec3(0.2, 0.1, -1), e_out), vertex_on(inner, Vec3(0.1, 0.1, -0.4), e_in),
-                                         vertex_on(inner, Vec3(0.0, 0.1, 0.5), e_in), vertex_on(outer, Vec3(-0.1, 0.1, 1), e_out)};
+    std::vector<ManifoldVertex> chain = {
+        vertex_on(outer, Vec3(0.2, 0.1, -1), e_out), vertex_on(inner, Vec3(0.1, 0.1, -0.4), e_in),
+        vertex_on(inner, Vec3(0.0, 0.1, 0.5), e_in), vertex_on(outer, Vec3(-0.1, 0.1, 1), e_out)};
     WalkSettings st = precise();
     const WalkResult r = manifold_walk(nullptr, xb, chain, endpoint(xc, Vec3(0, 0, -1)), st);
     ASSERT_EQ(r.outcome, WalkOutcome::Converged) << "error " << r.error;

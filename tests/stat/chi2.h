@@ -61,19 +61,16 @@ inline double regularized_gamma_q(double a, double x) {
 }
 
 /// P(X >= chi2) for X chi-square distributed with `dof` degrees of freedom.
-inline double chi2_p_value(double chi2, int dof) {
-    return regularized_gamma_q(0.5 * dof, 0.5 * chi2);
-}
+inline double chi2_p_value(double chi2, int dof) { return regularized_gamma_q(0.5 * dof, 0.5 * chi2); }
 
 /// Adaptive Simpson quadrature of f over [a, b] to absolute tolerance eps, after first
 /// splitting into `panels` equal pieces (so features narrower than the interval are seen).
 template <typename F>
-double adaptive_simpson(const F& f, double a, double b, double eps, int panels = 8,
-                        int max_depth = 14) {
+double adaptive_simpson(const F& f, double a, double b, double eps, int panels = 8, int max_depth = 14) {
     struct Rec {
         const F& f;
-        double run(double a, double fa, double m, double fm, double b, double fb, double whole,
-                   double eps, int depth) const {
+        double run(double a, double fa, double m, double fm, double b, double fb, double whole, double eps,
+                   int depth) const {
             const double lm = 0.5 * (a + m), rm = 0.5 * (m + b);
             const double flm = f(lm), frm = f(rm);
             const double left = (m - a) / 6 * (fa + 4 * flm + fm);
@@ -99,12 +96,12 @@ double adaptive_simpson(const F& f, double a, double b, double eps, int panels =
 }
 
 struct Chi2Options {
-    int theta_res = 10;          ///< bins in cos(theta) over [-1, 1]
-    int phi_res = 20;            ///< bins in phi over [0, 2 pi)
-    size_t samples = 1000000;    ///< directions drawn
-    double min_expected = 5.0;   ///< pool cells expecting fewer samples than this
-    double significance = 0.01;  ///< per-family false-rejection rate
-    int test_count = 1;          ///< number of chi-square tests in the family (Sidak correction)
+    int theta_res = 10;             ///< bins in cos(theta) over [-1, 1]
+    int phi_res = 20;               ///< bins in phi over [0, 2 pi)
+    size_t samples = 1000000;       ///< directions drawn
+    double min_expected = 5.0;      ///< pool cells expecting fewer samples than this
+    double significance = 0.01;     ///< per-family false-rejection rate
+    int test_count = 1;             ///< number of chi-square tests in the family (Sidak correction)
     double integration_eps = 1e-8;  ///< absolute quadrature tolerance per bin (probability)
     uint64_t seed = 7;
 };
@@ -113,8 +110,8 @@ struct Chi2Result {
     bool passed = false;
     double p_value = 0, chi2 = 0, threshold = 0;
     int dof = 0;
-    double pdf_integral = 0;   ///< integral of the pdf over the sphere
-    size_t valid_samples = 0;  ///< samples that produced a direction
+    double pdf_integral = 0;                 ///< integral of the pdf over the sphere
+    size_t valid_samples = 0;                ///< samples that produced a direction
     std::vector<double> observed, expected;  ///< per bin, row-major (theta, phi)
     std::string message;
 };
@@ -122,8 +119,7 @@ struct Chi2Result {
 /// Runs the test. `sample(rng)` returns a unit direction or std::nullopt (no sample);
 /// `pdf(w)` is the solid-angle density the sampler claims.
 inline Chi2Result chi2_sphere_test(const std::function<std::optional<Vec3>(PCG32&)>& sample,
-                                   const std::function<double(const Vec3&)>& pdf,
-                                   const Chi2Options& opt = {}) {
+                                   const std::function<double(const Vec3&)>& pdf, const Chi2Options& opt = {}) {
     const int nt = opt.theta_res, np = opt.phi_res, nbins = nt * np;
     const double dz = 2.0 / nt, dphi = 2 * kPi / np;
     Chi2Result res;
@@ -160,8 +156,7 @@ inline Chi2Result chi2_sphere_test(const std::function<std::optional<Vec3>(PCG32
             const double z0 = -1 + it * dz, p0 = ip * dphi;
             const double eps_inner = opt.integration_eps / dz;
             auto inner = [&](double z) {
-                return adaptive_simpson([&](double phi) { return eval_pdf(z, phi); }, p0,
-                                        p0 + dphi, eps_inner);
+                return adaptive_simpson([&](double phi) { return eval_pdf(z, phi); }, p0, p0 + dphi, eps_inner);
             };
             const double v = adaptive_simpson(inner, z0, z0 + dz, opt.integration_eps);
             res.expected[it * np + ip] = v * double(opt.samples);
@@ -211,9 +206,8 @@ inline Chi2Result chi2_sphere_test(const std::function<std::optional<Vec3>(PCG32
     res.p_value = std::isfinite(res.chi2) ? chi2_p_value(res.chi2, res.dof) : 0.0;
     res.threshold = 1 - std::pow(1 - opt.significance, 1.0 / opt.test_count);
     res.passed = res.p_value >= res.threshold;
-    msg << "chi2 = " << res.chi2 << ", dof = " << res.dof << ", p = " << res.p_value
-        << " (threshold " << res.threshold << "), pdf integral = " << total
-        << ", valid samples = " << res.valid_samples << "/" << opt.samples;
+    msg << "chi2 = " << res.chi2 << ", dof = " << res.dof << ", p = " << res.p_value << " (threshold " << res.threshold
+        << "), pdf integral = " << total << ", valid samples = " << res.valid_samples << "/" << opt.samples;
     if (!res.passed) {
         // The worst bins, to see where sampler and pdf disagree.
         std::vector<int> idx(nbins);
@@ -225,8 +219,8 @@ inline Chi2Result chi2_sphere_test(const std::function<std::optional<Vec3>(PCG32
         std::sort(idx.begin(), idx.end(), [&](int a, int b) { return dev(a) > dev(b); });
         msg << "\n  worst bins (theta, phi: observed / expected):";
         for (int k = 0; k < std::min(nbins, 6); ++k)
-            msg << "\n    (" << idx[k] / np << ", " << idx[k] % np << "): " << res.observed[idx[k]]
-                << " / " << res.expected[idx[k]];
+            msg << "\n    (" << idx[k] / np << ", " << idx[k] % np << "): " << res.observed[idx[k]] << " / "
+                << res.expected[idx[k]];
         msg << "\n  no sample: " << failed << " / " << std::max(0.0, 1 - total) * opt.samples;
     }
     res.message = msg.str();

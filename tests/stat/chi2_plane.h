@@ -25,8 +25,8 @@ struct Chi2PlaneOptions {
 /// `sample(rng)` returns a point or std::nullopt; `pdf(p)` is the claimed density per unit area.
 /// `observed` / `expected` in the result are row-major (y, x).
 inline Chi2Result chi2_plane_test(const std::function<std::optional<Vec2>(PCG32&)>& sample,
-                                  const std::function<double(const Vec2&)>& pdf, const Vec2& lo,
-                                  const Vec2& hi, const Chi2PlaneOptions& opt = {}) {
+                                  const std::function<double(const Vec2&)>& pdf, const Vec2& lo, const Vec2& hi,
+                                  const Chi2PlaneOptions& opt = {}) {
     const int nx = opt.res_x, ny = opt.res_y, nbins = nx * ny;
     const double dx = (hi.x - lo.x) / nx, dy = (hi.y - lo.y) / ny;
     Chi2Result res;
@@ -60,8 +60,8 @@ inline Chi2Result chi2_plane_test(const std::function<std::optional<Vec2>(PCG32&
         for (int ix = 0; ix < nx; ++ix) {
             const double x0 = lo.x + ix * dx, y0 = lo.y + iy * dy;
             auto inner = [&](double y) {
-                return adaptive_simpson([&](double x) { return eval_pdf(x, y); }, x0, x0 + dx,
-                                        opt.integration_eps / dy, 2);
+                return adaptive_simpson([&](double x) { return eval_pdf(x, y); }, x0, x0 + dx, opt.integration_eps / dy,
+                                        2);
             };
             const double v = adaptive_simpson(inner, y0, y0 + dy, opt.integration_eps, 2);
             res.expected[size_t(iy * nx + ix)] = v * double(opt.samples);
@@ -110,8 +110,8 @@ inline Chi2Result chi2_plane_test(const std::function<std::optional<Vec2>(PCG32&
     res.p_value = std::isfinite(res.chi2) ? chi2_p_value(res.chi2, res.dof) : 0.0;
     res.threshold = 1 - std::pow(1 - opt.significance, 1.0 / opt.test_count);
     res.passed = res.p_value >= res.threshold;
-    msg << "chi2 = " << res.chi2 << ", dof = " << res.dof << ", p = " << res.p_value << " (threshold "
-        << res.threshold << "), pdf integral = " << total << ", outside = " << outside << "/" << opt.samples;
+    msg << "chi2 = " << res.chi2 << ", dof = " << res.dof << ", p = " << res.p_value << " (threshold " << res.threshold
+        << "), pdf integral = " << total << ", outside = " << outside << "/" << opt.samples;
     if (!res.passed) {
         std::vector<int> idx(static_cast<size_t>(nbins));
         std::iota(idx.begin(), idx.end(), 0);

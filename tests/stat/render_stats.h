@@ -42,15 +42,19 @@ inline double incomplete_beta(double a, double b, double x) {
     if (x <= 0) return 0;
     if (x >= 1) return 1;
     if (x > (a + 1) / (a + b + 2)) return 1 - incomplete_beta(b, a, 1 - x);
-    const double log_front = std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log1p(-x);
+    const double log_front =
+        std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log1p(-x);
     const double tiny = 1e-300;
     double f = 1, c = 1, d = 0;
     for (int i = 0; i <= 400; ++i) {
         const int m = i / 2;
         double num;
-        if (i == 0) num = 1;
-        else if (i % 2 == 0) num = m * (b - m) * x / ((a + 2 * m - 1) * (a + 2 * m));
-        else num = -(a + m) * (a + b + m) * x / ((a + 2 * m) * (a + 2 * m + 1));
+        if (i == 0)
+            num = 1;
+        else if (i % 2 == 0)
+            num = m * (b - m) * x / ((a + 2 * m - 1) * (a + 2 * m));
+        else
+            num = -(a + m) * (a + b + m) * x / ((a + 2 * m) * (a + 2 * m + 1));
         d = 1 + num * d;
         if (std::abs(d) < tiny) d = tiny;
         d = 1 / d;
@@ -78,8 +82,8 @@ inline double welch_p_value(const Estimate& a, const Estimate& b) {
 
 /// Block-averaged linear sRGB luminance (or one channel) of `replicas` independent renders.
 /// Returns per block the mean and standard error across replicas.
-inline std::vector<Estimate> block_estimates(const LoadedScene& ls, const Integrator& integ, int spp,
-                                             int replicas, int block, uint64_t seed_base, int channel = -1) {
+inline std::vector<Estimate> block_estimates(const LoadedScene& ls, const Integrator& integ, int spp, int replicas,
+                                             int block, uint64_t seed_base, int channel = -1) {
     const int w = ls.film.out_width(), h = ls.film.out_height();
     const int bw = (w + block - 1) / block, bh = (h + block - 1) / block;
     std::vector<std::vector<double>> values(size_t(bw * bh));
@@ -139,8 +143,9 @@ inline void expect_agreement(const std::vector<Estimate>& a, const std::vector<E
         const double p = welch_p_value(a[i], b[i]);
         if (p < threshold) {
             if (++failures <= 5)
-                ADD_FAILURE() << what << ": block " << i << " differs: " << a[i].mean << " +- " << a[i].stderr_ << " vs "
-                              << b[i].mean << " +- " << b[i].stderr_ << " (p = " << p << " < " << threshold << ")";
+                ADD_FAILURE() << what << ": block " << i << " differs: " << a[i].mean << " +- " << a[i].stderr_
+                              << " vs " << b[i].mean << " +- " << b[i].stderr_ << " (p = " << p << " < " << threshold
+                              << ")";
         }
     }
     EXPECT_EQ(failures, 0) << what;

@@ -7,8 +7,8 @@
 #include <fstream>
 #include <string>
 
-#include "stat/render_stats.h"
 #include "stat/box_scene.h"
+#include "stat/render_stats.h"
 
 using namespace snell;
 using namespace snell::test;
@@ -75,8 +75,8 @@ void expect_bdpt_and_nee_agree(const char* xml, const Defines& d, int spp_bdpt, 
     // such as MIS weights a few percent off), each at level 0.01.
     expect_agreement(eb, en, 0.01, what);
     const Estimate ib = whole_image(eb), in = whole_image(en);
-    EXPECT_GT(welch_p_value(ib, in), 0.01) << what << ": whole image " << ib.mean << " +- " << ib.stderr_ << " vs "
-                                           << in.mean << " +- " << in.stderr_;
+    EXPECT_GT(welch_p_value(ib, in), 0.01)
+        << what << ": whole image " << ib.mean << " +- " << ib.stderr_ << " vs " << in.mean << " +- " << in.stderr_;
 }
 
 std::string replace_once(std::string xml, const std::string& from, const std::string& to) {
@@ -114,9 +114,7 @@ const char* kLightInGlass = R"(<scene version="3.0.0">
 </scene>)";
 
 // The same with smooth glass (dielectric takes no alpha).
-std::string smooth_light_in_glass() {
-    return replace_once(kLightInGlass, R"(<float name="alpha" value="0.2"/>)", "");
-}
+std::string smooth_light_in_glass() { return replace_once(kLightInGlass, R"(<float name="alpha" value="0.2"/>)", ""); }
 
 }  // namespace
 
@@ -162,16 +160,17 @@ TEST(BdptAgreement, MatchesNeeWithShadingNormals) {
     std::ofstream(obj) << "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\n"
                           "vn 0 1 0.7\nvn 0 1 0.7\nvn 0 1 0.7\nvn 0 1 0.7\n"
                           "f 1//1 3//3 2//2\nf 1//1 4//4 3//3\n";
-    const std::string xml = replace_once(kCornellBox, kFloor,
-                                         R"(<shape type="obj"><string name="filename" value=")" + obj.string() +
-                                             R"("/><ref id="white"/></shape>)");
+    const std::string xml = replace_once(
+        kCornellBox, kFloor,
+        R"(<shape type="obj"><string name="filename" value=")" + obj.string() + R"("/><ref id="white"/></shape>)");
     expect_bdpt_and_nee_agree(xml.c_str(), {{"res", "24"}}, 32, 64, 12, 8, "shading normals");
 }
 
 // Wide angle (fov 100, camera inside the box): the camera importance's 1/cos^4 falloff and the
 // pinhole's 1/cos^3 density are far from 1 at the edges of the window.
 TEST(BdptAgreement, MatchesNeeAtAWideAngle) {
-    std::string xml = replace_once(kCornellBox, R"(<float name="fov" value="45"/>)", R"(<float name="fov" value="100"/>)");
+    std::string xml =
+        replace_once(kCornellBox, R"(<float name="fov" value="45"/>)", R"(<float name="fov" value="100"/>)");
     xml = replace_once(xml, R"(origin="0, 1, 3.4")", R"(origin="0, 1, 0.95")");
     expect_bdpt_and_nee_agree(xml.c_str(), {{"res", "24"}}, 32, 64, 12, 8, "wide angle");
 }
@@ -179,9 +178,9 @@ TEST(BdptAgreement, MatchesNeeAtAWideAngle) {
 // Beer-Lambert absorption on connection edges: a large absorbing rough glass sphere in front of
 // the camera (camera subpaths inside it connect out through its surface).
 TEST(BdptAgreement, MatchesNeeThroughALargeAbsorbingRoughDielectric) {
-    std::string xml = replace_once(kCornellBox,
-                                   R"(<point name="center" x="0.45" y="0.35" z="0.2"/><float name="radius" value="0.35"/>)",
-                                   R"(<point name="center" x="0.2" y="0.6" z="0.3"/><float name="radius" value="0.6"/>)");
+    std::string xml = replace_once(
+        kCornellBox, R"(<point name="center" x="0.45" y="0.35" z="0.2"/><float name="radius" value="0.35"/>)",
+        R"(<point name="center" x="0.2" y="0.6" z="0.3"/><float name="radius" value="0.6"/>)");
     xml = replace_once(xml, R"(<float name="int_ior" value="1.5"/>)",
                        R"(<float name="int_ior" value="1.5"/><rgb name="sigma_a" value="1, 1, 1"/>)");
     expect_bdpt_and_nee_agree(xml.c_str(), {{"res", "24"}}, 32, 64, 12, 8, "large absorbing rough glass");
@@ -195,8 +194,9 @@ TEST(BdptAgreement, MatchesNeeWithALightInsideRoughGlass) {
 // A light inside absorbing glass: its light subpaths start inside the medium and must be
 // attenuated up to their first exit (they learn the medium there).
 TEST(BdptAgreement, MatchesNeeWithALightInsideAbsorbingRoughGlass) {
-    const std::string xml = replace_once(kLightInGlass, R"(<float name="int_ior" value="1.5"/>)",
-                                         R"(<float name="int_ior" value="1.5"/><rgb name="sigma_a" value="1.5, 1.5, 1.5"/>)");
+    const std::string xml =
+        replace_once(kLightInGlass, R"(<float name="int_ior" value="1.5"/>)",
+                     R"(<float name="int_ior" value="1.5"/><rgb name="sigma_a" value="1.5, 1.5, 1.5"/>)");
     expect_bdpt_and_nee_agree(xml.c_str(), {}, 32, 64, 12, 8, "light in absorbing rough glass");
 }
 

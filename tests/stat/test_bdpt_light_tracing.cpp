@@ -126,7 +126,9 @@ TEST(BdptLightTracing, StrategyLayersSumToTheImage) {
     const auto names = [&] {
         RenderOptions opt;
         opt.debug_layers = true;
-        return dynamic_cast<const TileIntegrator&>(*ls.scene->integrator()).prepare(*ls.scene, ls.film, opt)->layer_names();
+        return dynamic_cast<const TileIntegrator&>(*ls.scene->integrator())
+            .prepare(*ls.scene, ls.film, opt)
+            ->layer_names();
     }();
     ASSERT_EQ(names.size(), 1u + 3u + 4u);  // lengths 1..3: (0,2); (0,3) (1,2) (2,1); (0,4) ... (3,1)
     EXPECT_EQ(names.front(), "d1_s0_t2");
@@ -202,7 +204,8 @@ std::vector<Estimate> sun_blocks(const std::string& integrator, const std::strin
 }  // namespace
 
 TEST(BdptLightTracing, SunAndSkyMatchNee) {
-    expect_agreement(sun_blocks("bdpt", "3", 64, 7000), sun_blocks("nee", "3", 64, 8000), 0.01, "sun and sky: bdpt vs nee");
+    expect_agreement(sun_blocks("bdpt", "3", 64, 7000), sun_blocks("nee", "3", 64, 8000), 0.01,
+                     "sun and sky: bdpt vs nee");
 }
 
 TEST(BdptLightTracing, SunAndSkyDetectASunThreePercentBrighter) {

@@ -44,8 +44,7 @@ Case bsdf_case(std::string name, std::shared_ptr<const BSDF> bsdf, Vec3 wo) {
 }
 
 std::shared_ptr<const BSDF> rough_dielectric(MD::Type t, double au, double av, bool vis = true) {
-    return std::make_shared<RoughDielectricBSDF>(MD(t, au, av, vis), Spectrum::constant(1.5),
-                                                 Spectrum::constant(1.0));
+    return std::make_shared<RoughDielectricBSDF>(MD(t, au, av, vis), Spectrum::constant(1.5), Spectrum::constant(1.0));
 }
 
 std::vector<Case> make_cases() {
@@ -57,8 +56,8 @@ std::vector<Case> make_cases() {
     for (auto t : {B, G})
         for (double a : {0.05, 0.2, 0.5})
             for (double th : {10.0, 70.0, 150.0, 125.0}) {
-                const std::string n = std::string(t == B ? "beckmann" : "ggx") + "_a" +
-                                      std::to_string(int(a * 100)) + "_th" + std::to_string(int(th));
+                const std::string n = std::string(t == B ? "beckmann" : "ggx") + "_a" + std::to_string(int(a * 100)) +
+                                      "_th" + std::to_string(int(th));
                 c.push_back(bsdf_case("roughdielectric_" + n, rough_dielectric(t, a, a), dir(th)));
             }
     c.push_back(bsdf_case("roughdielectric_ggx_aniso", rough_dielectric(G, 0.1, 0.4), dir(50, 60)));
@@ -70,29 +69,28 @@ std::vector<Case> make_cases() {
         c.push_back(imp);
     }
     auto au = named_conductor("Au");
-    c.push_back(bsdf_case("roughconductor_beckmann_au",
-                 std::make_shared<RoughConductorBSDF>(MD(B, 0.2), au), dir(20)));
+    c.push_back(bsdf_case("roughconductor_beckmann_au", std::make_shared<RoughConductorBSDF>(MD(B, 0.2), au), dir(20)));
     c.push_back(bsdf_case("roughconductor_ggx_a05", std::make_shared<RoughConductorBSDF>(MD(G, 0.05), au), dir(60)));
     c.push_back(bsdf_case("roughconductor_ggx_aniso",
-                 std::make_shared<RoughConductorBSDF>(MD(G, 0.1, 0.4), std::nullopt), dir(70, 100)));
+                          std::make_shared<RoughConductorBSDF>(MD(G, 0.1, 0.4), std::nullopt), dir(70, 100)));
     c.push_back(bsdf_case("roughconductor_beckmann_global",
-                 std::make_shared<RoughConductorBSDF>(MD(B, 0.5, 0.5, false), au), dir(45)));
+                          std::make_shared<RoughConductorBSDF>(MD(B, 0.5, 0.5, false), au), dir(45)));
     auto plastic = std::make_shared<PlasticBSDF>(Spectrum::constant(0.6), Spectrum::constant(1.0), 1.49, 1.0);
     c.push_back(bsdf_case("plastic_30", plastic, dir(30)));
     c.push_back(bsdf_case("plastic_80", plastic, dir(80)));
-    c.push_back(bsdf_case("plastic_nonlinear",
-                 std::make_shared<PlasticBSDF>(Spectrum::constant(0.9), Spectrum::constant(0.5), 1.6, 1.0, true),
-                 dir(50)));
+    c.push_back(bsdf_case(
+        "plastic_nonlinear",
+        std::make_shared<PlasticBSDF>(Spectrum::constant(0.9), Spectrum::constant(0.5), 1.6, 1.0, true), dir(50)));
     auto diffuse = std::make_shared<DiffuseBSDF>(Spectrum::constant(0.5));
     c.push_back(bsdf_case("twosided_diffuse_below", std::make_shared<TwoSidedBSDF>(diffuse), dir(120)));
     c.push_back(bsdf_case("twosided_two_below",
-                 std::make_shared<TwoSidedBSDF>(diffuse, std::make_shared<RoughConductorBSDF>(MD(G, 0.3), au)),
-                 dir(130)));
+                          std::make_shared<TwoSidedBSDF>(diffuse, std::make_shared<RoughConductorBSDF>(MD(G, 0.3), au)),
+                          dir(130)));
     // The microfacet samplers on their own (global D cos sampling is what MNEE uses).
     for (auto t : {B, G})
         for (auto [au_, av_] : {std::pair{0.1, 0.1}, std::pair{0.5, 0.5}, std::pair{0.1, 0.4}}) {
-            const std::string n = std::string(t == B ? "beckmann" : "ggx") + "_" +
-                                  std::to_string(int(au_ * 100)) + "_" + std::to_string(int(av_ * 100));
+            const std::string n = std::string(t == B ? "beckmann" : "ggx") + "_" + std::to_string(int(au_ * 100)) +
+                                  "_" + std::to_string(int(av_ * 100));
             auto d = std::make_shared<const MD>(t, au_, av_);
             c.push_back({"microfacet_global_" + n, nullptr, dir(0), d, false, TransportMode::Radiance});
             c.push_back({"microfacet_visible_" + n, nullptr, dir(65, 40), d, true, TransportMode::Radiance});
@@ -166,7 +164,6 @@ TEST_P(BsdfChi2, SamplesFollowPdf) {
     EXPECT_EQ(weight_bad, 0u) << c.name << " (" << checked << " checked) " << first_bad;
 }
 
-INSTANTIATE_TEST_SUITE_P(All, BsdfChi2, ::testing::ValuesIn(cases()),
-                         [](const auto& info) { return info.param.name; });
+INSTANTIATE_TEST_SUITE_P(All, BsdfChi2, ::testing::ValuesIn(cases()), [](const auto& info) { return info.param.name; });
 
 }  // namespace

@@ -41,8 +41,7 @@ Estimate finish(double sum, double sum2, size_t n) {
 }
 
 /// Directional albedo by importance sampling: E[weight] (deltas included).
-Estimate albedo_sampled(const BSDF& b, const BSDFContext& ctx, const Vec3& wo, size_t n,
-                        uint64_t seed) {
+Estimate albedo_sampled(const BSDF& b, const BSDFContext& ctx, const Vec3& wo, size_t n, uint64_t seed) {
     PCG32 rng(seed, 1);
     double s = 0, s2 = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -58,8 +57,7 @@ Estimate albedo_sampled(const BSDF& b, const BSDFContext& ctx, const Vec3& wo, s
 
 /// Directional albedo of the non-delta part from eval() alone, by uniform sphere sampling:
 /// an estimator independent of sample()/pdf().
-Estimate albedo_uniform(const BSDF& b, const BSDFContext& ctx, const Vec3& wo, size_t n,
-                        uint64_t seed) {
+Estimate albedo_uniform(const BSDF& b, const BSDFContext& ctx, const Vec3& wo, size_t n, uint64_t seed) {
     PCG32 rng(seed, 2);
     double s = 0, s2 = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -176,11 +174,10 @@ TEST(BsdfReciprocity, ReflectionIsSymmetric) {
         {"roughconductor", std::make_shared<RoughConductorBSDF>(MD(MD::Type::GGX, 0.1, 0.4), au)},
         {"roughconductor_beckmann", std::make_shared<RoughConductorBSDF>(MD(MD::Type::Beckmann, 0.3), au)},
         {"plastic", std::make_shared<PlasticBSDF>(Spectrum::constant(0.6), Spectrum::constant(1.0), 1.5, 1.0)},
-        {"roughdielectric", std::make_shared<RoughDielectricBSDF>(MD(MD::Type::GGX, 0.3),
-                                                                  Spectrum::constant(1.5),
+        {"roughdielectric", std::make_shared<RoughDielectricBSDF>(MD(MD::Type::GGX, 0.3), Spectrum::constant(1.5),
                                                                   Spectrum::constant(1.0))},
-        {"twosided", std::make_shared<TwoSidedBSDF>(std::make_shared<PlasticBSDF>(
-                         Spectrum::constant(0.6), Spectrum::constant(1.0), 1.5, 1.0))},
+        {"twosided", std::make_shared<TwoSidedBSDF>(
+                         std::make_shared<PlasticBSDF>(Spectrum::constant(0.6), Spectrum::constant(1.0), 1.5, 1.0))},
     };
     PCG32 rng(11, 3);
     BSDFContext ctx;

@@ -11,9 +11,9 @@
 #include "integrators/erpt/energy_redistribution.h"
 #include "integrators/erpt/erpt.h"
 #include "integrators/erpt/recording_sampler.h"
-#include "sampler/independent.h"
 #include "integrators/pssmlt/path_sample.h"
 #include "integrators/pssmlt/primary_sample_sampler.h"
+#include "sampler/independent.h"
 #include "stat/box_scene.h"
 #include "stat/replica_stats.h"
 
@@ -22,7 +22,7 @@ using namespace snell::test;
 
 namespace {
 
-constexpr int kBlock = 4;      // 4 x 4 blocks of 4 x 4 pixels on a 16 x 16 image
+constexpr int kBlock = 4;  // 4 x 4 blocks of 4 x 4 pixels on a 16 x 16 image
 constexpr int kReplicas = 64;
 constexpr int kSpp = 16;
 constexpr int kNeeSpp = 64;

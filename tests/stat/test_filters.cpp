@@ -52,8 +52,8 @@ double integrate_support(const Filter& f, const H& h, double eps = 1e-11) {
     for (auto [y0, y1] : {std::pair{-r.y, 0.0}, std::pair{0.0, ry}})
         for (auto [x0, x1] : {std::pair{-r.x, 0.0}, std::pair{0.0, rx}})
             sum += adaptive_simpson(
-                [&](double y) { return adaptive_simpson([&](double x) { return h(Vec2(x, y)); }, x0, x1, eps, 8); },
-                y0, y1, eps, 8);
+                [&](double y) { return adaptive_simpson([&](double x) { return h(Vec2(x, y)); }, x0, x1, eps, 8); }, y0,
+                y1, eps, 8);
     return sum;
 }
 
@@ -71,9 +71,9 @@ TEST_P(FilterTest, Chi2SampleMatchesPdf) {
     opt.test_count = kChi2Tests;
     opt.seed = GetParam().seed;
     const Vec2 r = f.radius();
-    const Chi2Result res = test::chi2_plane_test(
-        [&](PCG32& rng) -> std::optional<Vec2> { return f.sample(next_2d(rng)).offset; },
-        [&](const Vec2& o) { return f.pdf(o); }, Vec2(-r.x, -r.y), r, opt);
+    const Chi2Result res =
+        test::chi2_plane_test([&](PCG32& rng) -> std::optional<Vec2> { return f.sample(next_2d(rng)).offset; },
+                              [&](const Vec2& o) { return f.pdf(o); }, Vec2(-r.x, -r.y), r, opt);
     std::cout << "[chi2] " << GetParam().label << ": " << res.message << "\n";
     RecordProperty("p_value", std::to_string(res.p_value));
     EXPECT_TRUE(res.passed) << res.message;
@@ -86,15 +86,15 @@ TEST(FilterChi2, RejectsAMismatchedPdf) {
     const GaussianFilter sampled(0.5), claimed(0.53);
     const Vec2 r = claimed.radius();
     Chi2PlaneOptions opt;
-    const Chi2Result res = test::chi2_plane_test(
-        [&](PCG32& rng) -> std::optional<Vec2> { return sampled.sample(next_2d(rng)).offset; },
-        [&](const Vec2& o) { return claimed.pdf(o); }, Vec2(-r.x, -r.y), r, opt);
+    const Chi2Result res =
+        test::chi2_plane_test([&](PCG32& rng) -> std::optional<Vec2> { return sampled.sample(next_2d(rng)).offset; },
+                              [&](const Vec2& o) { return claimed.pdf(o); }, Vec2(-r.x, -r.y), r, opt);
     std::cout << "[chi2 power] gaussian 0.5 vs pdf of 0.53: p = " << res.p_value << "\n";
     EXPECT_FALSE(res.passed) << res.message;
     const TentFilter tent(1.0);
-    const Chi2Result res2 = test::chi2_plane_test(
-        [&](PCG32& rng) -> std::optional<Vec2> { return tent.sample(next_2d(rng)).offset; },
-        [&](const Vec2& o) { return box_filter()->pdf(o); }, Vec2(-1, -1), Vec2(1, 1), opt);
+    const Chi2Result res2 =
+        test::chi2_plane_test([&](PCG32& rng) -> std::optional<Vec2> { return tent.sample(next_2d(rng)).offset; },
+                              [&](const Vec2& o) { return box_filter()->pdf(o); }, Vec2(-1, -1), Vec2(1, 1), opt);
     std::cout << "[chi2 power] tent vs pdf of box: p = " << res2.p_value << "\n";
     EXPECT_FALSE(res2.passed) << res2.message;
 }
@@ -112,9 +112,9 @@ TEST_P(FilterTest, SamplingInvertsTheCdf) {
         EXPECT_EQ(s.offset, again.offset);
         EXPECT_GE(s.offset.x, prev);
         prev = s.offset.x;
-        const double cdf = s.offset.x <= -r ? 0.0
-                                            : adaptive_simpson([&](double x) { return factor_1d(f, x); }, -r,
-                                                               s.offset.x, 1e-13, 16);
+        const double cdf = s.offset.x <= -r
+                               ? 0.0
+                               : adaptive_simpson([&](double x) { return factor_1d(f, x); }, -r, s.offset.x, 1e-13, 16);
         EXPECT_NEAR(cdf, u, 1e-9) << "u = " << u << ", offset " << s.offset.x;
     }
 }
@@ -348,7 +348,8 @@ TEST(FilterLoading, MitsubaDefaultIsGaussian) {
 }
 
 TEST(FilterLoading, Errors) {
-    expect_error(film_scene("<rfilter type=\"mitchell\"/>"), "test.xml:4: <rfilter>", "unknown rfilter type 'mitchell'");
+    expect_error(film_scene("<rfilter type=\"mitchell\"/>"), "test.xml:4: <rfilter>",
+                 "unknown rfilter type 'mitchell'");
     expect_error(film_scene("<rfilter type=\"gaussian\">\n<float name=\"stddev\" value=\"0\"/>\n</rfilter>"),
                  "test.xml:5: <rfilter>", "stddev must be positive");
     expect_error(film_scene("<rfilter type=\"gaussian\">\n<float name=\"stddev\" value=\"-1\"/>\n</rfilter>"),

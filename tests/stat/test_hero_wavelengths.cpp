@@ -79,15 +79,16 @@ const char* kDispersiveDroplet = R"(<scene version="3.0.0">
 std::vector<Estimate> droplet_blocks(const std::string& integrator, int spectral_samples, int spp, uint64_t seed,
                                      int channel, const std::string& alpha = "0", const std::string& radiance = "60") {
     // alpha 0: the smooth `dielectric`; otherwise `roughdielectric` (Beckmann).
-    const std::string bsdf = alpha == "0" ? R"(<bsdf type="dielectric"><float name="int_ior" value="1.5"/>)"
-                                            R"(<float name="abbe" value="30"/></bsdf>)"
-                                          : R"(<bsdf type="roughdielectric"><float name="alpha" value=")" + alpha +
-                                                R"("/><float name="int_ior" value="1.5"/><float name="abbe" value="30"/></bsdf>)";
+    const std::string bsdf =
+        alpha == "0" ? R"(<bsdf type="dielectric"><float name="int_ior" value="1.5"/>)"
+                       R"(<float name="abbe" value="30"/></bsdf>)"
+                     : R"(<bsdf type="roughdielectric"><float name="alpha" value=")" + alpha +
+                           R"("/><float name="int_ior" value="1.5"/><float name="abbe" value="30"/></bsdf>)";
     std::string xml = kDispersiveDroplet;
     xml.replace(xml.find("DROP_BSDF"), 9, bsdf);
-    const LoadedScene ls = load_xml(xml, {{"integrator", integrator},
-                                          {"spectral_samples", std::to_string(spectral_samples)},
-                                          {"radiance", radiance}});
+    const LoadedScene ls = load_xml(
+        xml,
+        {{"integrator", integrator}, {"spectral_samples", std::to_string(spectral_samples)}, {"radiance", radiance}});
     return block_estimates(ls, *ls.scene->integrator(), spp, 12, 6, seed, channel);
 }
 
@@ -103,13 +104,16 @@ TEST(HeroWavelengths, FurnaceIsWhitePerChannel) {
     for (const char* integ : {"path", "nee", "bdpt"}) {
         const Whiteness four = furnace_whiteness(integ, 4, "sobol"), one = furnace_whiteness(integ, 1, "sobol");
         const Whiteness indep = furnace_whiteness(integ, 4, "independent");
-        std::printf("%s at 64 spp: per-pixel colour error rms %.4f max %.4f, image mean off white by %.4f "
-                    "(4 wavelengths, sobol); rms %.4f (1, sobol); rms %.4f (4, independent)\n",
-                    integ, four.chroma_rms, four.chroma_max, four.mean_max, one.chroma_rms, indep.chroma_rms);
+        std::printf(
+            "%s at 64 spp: per-pixel colour error rms %.4f max %.4f, image mean off white by %.4f "
+            "(4 wavelengths, sobol); rms %.4f (1, sobol); rms %.4f (4, independent)\n",
+            integ, four.chroma_rms, four.chroma_max, four.mean_max, one.chroma_rms, indep.chroma_rms);
         // `path` returns exactly the illuminant for every sample: its colour error is spectral
         // alone. nee and bdpt weight samples unequally (light sampling, MIS), which spoils part
         // of the stratification of the wavelengths across samples.
-        if (std::string(integ) == "path") EXPECT_LT(four.chroma_rms, 0.005) << integ;
+        if (std::string(integ) == "path") {
+            EXPECT_LT(four.chroma_rms, 0.005) << integ;
+        }
         EXPECT_LT(four.chroma_rms, one.chroma_rms / 4) << integ;
         EXPECT_LT(four.mean_max, 0.005) << integ;
         EXPECT_GT(one.chroma_rms, 0.02) << integ;  // the colour noise the hero wavelengths remove
@@ -136,8 +140,8 @@ TEST_P(HeroAgreement, FourWavelengthsAgreeWithOne) {
         const std::string what = std::string(integ) + " alpha " + alpha + " channel " + std::to_string(channel);
         expect_agreement(four, one, 0.01, what.c_str());
         const Estimate a = whole_image(four), b = whole_image(one);
-        EXPECT_GT(welch_p_value(a, b), 0.01) << what << ": whole image " << a.mean << " +- " << a.stderr_ << " vs "
-                                             << b.mean << " +- " << b.stderr_;
+        EXPECT_GT(welch_p_value(a, b), 0.01)
+            << what << ": whole image " << a.mean << " +- " << a.stderr_ << " vs " << b.mean << " +- " << b.stderr_;
     }
 }
 

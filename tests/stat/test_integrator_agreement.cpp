@@ -2,8 +2,8 @@
 // the standard errors measured from independent replicas, per pixel block (errors confined to
 // a region: a light that leaks, a BSDF on one object) and in whole-image luminance (small
 // errors spread over everything: a MIS weight a few percent off, a wrong light pdf).
-#include "stat/replica_stats.h"
 #include "stat/box_scene.h"
+#include "stat/replica_stats.h"
 
 using namespace snell;
 using namespace snell::test;

@@ -37,7 +37,8 @@ const char* kDroplet = R"(<scene version="3.0.0">
 std::string scene_with(const std::string& droplet_bsdf, const std::string& extra = "", const std::string& light = "") {
     std::string s = kDroplet;
     if (!light.empty()) {
-        const size_t a = s.find("  <shape type=\"rectangle\">\n    <transform name=\"to_world\"><scale value=\"1.5\"/>");
+        const size_t a =
+            s.find("  <shape type=\"rectangle\">\n    <transform name=\"to_world\"><scale value=\"1.5\"/>");
         const size_t b = s.find("</shape>", a) + 8;
         s.replace(a, b - a, light);
     }
@@ -127,7 +128,8 @@ TEST(MneeAgreement, SceneScaledBy1000RendersTheSame) {
     std::string scaled = xml;
     // Wrap the whole scene in a scale: camera origin/target, sphere centre/radius, transforms.
     const auto replace_all = [&](const std::string& a, const std::string& b) {
-        for (size_t i = scaled.find(a); i != std::string::npos; i = scaled.find(a, i + b.size())) scaled.replace(i, a.size(), b);
+        for (size_t i = scaled.find(a); i != std::string::npos; i = scaled.find(a, i + b.size()))
+            scaled.replace(i, a.size(), b);
     };
     replace_all(R"(origin="0, 3.2, 3.2" target="0, 0.2, 0")", R"(origin="0, 3200, 3200" target="0, 200, 0")");
     replace_all(R"(<point name="center" x="0" y="0.35" z="0"/><float name="radius" value="0.8"/>)",
@@ -149,15 +151,16 @@ TEST(MneeAgreement, SceneScaledBy1000RendersTheSame) {
 TEST(MneeAgreement, RayCastProjectionAndVariantBAreUnbiased) {
     expect_mnee_matches_nee(scene_with(smooth_water(), R"(<string name="projection" value="raycast"/>)"), 256, 64,
                             "raycast projection", scene_with(smooth_water()));
-    expect_mnee_matches_nee(scene_with(smooth_water(), R"(<boolean name="allow_error_increase" value="true"/>)"), 256, 64,
-                            "variant B", scene_with(smooth_water()));
+    expect_mnee_matches_nee(scene_with(smooth_water(), R"(<boolean name="allow_error_increase" value="true"/>)"), 256,
+                            64, "variant B", scene_with(smooth_water()));
 }
 
 // Rough absorbing glass: the light reached by refracting at a rough vertex lies across the
 // interface, so NEE there must attenuate with the other side's medium. `path` (BSDF sampling
 // only) is the independent reference for both `nee` and `mnee`.
 TEST(MneeAgreement, AbsorbingRoughGlassMatchesPathTracing) {
-    const std::string glass = R"(<bsdf type="roughdielectric"><float name="alpha" value="0.3"/><float name="int_ior" value="1.5"/>
+    const std::string glass =
+        R"(<bsdf type="roughdielectric"><float name="alpha" value="0.3"/><float name="int_ior" value="1.5"/>
         <float name="ext_ior" value="1"/><rgb name="sigma_a" value="0.5, 0.2, 0.8"/></bsdf>)";
     const std::string xml = scene_with(glass);
     LoadedScene path = load_xml(xml, {{"integrator", "path"}});
@@ -182,7 +185,8 @@ TEST(MneeAgreement, EmissiveDielectricMatchesPathTracing) {
 // An air bubble (interior less dense than the outside, eta < 1): the walk must converge
 // there too (the half vector's orientation depends on which side is denser).
 TEST(MneeAgreement, BubbleWithEtaBelowOneConvergesAndMatchesNee) {
-    const std::string bubble = R"(<bsdf type="dielectric"><float name="int_ior" value="1.0"/><float name="ext_ior" value="1.33"/></bsdf>)";
+    const std::string bubble =
+        R"(<bsdf type="dielectric"><float name="int_ior" value="1.0"/><float name="ext_ior" value="1.33"/></bsdf>)";
     const std::string xml = scene_with(bubble);
     LoadedScene mnee = load_xml(xml, {{"integrator", "mnee"}});
     RenderOptions opt;

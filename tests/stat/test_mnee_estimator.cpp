@@ -24,7 +24,8 @@ const char* kScene = R"(<scene version="3.0.0"><integrator type="mnee"/>
   $light
 </scene>)";
 
-const char* kAreaLight = R"(<shape type="rectangle"><transform name="to_world"><scale value="1.5"/><rotate x="1" angle="90"/>
+const char* kAreaLight =
+    R"(<shape type="rectangle"><transform name="to_world"><scale value="1.5"/><rotate x="1" angle="90"/>
     <translate x="-0.8" y="3" z="-0.5"/></transform><emitter type="area"><rgb name="radiance" value="3, 3, 3"/></emitter></shape>)";
 
 LoadedScene droplet(const std::string& light) {
@@ -76,11 +77,15 @@ void expect_light_limit(const LoadedScene& a, const LoadedScene& b, std::initial
                     const LightPoint lp = light_point(scene, light, *s, xb.p);
                     std::vector<ManifoldVertex> chain;
                     if (trace_seed_path(scene, xb, lp.p, 550, st, &chain) == SeedStatus::Refractive) {
-                        const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, 1.0, lp, chain, smp);
+                        const MneeConnection c =
+                            mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, 1.0, lp, chain, smp);
                         if (c.outcome == MneeOutcome::Success) v = c.value[0];
                     }
                 }
-                if (which) vb.add(v); else va = v;
+                if (which)
+                    vb.add(v);
+                else
+                    va = v;
             }
         }
         EXPECT_GT(va, 0.0) << "x = " << x;
@@ -107,7 +112,8 @@ TEST(MneeEstimator, MatchesBsdfSamplingOfTheSamePaths) {
             if (auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), SampledWavelengths::single(550))) {
                 std::vector<ManifoldVertex> chain;
                 if (trace_seed_path(scene, xb, s->p, 550, st, &chain) == SeedStatus::Refractive) {
-                    const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, 1.0, light_point(scene, light, *s, xb.p), chain, smp);
+                    const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, 1.0,
+                                                          light_point(scene, light, *s, xb.p), chain, smp);
                     if (c.outcome == MneeOutcome::Success) v = c.value[0];
                 }
             }
@@ -125,8 +131,8 @@ TEST(MneeEstimator, MatchesBsdfSamplingOfTheSamePaths) {
                 for (int d = 0; d < 6 && scene.intersect(ray, &h); ++d) {
                     if (h.emitter()) {
                         const double pdf = chain.empty() ? 0.0
-                                                         : mnee_pdf(scene, st, xb, *xb.bsdf(), chain.data(), int(chain.size()),
-                                                                    light, 1.0, h.p, h.n, 550);
+                                                         : mnee_pdf(scene, st, xb, *xb.bsdf(), chain.data(),
+                                                                    int(chain.size()), light, 1.0, h.p, h.n, 550);
                         if (pdf > 0) v = beta * h.emitter()->le(h.p, h.n, -ray.d, kCtx.wl)[0];
                         break;
                     }
@@ -164,7 +170,8 @@ TEST(MneeMis, WeightsOfAllTechniquesSumToOne) {
         std::vector<ManifoldVertex> chain;
         if (trace_seed_path(scene, xb, s->p, 550, st, &chain) != SeedStatus::Refractive) continue;
         const double pmf = 0.7;
-        const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, pmf, light_point(scene, light, *s, xb.p), chain, smp);
+        const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, pmf,
+                                              light_point(scene, light, *s, xb.p), chain, smp);
         if (c.outcome != MneeOutcome::Success) continue;
         ASSERT_EQ(chain.size(), 1u);
         const SurfaceInteraction& v = chain[0].si;
@@ -178,7 +185,8 @@ TEST(MneeMis, WeightsOfAllTechniquesSumToOne) {
         double p = (cos_b / kPi) * std::abs(dot(v.ng, o_b)) / length_squared(v.p - xb.p);
         const double eta = 1.33;  // inside -> outside: the camera side is water
         const double F = fresnel_dielectric(dot(-o_b, v.n), eta).R;
-        const double jac = sqr(eta * dot(-o_b, v.n) + 1.0 * dot(o_1, v.n)) / std::abs(dot(o_1, v.n));  // |do/dh| at h = n
+        const double jac =
+            sqr(eta * dot(-o_b, v.n) + 1.0 * dot(o_1, v.n)) / std::abs(dot(o_1, v.n));  // |do/dh| at h = n
         p *= (1 - F) / jac * std::abs(dot(s->n, o_1)) / length_squared(s->p - v.p);
         EXPECT_NEAR(c.pdf_bsdf, p, 1e-5 * p);
         const double w_mnee = power_heuristic(c.pdf_mnee, c.pdf_bsdf), w_bsdf = power_heuristic(p, alg2);
@@ -194,9 +202,11 @@ TEST(MneeEstimator, PointLightIsTheLimitOfSmallSphereLights) {
     const char* point = R"(<emitter type="point"><point name="position" x="-0.6" y="3" z="-0.4"/>
         <rgb name="intensity" value="4, 4, 4"/></emitter>)";
     const double r = 0.01;
-    const std::string sphere = std::string(R"(<shape type="sphere"><point name="center" x="-0.6" y="3" z="-0.4"/><float name="radius" value=")") +
-                               std::to_string(r) + R"("/><emitter type="area"><rgb name="radiance" value=")" +
-                               std::to_string(4 / (kPi * r * r)) + R"("/></emitter></shape>)";
+    const std::string sphere =
+        std::string(
+            R"(<shape type="sphere"><point name="center" x="-0.6" y="3" z="-0.4"/><float name="radius" value=")") +
+        std::to_string(r) + R"("/><emitter type="area"><rgb name="radiance" value=")" +
+        std::to_string(4 / (kPi * r * r)) + R"("/></emitter></shape>)";
     expect_light_limit(droplet(point), droplet(sphere), {0.1, -0.25});
 }
 
@@ -206,12 +216,14 @@ TEST(MneeEstimator, DirectionalLightIsTheLimitOfADistantSphereLight) {
     const Vec3 dir = normalize(Vec3(0.3, -1, 0.2));  // direction of travel of the light
     const double d = 200, r = 0.2, E = 2;
     const Vec3 c = dir * -d;
-    const std::string directional = R"(<emitter type="directional"><vector name="direction" x=")" + std::to_string(dir.x) +
-                                    R"(" y=")" + std::to_string(dir.y) + R"(" z=")" + std::to_string(dir.z) +
-                                    R"("/><rgb name="irradiance" value=")" + std::to_string(E) + R"("/></emitter>)";
+    const std::string directional = R"(<emitter type="directional"><vector name="direction" x=")" +
+                                    std::to_string(dir.x) + R"(" y=")" + std::to_string(dir.y) + R"(" z=")" +
+                                    std::to_string(dir.z) + R"("/><rgb name="irradiance" value=")" + std::to_string(E) +
+                                    R"("/></emitter>)";
     const std::string sphere = R"(<shape type="sphere"><point name="center" x=")" + std::to_string(c.x) + R"(" y=")" +
-                               std::to_string(c.y) + R"(" z=")" + std::to_string(c.z) + R"("/><float name="radius" value=")" +
-                               std::to_string(r) + R"("/><emitter type="area"><rgb name="radiance" value=")" +
+                               std::to_string(c.y) + R"(" z=")" + std::to_string(c.z) +
+                               R"("/><float name="radius" value=")" + std::to_string(r) +
+                               R"("/><emitter type="area"><rgb name="radiance" value=")" +
                                std::to_string(E * d * d / (kPi * r * r)) + R"("/></emitter></shape>)";
     expect_light_limit(droplet(directional), droplet(sphere), {0.05, -0.2});
 }

@@ -9,8 +9,8 @@
 #include "integrators/pssmlt/primary_sample_sampler.h"
 #include "integrators/pssmlt/pssmlt.h"
 #include "sampler/independent.h"
-#include "stat/replica_stats.h"
 #include "stat/box_scene.h"
+#include "stat/replica_stats.h"
 
 using namespace snell;
 using namespace snell::test;
@@ -115,7 +115,8 @@ TEST(Pssmlt, AgreesWithNeeInABox) {
 TEST(Pssmlt, AgreesWithNeeWithoutKelemenWeights) {
     std::string xml = kCornellBox;
     const std::string depth = R"(<integer name="max_depth" value="6"/>)";
-    xml.replace(xml.find(depth), depth.size(), std::string(depth) + R"(<boolean name="kelemen_weights" value="false"/>)");
+    xml.replace(xml.find(depth), depth.size(),
+                std::string(depth) + R"(<boolean name="kelemen_weights" value="false"/>)");
     LoadedScene mlt = load_xml(xml, {{"integrator", "pssmlt"}, {"res", "16"}});
     ASSERT_FALSE(dynamic_cast<const PssmltIntegrator&>(*mlt.scene->integrator()).settings().kelemen_weights);
     LoadedScene nee = load_xml(kCornellBox, {{"integrator", "nee"}, {"res", "16"}});

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "bsdf/diffuse.h"
-#include "sampler/independent.h"
 #include "integrators/bdpt/connect.h"
 #include "integrators/bdpt/subpath.h"
+#include "sampler/independent.h"
 #include "stat/box_scene.h"
 #include "stat/render_stats.h"
 
@@ -55,8 +55,10 @@ TEST(BdptVertices, WalkDensitiesMatchPdfArea) {
             const double gap = std::min({length(path[k].si.p - path[k - 1].si.p), length(path[k + 1].si.p - v.si.p),
                                          length(path[k + 2].si.p - path[k + 1].si.p)});
             if (gap < 0.05) continue;
-            const double rev = pdf_area(path[k + 1], &path[k + 2], v, opposite(TransportMode::Importance), SampledWavelengths::single(550), disk);
-            const double fwd = pdf_area(path[k], &path[k - 1], path[k + 1], TransportMode::Importance, SampledWavelengths::single(550), disk);
+            const double rev = pdf_area(path[k + 1], &path[k + 2], v, opposite(TransportMode::Importance),
+                                        SampledWavelengths::single(550), disk);
+            const double fwd = pdf_area(path[k], &path[k - 1], path[k + 1], TransportMode::Importance,
+                                        SampledWavelengths::single(550), disk);
             off += rel_diff(v.pdf_rev, rev) > 1e-2;
             off += rel_diff(path[k + 1].pdf_fwd, fwd) > 1e-2;
             checked += 2;
@@ -98,8 +100,8 @@ TEST(BdptVertices, ConnectionCarriesTheAdjointShadingCorrection) {
     const double d2 = length_squared(py - pz);
     const double fz = 0.5 * kInvPi * std::abs(dot(up, d));
     const Vertex& y = lig[1];
-    const double fy = 0.5 * kInvPi * std::abs(dot(y.si.wo, y.si.n)) * std::abs(dot(-d, y.si.ng)) /
-                      std::abs(dot(y.si.wo, y.si.ng));
+    const double fy =
+        0.5 * kInvPi * std::abs(dot(y.si.wo, y.si.n)) * std::abs(dot(-d, y.si.ng)) / std::abs(dot(y.si.wo, y.si.ng));
     ASSERT_GT(c, 0);
     EXPECT_LT(rel_diff(c, fz * fy / d2), 1e-9) << c << " vs " << fz * fy / d2;
 }

@@ -34,8 +34,7 @@ double hemisphere_integral(const F& f) {
     auto inner = [&](double z) {
         const double s = safe_sqrt(1 - z * z);
         return snell::test::adaptive_simpson(
-            [&](double phi) { return f(Vec3(s * std::cos(phi), s * std::sin(phi), z)); }, 0,
-            2 * kPi, 1e-10, 16);
+            [&](double phi) { return f(Vec3(s * std::cos(phi), s * std::sin(phi), z)); }, 0, 2 * kPi, 1e-10, 16);
     };
     return snell::test::adaptive_simpson(inner, 0, 1, 1e-9, 32);
 }
@@ -52,7 +51,7 @@ TEST(Fresnel, NormalIncidenceClosedForm) {
     // Conductor with k = 0 equals the dielectric at all angles.
     for (double c : {0.1, 0.5, 0.9}) EXPECT_NEAR(fresnel_conductor(c, 1.5, 0), fresnel_dielectric(c, 1.5).R, 1e-12);
     EXPECT_NEAR(fresnel_dielectric(1e-9, 1.5).R, 1.0, 1e-6);  // grazing
-    EXPECT_EQ(fresnel_dielectric(0.5, 1.0).R, 0.0);          // index matched
+    EXPECT_EQ(fresnel_dielectric(0.5, 1.0).R, 0.0);           // index matched
 }
 
 TEST(Fresnel, TotalInternalReflectionAndSnell) {
@@ -140,8 +139,7 @@ TEST(Bsdfs, FlagsAndEta) {
     DiffuseBSDF diffuse(one);
     DielectricBSDF glass(Spectrum::from_ior_abbe(1.5, 40), Spectrum::constant(1.000277));
     ThinDielectricBSDF thin(Spectrum::constant(1.5), one);
-    RoughDielectricBSDF rough(MD(MD::Type::GGX, 0.2), Spectrum::constant(1.33), one, one, one,
-                              Spectrum::constant(0.1));
+    RoughDielectricBSDF rough(MD(MD::Type::GGX, 0.2), Spectrum::constant(1.33), one, one, one, Spectrum::constant(0.1));
     ConductorBSDF mirror(std::nullopt);
     RoughConductorBSDF rc(MD(MD::Type::Beckmann, 0.2), named_conductor("Cu"));
     PlasticBSDF plastic(one, one, 1.49, 1.0);

@@ -23,8 +23,7 @@ Vec2 bary_from_uv(const MeshData& m, uint32_t prim, const Vec2& uv) {
 /// Checks the derivatives at uv (or at barycentrics when `use_uv` is false) against central
 /// differences of the mesh's own p and n. Truncation is ~h^2 |n'''| (p is linear: exact up
 /// to rounding); rounding ~1e-16 / h.
-void check_fd(const TriangleMesh& mesh, const MeshData& data, uint32_t prim, const Vec2& x,
-              bool use_uv, double tol) {
+void check_fd(const TriangleMesh& mesh, const MeshData& data, uint32_t prim, const Vec2& x, bool use_uv, double tol) {
     auto eval = [&](const Vec2& q) {
         SurfaceInteraction si;
         mesh.interaction_at(prim, use_uv ? bary_from_uv(data, prim, q) : q, &si);
@@ -54,8 +53,7 @@ void check_fd(const TriangleMesh& mesh, const MeshData& data, uint32_t prim, con
 MeshData skewed_triangle(bool with_uv) {
     MeshData m;
     m.positions = {{0.1, 0.2, 0.0}, {1.3, -0.1, 0.2}, {0.4, 1.1, -0.3}};
-    m.normals = {normalize(Vec3(0.1, 0.2, 1)), normalize(Vec3(-0.4, 0.1, 1)),
-                 normalize(Vec3(0.3, -0.5, 0.8))};
+    m.normals = {normalize(Vec3(0.1, 0.2, 1)), normalize(Vec3(-0.4, 0.1, 1)), normalize(Vec3(0.3, -0.5, 0.8))};
     if (with_uv) m.uvs = {{0.2, 0.1}, {0.9, 0.3}, {0.35, 0.8}};
     m.triangles = {{0, 1, 2}};
     return m;
@@ -68,13 +66,11 @@ TEST(GeometryMesh, SingleTriangleDifferentialGeometry) {
         // Texture parametrisation.
         MeshData d = skewed_triangle(true);
         TriangleMesh m(d, false, flip);
-        for (Vec2 uv : {Vec2(0.4, 0.3), Vec2(0.5, 0.4), Vec2(0.35, 0.6)})
-            check_fd(m, d, 0, uv, true, 1e-7);
+        for (Vec2 uv : {Vec2(0.4, 0.3), Vec2(0.5, 0.4), Vec2(0.35, 0.6)}) check_fd(m, d, 0, uv, true, 1e-7);
         // Barycentric parametrisation (no uvs).
         MeshData d2 = skewed_triangle(false);
         TriangleMesh m2(d2, false, flip);
-        for (Vec2 b : {Vec2(0.2, 0.3), Vec2(0.6, 0.1), Vec2(0.25, 0.5)})
-            check_fd(m2, d2, 0, b, false, 1e-7);
+        for (Vec2 b : {Vec2(0.2, 0.3), Vec2(0.6, 0.1), Vec2(0.25, 0.5)}) check_fd(m2, d2, 0, b, false, 1e-7);
     }
     // The blended normal really varies, so dn/du is non-trivial, and flips with flip_normals.
     MeshData d = skewed_triangle(true);
@@ -129,9 +125,7 @@ TEST(GeometryMesh, TessellatedSphereDifferentialGeometry) {
 TEST(GeometryMesh, ClosestPointOnTriangleIsMinimal) {
     PCG32 rng(4, 4);
     for (int k = 0; k < 300; ++k) {
-        auto rp = [&] {
-            return Vec3(rng.next_double(), rng.next_double(), rng.next_double()) * 2 - Vec3(1);
-        };
+        auto rp = [&] { return Vec3(rng.next_double(), rng.next_double(), rng.next_double()) * 2 - Vec3(1); };
         const Vec3 a = rp(), b = rp(), c = rp(), p = rp() * 1.5;
         const Vec2 bc = closest_point_on_triangle(p, a, b, c);
         ASSERT_GE(bc.x, -1e-15);
@@ -209,8 +203,7 @@ TEST(GeometryMesh, AreaSamplingIsUniform) {
         const ShapeSample s = m.sample_area(next_2d(rng));
         ASSERT_NEAR(s.pdf, 0.5, 1e-15);
         EXPECT_NEAR(s.n.z, 1.0, 1e-15);
-        const int ix = std::min(nx - 1, int(s.p.x / 2 * nx)),
-                  iy = std::min(ny - 1, int(s.p.y * ny));
+        const int ix = std::min(nx - 1, int(s.p.x / 2 * nx)), iy = std::min(ny - 1, int(s.p.y * ny));
         counts[iy * nx + ix] += 1;
     }
     const double chi2 = test::chi2_uniform(counts, double(n) / counts.size());
@@ -264,8 +257,7 @@ TEST(GeometryMesh, BuildersFollowMitsubaConventions) {
     for (uint32_t i = 0; i < cube.triangle_count(); ++i) {
         cube.interaction_at(i, {1.0 / 3, 1.0 / 3}, &si);
         EXPECT_GT(dot(si.ng, si.p), 0) << i;  // outward
-        EXPECT_NEAR(std::max({std::abs(si.p.x) / 2, std::abs(si.p.y), std::abs(si.p.z)}), 1.0,
-                    1e-12);
+        EXPECT_NEAR(std::max({std::abs(si.p.x) / 2, std::abs(si.p.y), std::abs(si.p.z)}), 1.0, 1e-12);
     }
 }
 
@@ -299,10 +291,16 @@ TEST(GeometryMesh, CachedTriangleParamsAreBitIdentical) {
             SurfaceInteraction sa, sb;
             a.interaction_at(0, q, &sa);
             b.interaction_at(0, q, &sb);
-            for (const auto& [x, y] : {std::pair{sa.p, sb.p}, {sa.ng, sb.ng}, {sa.n, sb.n},
-                                       {sa.dpdu, sb.dpdu}, {sa.dpdv, sb.dpdv}, {sa.dndu, sb.dndu},
-                                       {sa.dndv, sb.dndv}, {sa.shading.s, sb.shading.s},
-                                       {sa.shading.t, sb.shading.t}, {sa.shading.n, sb.shading.n}})
+            for (const auto& [x, y] : {std::pair{sa.p, sb.p},
+                                       {sa.ng, sb.ng},
+                                       {sa.n, sb.n},
+                                       {sa.dpdu, sb.dpdu},
+                                       {sa.dpdv, sb.dpdv},
+                                       {sa.dndu, sb.dndu},
+                                       {sa.dndv, sb.dndv},
+                                       {sa.shading.s, sb.shading.s},
+                                       {sa.shading.t, sb.shading.t},
+                                       {sa.shading.n, sb.shading.n}})
                 EXPECT_EQ(x, y) << "variant " << variant;
             EXPECT_EQ(sa.uv, sb.uv) << "variant " << variant;
         }

@@ -24,8 +24,7 @@ void fill_scene(Scene& scene, const Transform& xf, double s) {
     scene.add_shape(std::make_shared<TriangleMesh>(
         make_cube(xf * Transform::translate({2, 0, 0.5}) * Transform::rotate({0, 0, 1}, 20) *
                   Transform::scale({0.5, 0.5, 0.5}))));
-    scene.add_shape(
-        std::make_shared<TriangleMesh>(make_rectangle(xf * Transform::scale({5, 5, 1}))));
+    scene.add_shape(std::make_shared<TriangleMesh>(make_rectangle(xf * Transform::scale({5, 5, 1}))));
     scene.build();
 }
 
@@ -44,8 +43,7 @@ TEST(GeometryScene, OccludedAgreesWithIntersect) {
     reset_counters();
     int agree = 0, n = 4000;
     for (int i = 0; i < n; ++i) {
-        const Vec3 o = Vec3(rng.next_double() * 8 - 4, rng.next_double() * 8 - 4,
-                            rng.next_double() * 3 + 0.01);
+        const Vec3 o = Vec3(rng.next_double() * 8 - 4, rng.next_double() * 8 - 4, rng.next_double() * 3 + 0.01);
         const Vec3 d = warp::square_to_uniform_sphere(next_2d(rng));
         const double tmax = rng.next_double() * 6;
         SurfaceInteraction si;
@@ -77,8 +75,7 @@ TEST(GeometryScene, ScaleInvariance) {
     PCG32 rng(2, 2);
     int hits = 0, bounces = 0;
     for (int i = 0; i < 3000; ++i) {
-        const Vec3 o = Vec3(rng.next_double() * 8 - 4, rng.next_double() * 8 - 4,
-                            rng.next_double() * 3 + 0.05);
+        const Vec3 o = Vec3(rng.next_double() * 8 - 4, rng.next_double() * 8 - 4, rng.next_double() * 3 + 0.05);
         const Vec3 d = warp::square_to_uniform_sphere(next_2d(rng));
         SurfaceInteraction sa, sb;
         const bool ha = a.intersect(Ray{o, d}, &sa), hb = b.intersect(Ray{xf.point(o), d}, &sb);
@@ -92,8 +89,7 @@ TEST(GeometryScene, ScaleInvariance) {
         Vec3 d2 = warp::square_to_uniform_sphere(next_2d(rng));
         if (dot(d2, sa.ng) * dot(d, sa.ng) > 0) d2 = -d2;
         SurfaceInteraction ta, tb;
-        const bool ga = a.intersect(a.spawn_ray(sa, d2), &ta),
-                   gb = b.intersect(b.spawn_ray(sb, d2), &tb);
+        const bool ga = a.intersect(a.spawn_ray(sa, d2), &ta), gb = b.intersect(b.spawn_ray(sb, d2), &tb);
         // Disagreement is only acceptable for rays that graze an edge; none expected here.
         ASSERT_EQ(ga, gb) << i;
         if (ga) {
@@ -112,8 +108,8 @@ TEST(GeometryScene, SpawnRaysAvoidSelfIntersection) {
     for (double s : {1.0, 1e3, 1e-3}) {
         Scene scene;
         auto sph = std::make_shared<Sphere>(Vec3(0, 0, 0) * s, 1.0 * s);
-        auto cube = std::make_shared<TriangleMesh>(
-            make_cube(Transform::scale({s, s, s}) * Transform::translate({4, 0, 0})));
+        auto cube =
+            std::make_shared<TriangleMesh>(make_cube(Transform::scale({s, s, s}) * Transform::translate({4, 0, 0})));
         scene.add_shape(sph);
         scene.add_shape(cube);
         scene.build();
@@ -140,8 +136,7 @@ TEST(GeometryScene, SpawnRaysAvoidSelfIntersection) {
             // Shadow ray from the sphere to a point of the cube facing it.
             if (shape == sph.get() && si.p.x > 0.5 * s) {
                 SurfaceInteraction face;
-                ASSERT_TRUE(cube->closest_point(Vec3(3, 0.9 * (rng.next_double() * 2 - 1), 0) * s,
-                                                kInfinity, &face));
+                ASSERT_TRUE(cube->closest_point(Vec3(3, 0.9 * (rng.next_double() * 2 - 1), 0) * s, kInfinity, &face));
                 // Only targets above the sphere's tangent plane are unobstructed (convexity).
                 if (dot(face.p - si.p, si.ng) > 0) {
                     EXPECT_FALSE(scene.occluded(scene.spawn_ray_to(si, face.p))) << s << " " << i;

@@ -73,8 +73,7 @@ TEST(GeometrySphere, ClosestPointIsRadialProjection) {
     const Sphere s({1, 2, 3}, 0.5);
     PCG32 rng(7, 1);
     for (int i = 0; i < 200; ++i) {
-        const Vec3 p =
-            s.center() + warp::square_to_uniform_sphere(next_2d(rng)) * (2 * rng.next_double());
+        const Vec3 p = s.center() + warp::square_to_uniform_sphere(next_2d(rng)) * (2 * rng.next_double());
         SurfaceInteraction si;
         const double dist = std::abs(length(p - s.center()) - s.radius());
         ASSERT_TRUE(s.closest_point(p, dist * 1.0001 + 1e-12, &si));
@@ -92,8 +91,7 @@ TEST(GeometrySphere, RayFromInsideHitsFarSide) {
     PCG32 rng(3, 5);
     for (int i = 0; i < 500; ++i) {
         // Random interior origin: the far-side distance follows from the line equation.
-        const Vec3 o =
-            s->center() + warp::square_to_uniform_sphere(next_2d(rng)) * (1.9 * rng.next_double());
+        const Vec3 o = s->center() + warp::square_to_uniform_sphere(next_2d(rng)) * (1.9 * rng.next_double());
         const Vec3 d = warp::square_to_uniform_sphere(next_2d(rng));
         const Vec3 f = o - s->center();
         const double b = dot(f, d), t_exact = -b + std::sqrt(b * b - dot(f, f) + 4.0);
@@ -219,8 +217,7 @@ TEST(GeometrySphere, SolidAngleMatchesCone) {
     const int n = 200000;
     PCG32 rng(9, 9);
     int hits = 0;
-    for (int i = 0; i < n; ++i)
-        hits += scene.occluded(Ray{ref, warp::square_to_uniform_sphere(next_2d(rng))});
+    for (int i = 0; i < n; ++i) hits += scene.occluded(Ray{ref, warp::square_to_uniform_sphere(next_2d(rng))});
     const double p = 1.0 / s->pdf_from(ref, Vec3(0, 0, 1), Vec3(0, 0, 1)) / (4 * kPi);
     const double se = std::sqrt(p * (1 - p) / n);
     EXPECT_NEAR(double(hits) / n, p, 5 * se);

@@ -6,8 +6,8 @@
 #include <ImfOutputFile.h>
 #include <stb/stb_image.h>
 
-#include <cmath>
 #include <unistd.h>
+#include <cmath>
 
 #include <filesystem>
 #include <fstream>
@@ -25,8 +25,8 @@ class ImageIO : public ::testing::Test {
 protected:
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        m_dir = fs::temp_directory_path() / (std::string("snell_test_image_") + info->name() + "_" +
-                                             std::to_string(::getpid()));
+        m_dir = fs::temp_directory_path() /
+                (std::string("snell_test_image_") + info->name() + "_" + std::to_string(::getpid()));
         fs::create_directories(m_dir);
     }
     void TearDown() override { fs::remove_all(m_dir); }
@@ -86,7 +86,8 @@ TEST_F(ImageIO, ExrFloatRoundTripIsExact) {
 
 TEST_F(ImageIO, ExrReadsRgbaAndIgnoresAlpha) {
     const std::string p = path("rgba.exr");
-    write_raw_exr(p, 4, 3, {"R", "G", "B", "A"}, [](int x, int y, int c) { return c == 3 ? 0.5f : float(10 * y + x + 0.25 * c); });
+    write_raw_exr(p, 4, 3, {"R", "G", "B", "A"},
+                  [](int x, int y, int c) { return c == 3 ? 0.5f : float(10 * y + x + 0.25 * c); });
     const Image img = read_exr(p);
     ASSERT_EQ(img.width, 4);
     ASSERT_EQ(img.height, 3);
@@ -118,8 +119,8 @@ TEST_F(ImageIO, ExrLuminanceOnlyBecomesGrey) {
 
 TEST_F(ImageIO, ExrNonZeroDataWindowReadsFromOrigin) {
     const std::string p = path("window.exr");
-    write_raw_exr(p, 4, 3, {"R", "G", "B"}, [](int x, int y, int c) { return float(100 * c + 10 * y + x); },
-                  Imath::V2i(-5, 17));
+    write_raw_exr(
+        p, 4, 3, {"R", "G", "B"}, [](int x, int y, int c) { return float(100 * c + 10 * y + x); }, Imath::V2i(-5, 17));
     const Image img = read_exr(p);
     ASSERT_EQ(img.width, 4);
     ASSERT_EQ(img.height, 3);

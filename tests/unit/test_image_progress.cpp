@@ -68,7 +68,7 @@ TEST(Progress, TimeModeFractionFollowsClock) {
     bar.add(123);  // ignored for the fraction in time mode
     const double f = bar.fraction();
     EXPECT_GE(f, 0.0);
-    EXPECT_LT(f, 1e-3);  // 1e6 s budget: only a tiny fraction can have elapsed
+    EXPECT_LT(f, 1e-3);                               // 1e6 s budget: only a tiny fraction can have elapsed
     auto done = ProgressBar::for_time("timed", 0.0);  // zero budget is already complete
     done.set_enabled(false);
     EXPECT_EQ(done.fraction(), 1.0);

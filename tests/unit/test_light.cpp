@@ -80,13 +80,17 @@ TEST(AreaLight, SamplePdfMatchesPdfLiAndAreaDensity) {
 TEST(AreaLight, OneSidedEmission) {
     auto disk = std::make_shared<test::TestDisk>(Vec3(0, 0, 0), Vec3(0, 0, 1), 1.0);
     AreaLight light(Spectrum::constant(2.0), disk);
-    EXPECT_EQ(light.le(Vec3(0, 0, 0), Vec3(0, 0, 1), normalize(Vec3(0.3, 0, 1)), SampledWavelengths::single(550))[0], 2.0);
-    EXPECT_EQ(light.le(Vec3(0, 0, 0), Vec3(0, 0, 1), normalize(Vec3(0.3, 0, -1)), SampledWavelengths::single(550))[0], 0.0);
+    EXPECT_EQ(light.le(Vec3(0, 0, 0), Vec3(0, 0, 1), normalize(Vec3(0.3, 0, 1)), SampledWavelengths::single(550))[0],
+              2.0);
+    EXPECT_EQ(light.le(Vec3(0, 0, 0), Vec3(0, 0, 1), normalize(Vec3(0.3, 0, -1)), SampledWavelengths::single(550))[0],
+              0.0);
     // A reference point behind the disk sees no emission: nothing to sample.
     PCG32 rng(3, 4);
-    for (int i = 0; i < 100; ++i) EXPECT_FALSE(light.sample_li({Vec3(0, 0, -1), Vec3()}, next2(rng), SampledWavelengths::single(550)));
+    for (int i = 0; i < 100; ++i)
+        EXPECT_FALSE(light.sample_li({Vec3(0, 0, -1), Vec3()}, next2(rng), SampledWavelengths::single(550)));
     // ...while one in front always gets a sample.
-    for (int i = 0; i < 100; ++i) EXPECT_TRUE(light.sample_li({Vec3(0, 0, 1), Vec3()}, next2(rng), SampledWavelengths::single(550)));
+    for (int i = 0; i < 100; ++i)
+        EXPECT_TRUE(light.sample_li({Vec3(0, 0, 1), Vec3()}, next2(rng), SampledWavelengths::single(550)));
 }
 
 TEST(AreaLight, PowerAndFactoryRegistration) {
@@ -161,7 +165,8 @@ TEST(SpotLight, MitsubaLinearFalloff) {
     EXPECT_NEAR(ls->Le[0], 10.0 * 0.5 / 4.0, 1e-8);
     EXPECT_TRUE(ls->delta);
     // Outside the cone: the light point is still returned (MNEE needs it) but carries no light.
-    const auto outside = light.sample_li({Vec3(0, 4, 0) + dir_at(40) * 2.0, Vec3()}, Vec2(), SampledWavelengths::single(600));
+    const auto outside =
+        light.sample_li({Vec3(0, 4, 0) + dir_at(40) * 2.0, Vec3()}, Vec2(), SampledWavelengths::single(600));
     ASSERT_TRUE(outside);
     EXPECT_EQ(outside->Le[0], 0.0);
 

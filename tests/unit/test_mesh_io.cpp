@@ -35,8 +35,7 @@ void put(std::string& out, T v, bool big_endian) {
     out.append(reinterpret_cast<const char*>(b), sizeof(T));
 }
 
-void expect_throws_naming(const std::function<void()>& f, const std::string& path,
-                          const std::string& what = "") {
+void expect_throws_naming(const std::function<void()>& f, const std::string& path, const std::string& what = "") {
     try {
         f();
         ADD_FAILURE() << "no exception for " << path;
@@ -66,8 +65,7 @@ TEST(MeshIo, ObjQuadsNormalsUvs) {
     ASSERT_EQ(m.normals.size(), m.positions.size());
     ASSERT_EQ(m.uvs.size(), m.positions.size());
     for (const auto& t : m.triangles) {
-        const Vec3 n =
-            cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
+        const Vec3 n = cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
         EXPECT_GT(n.z, 0);  // winding preserved
         for (uint32_t k : t) EXPECT_EQ(m.normals[k], Vec3(0, 0, 1));
     }
@@ -83,18 +81,17 @@ TEST(MeshIo, ObjErrorsNameThePath) {
 
 TEST(MeshIo, PlyAscii) {
     const fs::path p = temp_dir() / "ascii.ply";
-    write(
-        p,
-        "ply\nformat ascii 1.0\ncomment test\n"
-        "element vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
-        "property float nx\nproperty float ny\nproperty float nz\nproperty float s\nproperty float "
-        "t\n"
-        "element face 2\nproperty list uchar int vertex_indices\n"
-        "element edge 1\nproperty int vertex1\nproperty int vertex2\n"
-        "end_header\n"
-        "0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n1 1 0 0 0 1 1 1\n0 1 0 0 0 1 0 1\n0.5 2 0 0 0 1 0.5 1\n"
-        "4 0 1 2 3\n3 3 2 4\n"
-        "0 1\n");
+    write(p,
+          "ply\nformat ascii 1.0\ncomment test\n"
+          "element vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
+          "property float nx\nproperty float ny\nproperty float nz\nproperty float s\nproperty float "
+          "t\n"
+          "element face 2\nproperty list uchar int vertex_indices\n"
+          "element edge 1\nproperty int vertex1\nproperty int vertex2\n"
+          "end_header\n"
+          "0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n1 1 0 0 0 1 1 1\n0 1 0 0 0 1 0 1\n0.5 2 0 0 0 1 0.5 1\n"
+          "4 0 1 2 3\n3 3 2 4\n"
+          "0 1\n");
     const MeshData m = load_ply(p.string());
     EXPECT_EQ(m.positions.size(), 5u);
     EXPECT_EQ(m.triangles.size(), 3u);
@@ -122,12 +119,11 @@ TEST_P(MeshIoBinary, PlyBinary) {
     put<uint8_t>(body, 4, big);  // one quad with uint indices
     for (uint32_t k : {0u, 1u, 2u, 3u}) put<uint32_t>(body, k, big);
     put<int16_t>(body, -3, big);  // an ignored per-face property
-    const std::string header =
-        std::string("ply\nformat ") + (big ? "binary_big_endian" : "binary_little_endian") +
-        " 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
-        "property float u\nproperty float v\nproperty uchar flags\n"
-        "element face 1\nproperty list uchar uint vertex_index\nproperty short tag\n"
-        "end_header\n";
+    const std::string header = std::string("ply\nformat ") + (big ? "binary_big_endian" : "binary_little_endian") +
+                               " 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
+                               "property float u\nproperty float v\nproperty uchar flags\n"
+                               "element face 1\nproperty list uchar uint vertex_index\nproperty short tag\n"
+                               "end_header\n";
     const fs::path p = temp_dir() / (big ? "be.ply" : "le.ply");
     write(p, header + body);
     const MeshData m = load_ply(p.string());

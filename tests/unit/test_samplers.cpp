@@ -39,7 +39,8 @@ std::vector<std::vector<Vec2>> draw(Sampler& s, int px, int py, uint64_t first, 
     std::vector<std::vector<Vec2>> out(pattern.size(), std::vector<Vec2>(count));
     for (int i = 0; i < count; ++i) {
         s.start_pixel_sample(px, py, first + uint64_t(i));
-        for (size_t c = 0; c < pattern.size(); ++c) out[c][i] = pattern[c] == 'p' ? s.next_2d() : Vec2(s.next_1d(), 0.0);
+        for (size_t c = 0; c < pattern.size(); ++c)
+            out[c][i] = pattern[c] == 'p' ? s.next_2d() : Vec2(s.next_1d(), 0.0);
     }
     return out;
 }
@@ -96,7 +97,7 @@ TEST(Samplers, FactoryKnowsEveryTypeAndRoundsLikeMitsuba) {
     s.type = "multijitter";
     EXPECT_EQ(rounded_sample_count(s, 32), 32);  // 8 x 4
     EXPECT_EQ(rounded_sample_count(s, 64), 64);
-    EXPECT_EQ(rounded_sample_count(s, 7), 8);    // Mitsuba: 2 rows x ceil(7/2) columns
+    EXPECT_EQ(rounded_sample_count(s, 7), 8);  // Mitsuba: 2 rows x ceil(7/2) columns
     s.type = "ldsampler";
     EXPECT_EQ(rounded_sample_count(s, 1), 4);
     EXPECT_EQ(rounded_sample_count(s, 16), 16);
@@ -117,8 +118,10 @@ TEST(Samplers, StratifiedPutsOnePointPerStratumInEveryDimension) {
             for (uint64_t block : {0, 1}) {
                 const auto d = draw(s, px, py, block * n, n);
                 for (size_t c = 0; c < kPattern.size(); ++c) {
-                    if (kPattern[c] == 'p') EXPECT_TRUE(one_per_cell(d[c], res, res)) << "n " << n << " call " << c;
-                    else EXPECT_TRUE(one_per_cell(as_1d(d[c]), n, 1)) << "n " << n << " call " << c;
+                    if (kPattern[c] == 'p')
+                        EXPECT_TRUE(one_per_cell(d[c], res, res)) << "n " << n << " call " << c;
+                    else
+                        EXPECT_TRUE(one_per_cell(as_1d(d[c]), n, 1)) << "n " << n << " call " << c;
                 }
             }
             // ... and randomised independently.
@@ -164,8 +167,11 @@ TEST(Samplers, LdSamplerEveryPowerOfTwoPrefixIsA02Net) {
             const auto d = draw(s, px, py, block * n, n);
             for (size_t c = 0; c < kPattern.size(); ++c)
                 for (int m = 0; m <= 8; ++m) {
-                    if (kPattern[c] == 'p') EXPECT_TRUE(is_02_net(prefix(d[c], size_t(1) << m), m)) << "call " << c << " m " << m;
-                    else EXPECT_TRUE(one_per_cell(as_1d(prefix(d[c], size_t(1) << m)), 1 << m, 1)) << "call " << c << " m " << m;
+                    if (kPattern[c] == 'p')
+                        EXPECT_TRUE(is_02_net(prefix(d[c], size_t(1) << m), m)) << "call " << c << " m " << m;
+                    else
+                        EXPECT_TRUE(one_per_cell(as_1d(prefix(d[c], size_t(1) << m)), 1 << m, 1))
+                            << "call " << c << " m " << m;
                 }
         }
     }
@@ -184,8 +190,11 @@ TEST(Samplers, SobolEveryPowerOfTwoPrefixIsA02Net) {
             const auto d = draw(*s, px, py, first, n, pattern);
             for (size_t c = 0; c < pattern.size(); ++c)
                 for (int m = 0; m <= m_max; ++m) {
-                    if (pattern[c] == 'p') EXPECT_TRUE(is_02_net(prefix(d[c], size_t(1) << m), m)) << "call " << c << " m " << m;
-                    else EXPECT_TRUE(one_per_cell(as_1d(prefix(d[c], size_t(1) << m)), 1 << m, 1)) << "call " << c << " m " << m;
+                    if (pattern[c] == 'p')
+                        EXPECT_TRUE(is_02_net(prefix(d[c], size_t(1) << m), m)) << "call " << c << " m " << m;
+                    else
+                        EXPECT_TRUE(one_per_cell(as_1d(prefix(d[c], size_t(1) << m)), 1 << m, 1))
+                            << "call " << c << " m " << m;
                 }
         }
     }
@@ -255,7 +264,8 @@ TEST(Samplers, ValuesInUnitIntervalForAnyIndex) {
 // pixels; a sampler that reused one point set for two dimensions would give 1/3.
 TEST(Samplers, DimensionsAreUncorrelated) {
     const int pixels = 2048, spp = 16;
-    const size_t dims = 2 * std::count(kPattern.begin(), kPattern.end(), 'p') + std::count(kPattern.begin(), kPattern.end(), 'u');
+    const size_t dims =
+        2 * std::count(kPattern.begin(), kPattern.end(), 'p') + std::count(kPattern.begin(), kPattern.end(), 'u');
     for (const auto& t : kAllTypes) {
         auto s = make(t, spp, 2024);
         std::vector<double> sum(dims * dims, 0.0);
@@ -286,11 +296,13 @@ TEST(Samplers, DimensionsAreUncorrelated) {
 TEST(Samplers, StratifiedSamplersBeatIndependentOnSmoothIntegrands) {
     const int pixels = 4000, spp = 64;
     const std::vector<std::pair<std::string, std::function<double(Vec2)>>> integrands = {
-        {"soft disk", [](Vec2 p) {
+        {"soft disk",
+         [](Vec2 p) {
              const double r = std::hypot(p.x - 0.45, p.y - 0.55);
              return 1.0 / (1.0 + std::exp((r - 0.3) / 0.02));
          }},
-        {"gaussian", [](Vec2 p) { return std::exp(-((p.x - 0.4) * (p.x - 0.4) + (p.y - 0.6) * (p.y - 0.6)) / (2 * 0.15 * 0.15)); }},
+        {"gaussian",
+         [](Vec2 p) { return std::exp(-((p.x - 0.4) * (p.x - 0.4) + (p.y - 0.6) * (p.y - 0.6)) / (2 * 0.15 * 0.15)); }},
     };
     for (const auto& [name, f] : integrands) {
         // The pixel position pair (first draw) and a pair deeper in the path (after 1D and 2D draws).

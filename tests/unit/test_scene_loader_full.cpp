@@ -80,10 +80,11 @@ TEST(SceneLoaderFull, SamplerTypesAndParameters) {
     EXPECT_TRUE(d.sampler.jitter);
     for (const std::string type : {"independent", "stratified", "multijitter", "ldsampler", "sobol"}) {
         const bool has_jitter = type == "stratified" || type == "multijitter";
-        const std::string xml = "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<sampler type=\"" + type +
-                                "\">\n<integer name=\"sample_count\" value=\"64\"/>\n<integer name=\"seed\" value=\"5\"/>\n" +
-                                (has_jitter ? "<boolean name=\"jitter\" value=\"false\"/>\n" : "") +
-                                "</sampler>\n</sensor>\n<shape type=\"sphere\"/>\n</scene>";
+        const std::string xml =
+            "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<sampler type=\"" + type +
+            "\">\n<integer name=\"sample_count\" value=\"64\"/>\n<integer name=\"seed\" value=\"5\"/>\n" +
+            (has_jitter ? "<boolean name=\"jitter\" value=\"false\"/>\n" : "") +
+            "</sampler>\n</sensor>\n<shape type=\"sphere\"/>\n</scene>";
         const LoadedScene s = load_scene_string(xml, "test.xml", kDataDir);
         EXPECT_EQ(s.sampler.type, type);
         EXPECT_EQ(s.sampler.jitter, !has_jitter) << type;
@@ -91,12 +92,14 @@ TEST(SceneLoaderFull, SamplerTypesAndParameters) {
         EXPECT_EQ(s.seed, 5u) << type;
     }
     // `jitter` only where Mitsuba has it.
-    expect_error("<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<sampler type=\"sobol\">\n"
-                 "<boolean name=\"jitter\" value=\"false\"/>\n</sampler>\n</sensor>\n</scene>",
-                 "test.xml:4: <sampler>", "unused parameter 'jitter'");
-    expect_error("<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<sampler type=\"halton\">\n"
-                 "<integer name=\"sample_count\" value=\"4\"/>\n</sampler>\n</sensor>\n</scene>",
-                 "test.xml:3: <sampler>", "halton");
+    expect_error(
+        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<sampler type=\"sobol\">\n"
+        "<boolean name=\"jitter\" value=\"false\"/>\n</sampler>\n</sensor>\n</scene>",
+        "test.xml:4: <sampler>", "unused parameter 'jitter'");
+    expect_error(
+        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<sampler type=\"halton\">\n"
+        "<integer name=\"sample_count\" value=\"4\"/>\n</sampler>\n</sensor>\n</scene>",
+        "test.xml:3: <sampler>", "halton");
 }
 
 TEST(SceneLoaderFull, UnusedAndUnknownParametersNameTheirLine) {
@@ -107,7 +110,8 @@ TEST(SceneLoaderFull, UnusedAndUnknownParametersNameTheirLine) {
     expect_error(scene_with("<shape type=\"torus\"/>"), "test.xml:3: <shape>", "torus");
     expect_error(scene_with("<emitter type=\"laser\"/>"), "test.xml:3: <emitter>", "laser");
     expect_error(scene_with("<integrator type=\"photonmapper\"/>"), "test.xml:3: <integrator>", "photonmapper");
-    expect_error(scene_with("<shape type=\"sphere\">\n<float name=\"radius\" value=\"1\"/>\n<string name=\"radius2\" value=\"x\"/>\n</shape>"),
+    expect_error(scene_with("<shape type=\"sphere\">\n<float name=\"radius\" value=\"1\"/>\n<string name=\"radius2\" "
+                            "value=\"x\"/>\n</shape>"),
                  "test.xml:5: <shape>", "unused parameter 'radius2'");
     // Wrong type at the parameter's own line.
     expect_error(scene_with("<shape type=\"sphere\">\n<string name=\"radius\" value=\"big\"/>\n</shape>"),
@@ -118,20 +122,28 @@ TEST(SceneLoaderFull, SensorFilmSamplerErrors) {
     expect_error("<scene version=\"3.0.0\">\n<shape type=\"sphere\"/>\n</scene>", "test.xml:1: <scene>", "no <sensor");
     expect_error("<scene version=\"3.0.0\">\n<sensor type=\"orthographic\"/>\n</scene>", "test.xml:2: <sensor>",
                  "orthographic");
-    expect_error("<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n"
-                 "<film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"crop_width\" value=\"9\"/></film>\n"
-                 "</sensor>\n</scene>",
-                 "test.xml:4: <film>", "does not fit");
-    expect_error("<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n"
-                 "<sampler type=\"orthogonal\"/>\n</sensor>\n</scene>",
-                 "test.xml:4: <sampler>", "unknown sampler type 'orthogonal' (supported: independent, stratified");
-    expect_error("<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n"
-                 "<film type=\"hdrfilm\">\n<float name=\"exposure\" value=\"1\"/>\n</film>\n</sensor>\n</scene>",
-                 "test.xml:5: <film>", "unused parameter 'exposure'");
-    expect_error("<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n"
-                 "<film type=\"hdrfilm\">\n<rfilter type=\"lanczos\"/>\n</film>\n</sensor>\n</scene>",
-                 "test.xml:5: <rfilter>", "lanczos");
-    expect_error("<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"200\"/>\n</sensor>\n</scene>", "test.xml:3: <sensor>", "fov");
+    expect_error(
+        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n"
+        "<film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"crop_width\" "
+        "value=\"9\"/></film>\n"
+        "</sensor>\n</scene>",
+        "test.xml:4: <film>", "does not fit");
+    expect_error(
+        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n"
+        "<sampler type=\"orthogonal\"/>\n</sensor>\n</scene>",
+        "test.xml:4: <sampler>", "unknown sampler type 'orthogonal' (supported: independent, stratified");
+    expect_error(
+        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n"
+        "<film type=\"hdrfilm\">\n<float name=\"exposure\" value=\"1\"/>\n</film>\n</sensor>\n</scene>",
+        "test.xml:5: <film>", "unused parameter 'exposure'");
+    expect_error(
+        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n"
+        "<film type=\"hdrfilm\">\n<rfilter type=\"lanczos\"/>\n</film>\n</sensor>\n</scene>",
+        "test.xml:5: <rfilter>", "lanczos");
+    expect_error(
+        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" "
+        "value=\"200\"/>\n</sensor>\n</scene>",
+        "test.xml:3: <sensor>", "fov");
 }
 
 TEST(SceneLoaderFull, EmitterPlacementErrors) {
@@ -144,7 +156,8 @@ TEST(SceneLoaderFull, EmitterPlacementErrors) {
 }
 
 TEST(SceneLoaderFull, MissingMeshNamesThePath) {
-    const std::string msg = load_error(scene_with("<shape type=\"obj\">\n<string name=\"filename\" value=\"nope.obj\"/>\n</shape>"));
+    const std::string msg =
+        load_error(scene_with("<shape type=\"obj\">\n<string name=\"filename\" value=\"nope.obj\"/>\n</shape>"));
     EXPECT_EQ(msg.rfind("test.xml:", 0), 0u) << msg;
     EXPECT_NE(msg.find("nope.obj"), std::string::npos) << msg;
 }

@@ -269,9 +269,9 @@ TEST(SceneParser, TransformCompositionMatchesTransformMath) {
     EXPECT_NEAR(p.x, 5, 1e-12);
     EXPECT_NEAR(p.y, 2, 1e-12);
     EXPECT_NEAR(p.z, 8, 1e-12);
-    expect_matrix_near(value_of<Transform>(shape, "cam"),
-                       Transform::translate(Vec3(0, 0, 2)) *
-                           Transform::look_at(Vec3(0, 1, -5), Vec3(0, 0, 0), Vec3(0, 1, 0)));
+    expect_matrix_near(
+        value_of<Transform>(shape, "cam"),
+        Transform::translate(Vec3(0, 0, 2)) * Transform::look_at(Vec3(0, 1, -5), Vec3(0, 0, 0), Vec3(0, 1, 0)));
     EXPECT_TRUE(value_of<Transform>(shape, "id").is_identity());
     const Vec3 r = value_of<Transform>(shape, "ax").vector(Vec3(1, 0, 0));  // right-handed about +z
     EXPECT_NEAR(r.x, 0, 1e-12);
@@ -279,8 +279,9 @@ TEST(SceneParser, TransformCompositionMatchesTransformMath) {
 }
 
 TEST(SceneParser, MalformedXmlReportsLine) {
-    expect_error("<scene version=\"3.0.0\">\n  <bsdf type=\"diffuse\">\n    <float name=\"a\" value=\"1\">\n  </bsdf>\n</scene>",
-                 4, "xml", "malformed XML");
+    expect_error(
+        "<scene version=\"3.0.0\">\n  <bsdf type=\"diffuse\">\n    <float name=\"a\" value=\"1\">\n  </bsdf>\n</scene>",
+        4, "xml", "malformed XML");
     expect_error("<scene version=\"3.0.0\">\n\n  <bsdf type=\"diffuse\" <float/>\n</scene>", 3, "xml", "malformed XML");
     expect_error("", 1, "xml", "malformed XML");
     expect_error("<!-- only a comment -->", 1, "xml", "malformed XML");
@@ -350,9 +351,11 @@ TEST(SceneParser, BadValues) {
     expect_error(in_shape(R"(<spectrum name="s" value="500:1:2"/>)"), 3, "spectrum", "not a wavelength:value pair");
     expect_error(in_shape(R"(<point name="p" value="1" x="2"/>)"), 3, "point", "not both");
     expect_error(in_shape(R"(<float value="1"/>)"), 3, "float", "missing attribute 'name'");
-    expect_error(in_shape(R"(<transform name="t"><rotate x="1"/></transform>)"), 3, "rotate", "missing attribute 'angle'");
+    expect_error(in_shape(R"(<transform name="t"><rotate x="1"/></transform>)"), 3, "rotate",
+                 "missing attribute 'angle'");
     expect_error(in_shape(R"(<transform name="t"><matrix value="1 2 3"/></transform>)"), 3, "matrix", "16");
-    expect_error(in_shape(R"(<transform name="t"><matrix value="0 0 0 0 0 0 0 0 0"/></transform>)"), 3, "matrix", "singular");
+    expect_error(in_shape(R"(<transform name="t"><matrix value="0 0 0 0 0 0 0 0 0"/></transform>)"), 3, "matrix",
+                 "singular");
     expect_error(in_shape(R"(<transform name="t"><lookat origin="0 0 0" target="0 1 0" up="0 1 0"/></transform>)"), 3,
                  "lookat", "parallel");
     expect_error(in_shape(R"(<bsdf id="x"/>)"), 3, "bsdf", "missing attribute 'type'");

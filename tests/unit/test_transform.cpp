@@ -6,8 +6,8 @@
 using namespace snell;
 
 TEST(Transform, InverseRoundTrip) {
-    const Transform t = Transform::translate({1, 2, 3}) * Transform::rotate({0.3, 1, -0.2}, 37) *
-                        Transform::scale({2, 0.5, 3});
+    const Transform t =
+        Transform::translate({1, 2, 3}) * Transform::rotate({0.3, 1, -0.2}, 37) * Transform::scale({2, 0.5, 3});
     const Vec3 p(0.3, -1.2, 4.0);
     const Vec3 q = t.inverse().point(t.point(p));
     EXPECT_NEAR(length(q - p), 0.0, 1e-12);

@@ -69,7 +69,7 @@ std::vector<std::string> BdptTracer::layer_names() const {
 }
 
 SampledSpectrum BdptTracer::li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
-                                         SplatList& splats) const {
+                                     SplatList& splats) const {
     thread_counters().paths++;
     const SampledWavelengths& wl = cs.wl;
     const int md = m_settings.max_depth;
@@ -97,8 +97,8 @@ SampledSpectrum BdptTracer::li_splat(const CameraSample& cs, const Ray& ray, con
     const size_t cam_max = md < 0 ? size_t(kUnboundedVertices) : size_t(md + 1);
     const size_t light_max = md < 0 ? size_t(kUnboundedVertices) : size_t(md);
     const double pdf_primary = pinhole.pdf_dir(dot(ray.d, camera.forward()));
-    random_walk(scene, ray, sampler, wl, SampledSpectrum(1.0), pdf_primary, cam_max, m_settings.rr_depth, TransportMode::Radiance,
-                cam, &esc);
+    random_walk(scene, ray, sampler, wl, SampledSpectrum(1.0), pdf_primary, cam_max, m_settings.rr_depth,
+                TransportMode::Radiance, cam, &esc);
     const SceneDisk disk(scene.bounds());
     light_subpath(scene, disk, sampler, wl, light_max, m_settings.rr_depth, lig);
 

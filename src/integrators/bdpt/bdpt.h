@@ -1,6 +1,6 @@
 #pragma once
-#include "integrators/integrator.h"
 #include "camera/camera.h"
+#include "integrators/integrator.h"
 #include "integrators/path/path_tracer.h"
 
 namespace snell {

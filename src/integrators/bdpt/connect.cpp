@@ -32,8 +32,8 @@ SampledSpectrum joined(const SampledSpectrum& c, const Vertex& z, const Vertex& 
 
 }  // namespace
 
-SampledSpectrum connect(const Scene& scene, const std::vector<Vertex>& cam, const std::vector<Vertex>& lig, int s, int t,
-               const SampledWavelengths& wl) {
+SampledSpectrum connect(const Scene& scene, const std::vector<Vertex>& cam, const std::vector<Vertex>& lig, int s,
+                        int t, const SampledWavelengths& wl) {
     const Vertex& z = cam[size_t(t - 1)];
     const Vertex& y = lig[size_t(s - 1)];
     if (!z.connectible() || !y.connectible()) return {};
@@ -53,8 +53,8 @@ SampledSpectrum connect(const Scene& scene, const std::vector<Vertex>& cam, cons
     if (!(d2 > 0)) return {};
     const double dist = std::sqrt(d2);
     d /= dist;
-    const SampledSpectrum fz =
-        z.bsdf->eval({wl, TransportMode::Radiance}, z.si.to_local(z.si.wo), z.si.to_local(d)) * std::abs(dot(z.si.n, d));
+    const SampledSpectrum fz = z.bsdf->eval({wl, TransportMode::Radiance}, z.si.to_local(z.si.wo), z.si.to_local(d)) *
+                               std::abs(dot(z.si.n, d));
     if (fz.is_zero()) return {};
     SampledSpectrum fy;
     if (s == 1) {

@@ -14,8 +14,12 @@ double mis_weight(const Scene& scene, const SceneDisk& disk, const std::vector<V
     if (s + t == 2) return 1.0;  // (0, 2) only: light vertex to pinhole, (1, 1), is not taken
     thread_local std::vector<double> zr, zf, yr, yf;
     thread_local std::vector<char> zd, yd;
-    zr.resize(size_t(t)); zf.resize(size_t(t)); zd.resize(size_t(t));
-    yr.resize(size_t(s)); yf.resize(size_t(s)); yd.resize(size_t(s));
+    zr.resize(size_t(t));
+    zf.resize(size_t(t));
+    zd.resize(size_t(t));
+    yr.resize(size_t(s));
+    yf.resize(size_t(s));
+    yd.resize(size_t(s));
     for (int i = 0; i < t; ++i) zr[i] = cam[i].pdf_rev, zf[i] = cam[i].pdf_fwd, zd[i] = cam[i].delta;
     for (int i = 0; i < s; ++i) yr[i] = lig[i].pdf_rev, yf[i] = lig[i].pdf_fwd, yd[i] = lig[i].delta;
     const Vertex& z = cam[size_t(t - 1)];

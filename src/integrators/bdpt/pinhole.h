@@ -16,7 +16,9 @@ struct Pinhole {
     double area = 0;  // A
 
     Pinhole(const PerspectiveCamera& cam, const FilmSpec& spec)
-        : camera(&cam), window(spec), area(cam.pixel_plane_area() * double(spec.out_width()) * double(spec.out_height())) {}
+        : camera(&cam),
+          window(spec),
+          area(cam.pixel_plane_area() * double(spec.out_width()) * double(spec.out_height())) {}
     /// Raster position (full film) at which p is seen, when a pixel filter of the output
     /// window covers it (the window grown by the filter margin, where camera samples land too).
     bool raster(const Vec3& p, Vec2* r, double* cos_theta) const {
@@ -24,7 +26,9 @@ struct Pinhole {
         const Vec2 o = window.sample_origin(), e = window.sample_extent();
         return r->x >= o.x && r->x < o.x + e.x && r->y >= o.y && r->y < o.y + e.y;
     }
-    double pdf_dir(double cos_theta) const { return cos_theta > 0 ? 1.0 / (area * cos_theta * cos_theta * cos_theta) : 0.0; }
+    double pdf_dir(double cos_theta) const {
+        return cos_theta > 0 ? 1.0 / (area * cos_theta * cos_theta * cos_theta) : 0.0;
+    }
     double importance(double cos_theta) const { return cos_theta > 0 ? pdf_dir(cos_theta) / cos_theta : 0.0; }
 };
 

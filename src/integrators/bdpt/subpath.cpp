@@ -13,10 +13,11 @@
 namespace snell::bdpt {
 
 void random_walk(const Scene& scene, Ray ray, Sampler& sampler, const SampledWavelengths& wl, SampledSpectrum beta,
-                 double pdf_dir,
-                 size_t max_vertices, int rr_depth, TransportMode mode, std::vector<Vertex>& path, Escape* escape) {
+                 double pdf_dir, size_t max_vertices, int rr_depth, TransportMode mode, std::vector<Vertex>& path,
+                 Escape* escape) {
     const BSDFContext ctx{wl, mode};
-    const BSDFContext ctx_rev{wl, mode == TransportMode::Radiance ? TransportMode::Importance : TransportMode::Radiance};
+    const BSDFContext ctx_rev{wl,
+                              mode == TransportMode::Radiance ? TransportMode::Importance : TransportMode::Radiance};
     MediumStack media;
     double eta_scale = 1;
     bool hero_only = !path.empty() && path.back().hero_only;
@@ -31,7 +32,8 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, const SampledWav
         // segment it just travelled lay in that interior. (Camera subpaths start outside.)
         if (mode == TransportMode::Importance && !media.inside() && dot(ray.d, si.ng) > 0) {
             const BSDF* b = si.bsdf();
-            if (b && (b->eta(wl.hero()) != 1.0 || b->interior_absorption())) media.cross(b->interior_absorption(), true);
+            if (b && (b->eta(wl.hero()) != 1.0 || b->interior_absorption()))
+                media.cross(b->interior_absorption(), true);
         }
         if (media.inside()) beta *= media.transmittance(si.t, wl);
         Vertex v;
@@ -79,8 +81,8 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, const SampledWav
     }
 }
 
-void light_subpath(const Scene& scene, const SceneDisk& disk, Sampler& sampler, const SampledWavelengths& wl, size_t max_vertices,
-                   int rr_depth, std::vector<Vertex>& path) {
+void light_subpath(const Scene& scene, const SceneDisk& disk, Sampler& sampler, const SampledWavelengths& wl,
+                   size_t max_vertices, int rr_depth, std::vector<Vertex>& path) {
     path.clear();
     double pmf = 0;
     const Light* light = scene.light_sampler().sample(sampler.next_1d(), &pmf);
@@ -108,9 +110,12 @@ void light_subpath(const Scene& scene, const SceneDisk& disk, Sampler& sampler, 
     SampledSpectrum le;
     Vec3 w;
     if (delta_position(*light)) {
-        if (const auto* pl = dynamic_cast<const PointLight*>(light)) y0.si.p = pl->position();
-        else if (const auto* sl = dynamic_cast<const SpotLight*>(light)) y0.si.p = sl->position();
-        else return;
+        if (const auto* pl = dynamic_cast<const PointLight*>(light))
+            y0.si.p = pl->position();
+        else if (const auto* sl = dynamic_cast<const SpotLight*>(light))
+            y0.si.p = sl->position();
+        else
+            return;
         w = warp::square_to_uniform_sphere(u_dir);
         pdf_dir = kInv4Pi;
         le = light->emitted(y0.si.p, Vec3(), w, wl);

@@ -24,14 +24,14 @@ struct Escape {
 // Extends `path` (holding its first vertex) by BSDF sampling until `max_vertices`, absorption
 // or roulette. `pdf_dir` is the density of `ray.d` at the first vertex.
 void random_walk(const Scene& scene, Ray ray, Sampler& sampler, const SampledWavelengths& wl, SampledSpectrum beta,
-                 double pdf_dir,
-                 size_t max_vertices, int rr_depth, TransportMode mode, std::vector<Vertex>& path, Escape* escape);
+                 double pdf_dir, size_t max_vertices, int rr_depth, TransportMode mode, std::vector<Vertex>& path,
+                 Escape* escape);
 
 // Samples y_0 on a light and walks the light subpath. A finite light gives a point and a
 // cosine-weighted (area) or uniform (point, spot) direction; a light at infinity gives a
 // direction d towards it (its own sample_li distribution) and a point on the scene disk facing
 // d, from which the subpath travels along -d.
-void light_subpath(const Scene& scene, const SceneDisk& disk, Sampler& sampler, const SampledWavelengths& wl, size_t max_vertices,
-                   int rr_depth, std::vector<Vertex>& path);
+void light_subpath(const Scene& scene, const SceneDisk& disk, Sampler& sampler, const SampledWavelengths& wl,
+                   size_t max_vertices, int rr_depth, std::vector<Vertex>& path);
 
 }  // namespace snell::bdpt

@@ -7,8 +7,8 @@
 
 namespace snell::bdpt {
 
-double pdf_area(const Vertex& v, const Vertex* prev, const Vertex& next, TransportMode mode, const SampledWavelengths& wl,
-                const SceneDisk& disk) {
+double pdf_area(const Vertex& v, const Vertex* prev, const Vertex& next, TransportMode mode,
+                const SampledWavelengths& wl, const SceneDisk& disk) {
     const Vec3 wi = direction(v, next);
     if (v.type == VertexType::Camera) {
         Vec2 r;

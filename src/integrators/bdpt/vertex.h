@@ -23,14 +23,14 @@ enum class VertexType { Camera, Light, Surface };
 /// subpath sampled it, pdf_rev as the opposite subpath would (0 through delta lobes).
 struct Vertex {
     VertexType type = VertexType::Surface;
-    SurfaceInteraction si;      // camera: p only; light: p and n (zero for point and spot)
+    SurfaceInteraction si;  // camera: p only; light: p and n (zero for point and spot)
     const BSDF* bsdf = nullptr;
     const Light* light = nullptr;  // light vertex: its light; surface vertex: the shape's emitter
-    SampledSpectrum beta;       // throughput of the subpath up to and including this vertex
-    bool hero_only = false;     // a dispersive refraction before it: beta is the hero's alone (scaled)
+    SampledSpectrum beta;          // throughput of the subpath up to and including this vertex
+    bool hero_only = false;        // a dispersive refraction before it: beta is the hero's alone (scaled)
     double pdf_fwd = 0, pdf_rev = 0;
-    bool delta = false;         // scattered by a delta lobe on its own subpath
-    MediumStack media;          // medium on the side the subpath arrived from
+    bool delta = false;                // scattered by a delta lobe on its own subpath
+    MediumStack media;                 // medium on the side the subpath arrived from
     const Pinhole* pinhole = nullptr;  // camera vertex only
     // A vertex at infinity (the start of a light subpath from an environment or directional
     // light, or where a camera subpath escapes): `dir` points from the scene towards it, and
@@ -39,9 +39,7 @@ struct Vertex {
     Vec3 dir;
 
     bool has_normal() const { return length_squared(si.ng) > 0; }
-    bool connectible() const {
-        return type != VertexType::Surface || (bsdf && bsdf->is_smooth_sampled());
-    }
+    bool connectible() const { return type != VertexType::Surface || (bsdf && bsdf->is_smooth_sampled()); }
 };
 
 inline bool delta_position(const Light& l) { return l.kind() == LightKind::Point || l.kind() == LightKind::Spot; }
@@ -79,8 +77,8 @@ inline double to_area(double pdf_dir, const Vertex& from, const Vertex& to) {
 
 // Area density at `next` with which a subpath continuing from `v` (reached from `prev`, which
 // for a light vertex is ignored) samples `next`; `mode` is the transport of that subpath.
-double pdf_area(const Vertex& v, const Vertex* prev, const Vertex& next, TransportMode mode, const SampledWavelengths& wl,
-                const SceneDisk& disk);
+double pdf_area(const Vertex& v, const Vertex* prev, const Vertex& next, TransportMode mode,
+                const SampledWavelengths& wl, const SceneDisk& disk);
 
 // Density of choosing light vertex `v` (on v.light) as the start of a light subpath: of its
 // point (area measure) or, at infinity, of its direction (solid angle).

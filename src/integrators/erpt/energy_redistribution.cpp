@@ -22,8 +22,8 @@ ChainPlan plan_chains(double e, int mutations, double deposition_energy, int max
     return plan;
 }
 
-void redistribute_energy(const std::vector<double>& start, const PathSample& seed, const ChainPlan& plan,
-                         int mutations, uint64_t stream_bits, double s1, double s2, const ChainEvaluate& evaluate,
+void redistribute_energy(const std::vector<double>& start, const PathSample& seed, const ChainPlan& plan, int mutations,
+                         uint64_t stream_bits, double s1, double s2, const ChainEvaluate& evaluate,
                          const ChainDeposit& deposit) {
     for (int c = 0; c < plan.chains; ++c) {
         PrimarySampleSampler mutator(mix_bits(stream_bits + 0x9e3779b97f4a7c15ULL * uint64_t(c + 1)), uint64_t(c),

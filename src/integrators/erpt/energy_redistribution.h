@@ -41,8 +41,8 @@ using ChainDeposit = std::function<void(const PathSample& s, const Vec3& xyz)>;
 /// current and the proposed state by their probabilities of being the next state (expected
 /// values, as in pssmlt), as their XYZ scaled to luminance quantum. Chain c draws from a PCG32
 /// stream fixed by (stream_bits, c), so the deposits are a pure function of the arguments.
-void redistribute_energy(const std::vector<double>& start, const PathSample& seed, const ChainPlan& plan,
-                         int mutations, uint64_t stream_bits, double s1, double s2, const ChainEvaluate& evaluate,
+void redistribute_energy(const std::vector<double>& start, const PathSample& seed, const ChainPlan& plan, int mutations,
+                         uint64_t stream_bits, double s1, double s2, const ChainEvaluate& evaluate,
                          const ChainDeposit& deposit);
 
 }  // namespace snell

@@ -53,8 +53,9 @@ ErptSettings ErptSettings::from_props(const Props& props) {
 
 std::unique_ptr<ErptTracer> ErptIntegrator::prepare_erpt(const Scene& scene, const FilmSpec& film,
                                                          const RenderOptions& opt) const {
-    const std::shared_ptr<const PathTracer> inner = make_watching_estimator(
-        m_settings.sampler, m_settings.path, m_settings.mnee, resolve_shape_ids(scene, m_settings.shapes, m_settings.loc));
+    const std::shared_ptr<const PathTracer> inner =
+        make_watching_estimator(m_settings.sampler, m_settings.path, m_settings.mnee,
+                                resolve_shape_ids(scene, m_settings.shapes, m_settings.loc));
     const int n_lambda = spectral_samples();
     if (m_settings.deposition_energy > 0)
         return std::make_unique<ErptTracer>(m_settings, inner, film, n_lambda, m_settings.deposition_energy, 0.0);
@@ -136,7 +137,7 @@ private:
 }  // namespace
 
 SampledSpectrum ErptTracer::li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
-                                         SplatList& splats) const {
+                                     SplatList& splats) const {
     const FilmSpec& film = m_film;
     const int w = film.out_width(), h = film.out_height();
     const bool restricted = !m_settings.shapes.empty();

@@ -24,8 +24,8 @@ class Shape;
 
 /// Settings of `erpt` (scene-file names in parentheses).
 struct ErptSettings {
-    std::string sampler = "nee";    ///< (sampler) inner estimator: "nee" or "mnee"
-    int mutations = 512;            ///< (mutations) M, mutations per chain (Hanika et al. 2015's ERPT)
+    std::string sampler = "nee";  ///< (sampler) inner estimator: "nee" or "mnee"
+    int mutations = 512;          ///< (mutations) M, mutations per chain (Hanika et al. 2015's ERPT)
     /// (deposition_energy) E_d, luminance Y deposited per mutation (in the units of a pixel
     /// sample's XYZ); 0: from the bootstrap, E_d = mean eligible Y / (M chains_per_sample).
     double deposition_energy = 0;
@@ -40,9 +40,9 @@ struct ErptSettings {
     /// paths. Empty: every seed with e > 0.
     std::vector<std::string> shapes;
     double s1 = 1.0 / 1024, s2 = 1.0 / 64;  ///< small-step range (Kelemen's, as pssmlt; not in scene files)
-    PathSettings path;              ///< (max_depth, rr_depth, hide_emitters) of the inner estimator
-    MneeSettings mnee;              ///< MNEE parameters when sampler = "mnee"
-    SourceLoc loc;                  ///< the <integrator> element, for errors found at prepare()
+    PathSettings path;                      ///< (max_depth, rr_depth, hide_emitters) of the inner estimator
+    MneeSettings mnee;                      ///< MNEE parameters when sampler = "mnee"
+    SourceLoc loc;                          ///< the <integrator> element, for errors found at prepare()
     static ErptSettings from_props(const Props& props);
 };
 
@@ -55,8 +55,12 @@ class ErptTracer final : public SampleTracer {
 public:
     ErptTracer(const ErptSettings& settings, std::shared_ptr<const PathTracer> inner, const FilmSpec& film,
                int spectral_samples, double deposit, double mean_energy)
-        : m_settings(settings), m_inner(std::move(inner)), m_film(film), m_spectral_samples(spectral_samples),
-          m_deposit(deposit), m_mean_energy(mean_energy) {}
+        : m_settings(settings),
+          m_inner(std::move(inner)),
+          m_film(film),
+          m_spectral_samples(spectral_samples),
+          m_deposit(deposit),
+          m_mean_energy(mean_energy) {}
     SampledSpectrum li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
                              SplatList& splats) const override;
     bool splats() const override { return true; }

@@ -37,11 +37,15 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     s.walk.threshold = p.get_float("threshold", s.walk.threshold);
     s.walk.allow_error_increase = p.get_bool("allow_error_increase", s.walk.allow_error_increase);
     const std::string proj = p.get_string("projection", "closest_point");
-    if (proj == "closest_point") s.walk.projection = Projection::ClosestPoint;
-    else if (proj == "raycast") s.walk.projection = Projection::RayCast;
-    else p.raise_param("projection", "projection must be 'closest_point' or 'raycast'");
+    if (proj == "closest_point")
+        s.walk.projection = Projection::ClosestPoint;
+    else if (proj == "raycast")
+        s.walk.projection = Projection::RayCast;
+    else
+        p.raise_param("projection", "projection must be 'closest_point' or 'raycast'");
     if (s.max_vertices < 1 || s.max_vertices > RefractiveSuffix::kMaxVertices)
-        p.raise_param("max_vertices", "max_vertices must lie in [1, " + std::to_string(RefractiveSuffix::kMaxVertices) + "]");
+        p.raise_param("max_vertices",
+                      "max_vertices must lie in [1, " + std::to_string(RefractiveSuffix::kMaxVertices) + "]");
     if (s.walk.max_iterations < 1) p.raise_param("max_iterations", "max_iterations must be >= 1");
     if (!(s.walk.threshold > 0)) p.raise_param("threshold", "threshold must be > 0");
     if (!(s.cull_margin >= 0)) p.raise_param("cull_margin", "cull_margin must be >= 0");
@@ -105,8 +109,8 @@ double MneeIntegrator::emitter_hit_weight(const Scene& scene, const PathState& s
     return power3(p_bsdf, p_mnee, p_nee);
 }
 
-SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const SurfaceInteraction& si,
-                                                     const BSDF& bsdf, const BSDFContext& ctx, const PathState& state,
+SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
+                                                     const BSDFContext& ctx, const PathState& state,
                                                      Sampler& sampler) const {
     const RefractiveSuffix& s = static_cast<const MneePathState&>(state).suffix;
     const Light* light = nullptr;
@@ -125,16 +129,16 @@ SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const S
     const double p_bsdf =
         lp.delta ? 0.0 : s.p_prefix * bsdf.pdf(ctx, wo, wi) * std::abs(dot(lp.n, ls->wi)) / length_squared(lp.p - si.p);
     const bool refracts = dot(si.wo, si.ng) * dot(ls->wi, si.ng) < 0;
-    const double p_mnee = s.transmissions_only && refracts
-                              ? mnee_pdf(scene, m_mnee, s.xb, *s.xb.bsdf(), s.chain.data(), s.k, *light, pmf, lp.p,
-                                         lp.n, ctx.hero())
-                              : 0.0;
+    const double p_mnee = s.transmissions_only && refracts ? mnee_pdf(scene, m_mnee, s.xb, *s.xb.bsdf(), s.chain.data(),
+                                                                      s.k, *light, pmf, lp.p, lp.n, ctx.hero())
+                                                           : 0.0;
     if (m_mnee.biased && s.transmissions_only && refracts && !(p_mnee > 0)) return {};
     return nee_estimate(si, bsdf, ctx, state, *ls, f, pmf, power3(p_nee, p_bsdf, p_mnee));
 }
 
 SampledSpectrum MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
-                                                 const BSDFContext& ctx, const PathState& state, Sampler& sampler) const {
+                                                 const BSDFContext& ctx, const PathState& state,
+                                                 Sampler& sampler) const {
     if (is_manifold_interface(&bsdf, ctx.hero())) return connect_at_interface(scene, si, bsdf, ctx, state, sampler);
 
     // Alg. 1, line 1: the light point, drawn exactly as NEE draws it.
@@ -149,14 +153,19 @@ SampledSpectrum MneeIntegrator::connect_to_light(const Scene& scene, const Surfa
     switch (trace_seed_path(scene, si, lp.p, ctx.hero(), m_mnee, &chain)) {
         case SeedStatus::Clear:
             // Nothing refracts in between: MNEE is NEE (same sample, same weight).
-        {
-            const SampledSpectrum f = bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls->wi));
-            if (f.is_zero()) return {};
-            return nee_estimate(si, bsdf, ctx, state, *ls, f, pmf, nee_weight(si, bsdf, ctx, *ls, pmf));
-        }
-        case SeedStatus::Occluded: thread_counters().seeds_occluded++; return {};
-        case SeedStatus::TooMany: thread_counters().seeds_too_many++; return {};
-        case SeedStatus::Refractive: break;
+            {
+                const SampledSpectrum f = bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls->wi));
+                if (f.is_zero()) return {};
+                return nee_estimate(si, bsdf, ctx, state, *ls, f, pmf, nee_weight(si, bsdf, ctx, *ls, pmf));
+            }
+        case SeedStatus::Occluded:
+            thread_counters().seeds_occluded++;
+            return {};
+        case SeedStatus::TooMany:
+            thread_counters().seeds_too_many++;
+            return {};
+        case SeedStatus::Refractive:
+            break;
     }
     // The connection adds k + 1 segments to the depth + 1 the path has (max_depth, Mitsuba's
     // meaning); BSDF sampling cannot produce longer paths, so neither may MNEE.
@@ -174,9 +183,9 @@ SampledSpectrum MneeIntegrator::connect_to_light(const Scene& scene, const Surfa
 }
 
 SampledSpectrum MneeIntegrator::connect_per_wavelength(const Scene& scene, const SurfaceInteraction& si,
-                                                       const BSDF& bsdf, const BSDFContext& ctx,
-                                                       const PathState& state, const Light& light, double pmf,
-                                                       const LightPoint& lp, const std::vector<ManifoldVertex>& seed,
+                                                       const BSDF& bsdf, const BSDFContext& ctx, const PathState& state,
+                                                       const Light& light, double pmf, const LightPoint& lp,
+                                                       const std::vector<ManifoldVertex>& seed,
                                                        Sampler& sampler) const {
     // Each wavelength walks from the same seed with its own eta (Alg. 1 per wavelength), and its
     // result is weighted against the other techniques as if it were the hero: BSDF sampling
@@ -190,7 +199,8 @@ SampledSpectrum MneeIntegrator::connect_per_wavelength(const Scene& scene, const
         std::vector<ManifoldVertex> chain = seed;
         for (ManifoldVertex& v : chain) v.eta = v.bsdf->eta(ctx.wl[i]);
         const BSDFContext ctx_i{SampledWavelengths::single(ctx.wl[i], ctx.wl.pdf(i)), ctx.mode};
-        const MneeConnection c = mnee_connect(scene, m_mnee, si, bsdf, ctx_i, state.media, light, pmf, lp, chain, sampler);
+        const MneeConnection c =
+            mnee_connect(scene, m_mnee, si, bsdf, ctx_i, state.media, light, pmf, lp, chain, sampler);
         if (c.outcome == MneeOutcome::Success) out[i] = c.value[0] * power3(c.pdf_mnee, c.pdf_bsdf, c.pdf_nee_last);
     }
     return out;

@@ -27,11 +27,12 @@ public:
     static MneeSettings settings_from_props(const Props& props);
 
 protected:
-    SampledSpectrum connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
-                            const PathState& state, Sampler& sampler) const override;
+    SampledSpectrum connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
+                                     const BSDFContext& ctx, const PathState& state, Sampler& sampler) const override;
     double emitter_hit_weight(const Scene& scene, const PathState& state, const Light& light, const Vec3& p,
                               const Vec3& n, const Vec3& d, const BSDFContext& ctx) const override;
-    void on_arrival(PathState& state, const SurfaceInteraction& si, const Ray& ray, const BSDFContext& ctx) const override;
+    void on_arrival(PathState& state, const SurfaceInteraction& si, const Ray& ray,
+                    const BSDFContext& ctx) const override;
     void on_scatter(PathState& state, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFSample& bs,
                     const BSDFContext& ctx) const override;
 
@@ -39,7 +40,7 @@ private:
     /// NEE at a rough refractive vertex x_k, weighted against BSDF sampling and against MNEE
     /// from x_b when the path so far is x_b followed by refractions.
     SampledSpectrum connect_at_interface(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
-                                const BSDFContext& ctx, const PathState& state, Sampler& sampler) const;
+                                         const BSDFContext& ctx, const PathState& state, Sampler& sampler) const;
 
     /// MNEE through a dispersive chain with every wavelength alive: one solve per wavelength.
     SampledSpectrum connect_per_wavelength(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,

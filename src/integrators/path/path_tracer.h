@@ -17,8 +17,8 @@ struct LightSample;
 
 /// Settings shared by the path-tracing family (Mitsuba names).
 struct PathSettings {
-    int max_depth = -1;     ///< longest path in segments; -1: unbounded; 1: visible emitters only
-    int rr_depth = 5;       ///< Russian roulette starts at this depth
+    int max_depth = -1;          ///< longest path in segments; -1: unbounded; 1: visible emitters only
+    int rr_depth = 5;            ///< Russian roulette starts at this depth
     bool hide_emitters = false;  ///< directly visible emitters are black
     static PathSettings from_props(const Props& props);
 };
@@ -50,7 +50,7 @@ protected:
     /// Light connection from a vertex with a non-delta BSDF. Returns the contribution (to be
     /// multiplied by the path throughput). Default: NEE with MIS.
     virtual SampledSpectrum connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
-                                    const BSDFContext& ctx, const PathState& state, Sampler& sampler) const;
+                                             const BSDFContext& ctx, const PathState& state, Sampler& sampler) const;
     /// MIS weight of an emitter found by BSDF sampling at point p (normal n; zero for lights at
     /// infinity) along unit direction d from the previous vertex.
     virtual double emitter_hit_weight(const Scene& scene, const PathState& state, const Light& light, const Vec3& p,
@@ -66,12 +66,12 @@ protected:
     /// `keep_dark` keeps samples that emit nothing towards si (a spot light seen from outside
     /// its cone): MNEE reaches the light along another direction.
     static std::optional<LightSample> sample_light(const Scene& scene, const SurfaceInteraction& si,
-                                                   const SampledWavelengths& wl,
-                                                   Sampler& sampler, const Light** light, double* pmf,
-                                                   bool keep_dark = false);
+                                                   const SampledWavelengths& wl, Sampler& sampler, const Light** light,
+                                                   double* pmf, bool keep_dark = false);
     /// NEE for an already drawn light sample: shadow ray, power heuristic against BSDF sampling.
     static SampledSpectrum nee_connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
-                              const BSDFContext& ctx, const PathState& state, const LightSample& ls, double pmf);
+                                       const BSDFContext& ctx, const PathState& state, const LightSample& ls,
+                                       double pmf);
     /// MIS weight of NEE against BSDF sampling (power heuristic, solid angle).
     static double nee_weight(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
                              const LightSample& ls, double pmf);

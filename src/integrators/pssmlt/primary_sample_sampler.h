@@ -62,10 +62,10 @@ private:
     PCG32 m_rng;
     double m_p_large, m_s1, m_s2;
     std::vector<Dim> m_dims;
-    size_t m_next = 0;                 ///< next dimension to hand out in this iteration
+    size_t m_next = 0;  ///< next dimension to hand out in this iteration
     int64_t m_iteration = 0;
-    int64_t m_last_large_step = 0;     ///< iteration of the last accepted large step
-    bool m_large_step = true;          ///< iteration 0 draws every value fresh
+    int64_t m_last_large_step = 0;  ///< iteration of the last accepted large step
+    bool m_large_step = true;       ///< iteration 0 draws every value fresh
 };
 
 }  // namespace snell

@@ -44,7 +44,6 @@ std::shared_ptr<PathTracer> make_pssmlt_inner(const PssmltSettings& s) {
     return std::make_shared<PathTracer>(s.path, true);
 }
 
-
 namespace {
 
 // Stream identities: bootstrap path i and chain c never share a PCG32 stream.

@@ -25,11 +25,11 @@ struct PssmltSettings {
     /// (mutations_per_pixel) mutations in all chains together, per output pixel; 0: the
     /// render options' spp. Ignored in equal-time mode (RenderOptions::time_limit > 0).
     int64_t mutations_per_pixel = 0;
-    int64_t bootstrap_samples = 100000;   ///< (bootstrap_samples) independent paths estimating b
-    int chains = 0;                       ///< (chains) parallel Markov chains; 0: one per thread
+    int64_t bootstrap_samples = 100000;     ///< (bootstrap_samples) independent paths estimating b
+    int chains = 0;                         ///< (chains) parallel Markov chains; 0: one per thread
     double s1 = 1.0 / 1024, s2 = 1.0 / 64;  ///< small-step range (Kelemen's defaults, not in scene files)
-    PathSettings path;                    ///< (max_depth, rr_depth, hide_emitters) of the inner estimator
-    MneeSettings mnee;                    ///< MNEE parameters when sampler = "mnee"
+    PathSettings path;                      ///< (max_depth, rr_depth, hide_emitters) of the inner estimator
+    MneeSettings mnee;                      ///< MNEE parameters when sampler = "mnee"
     static PssmltSettings from_props(const Props& props);
 };
 
