@@ -27,6 +27,33 @@
 
 namespace snell::test {
 
+/// Pools the (expected, observed) cells whose expected count is below `min_expected` into one
+/// cell (folded into the smallest regular cell if the pool is still too small), as Pearson's
+/// test needs.
+inline std::vector<std::pair<double, double>> pool_cells(std::vector<std::pair<double, double>> cells,
+                                                         double min_expected) {
+    std::sort(cells.begin(), cells.end());
+    std::vector<std::pair<double, double>> pooled;
+    double pe = 0, po = 0;
+    for (auto& c : cells) {
+        if (c.first < min_expected) {
+            pe += c.first;
+            po += c.second;
+        } else {
+            pooled.push_back(c);
+        }
+    }
+    if (pe > 0 || po > 0) {
+        if (pe >= min_expected || pooled.empty()) {
+            pooled.push_back({pe, po});
+        } else {  // still too small: fold into the smallest regular cell
+            pooled.front().first += pe;
+            pooled.front().second += po;
+        }
+    }
+    return pooled;
+}
+
 /// Upper regularised incomplete gamma function Q(a, x) = Gamma(a, x) / Gamma(a), a > 0.
 /// Series for x < a + 1, modified Lentz continued fraction otherwise (both converge fast).
 inline double regularized_gamma_q(double a, double x) {
@@ -168,25 +195,7 @@ inline Chi2Result chi2_sphere_test(const std::function<std::optional<Vec3>(PCG32
     std::vector<std::pair<double, double>> cells;  // (expected, observed)
     for (int i = 0; i < nbins; ++i) cells.push_back({res.expected[i], res.observed[i]});
     cells.push_back({std::max(0.0, 1 - total) * double(opt.samples), double(failed)});
-    std::sort(cells.begin(), cells.end());
-    std::vector<std::pair<double, double>> pooled;
-    double pe = 0, po = 0;
-    for (auto& c : cells) {
-        if (c.first < opt.min_expected) {
-            pe += c.first;
-            po += c.second;
-        } else {
-            pooled.push_back(c);
-        }
-    }
-    if (pe > 0 || po > 0) {
-        if (pe >= opt.min_expected || pooled.empty()) {
-            pooled.push_back({pe, po});
-        } else {  // still too small: fold into the smallest regular cell
-            pooled.front().first += pe;
-            pooled.front().second += po;
-        }
-    }
+    const std::vector<std::pair<double, double>> pooled = pool_cells(std::move(cells), opt.min_expected);
     std::ostringstream msg;
     if (pooled.size() < 2) {
         res.message = "fewer than two cells after pooling";

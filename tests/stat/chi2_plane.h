@@ -72,25 +72,7 @@ inline Chi2Result chi2_plane_test(const std::function<std::optional<Vec2>(PCG32&
     std::vector<std::pair<double, double>> cells;  // (expected, observed)
     for (int i = 0; i < nbins; ++i) cells.push_back({res.expected[size_t(i)], res.observed[size_t(i)]});
     cells.push_back({std::max(0.0, 1 - total) * double(opt.samples), double(outside)});
-    std::sort(cells.begin(), cells.end());
-    std::vector<std::pair<double, double>> pooled;
-    double pe = 0, po = 0;
-    for (auto& c : cells) {
-        if (c.first < opt.min_expected) {
-            pe += c.first;
-            po += c.second;
-        } else {
-            pooled.push_back(c);
-        }
-    }
-    if (pe > 0 || po > 0) {
-        if (pe >= opt.min_expected || pooled.empty()) {
-            pooled.push_back({pe, po});
-        } else {  // still too small: fold into the smallest regular cell
-            pooled.front().first += pe;
-            pooled.front().second += po;
-        }
-    }
+    const std::vector<std::pair<double, double>> pooled = pool_cells(std::move(cells), opt.min_expected);
     if (pooled.size() < 2) {
         res.message = "fewer than two cells after pooling";
         return res;

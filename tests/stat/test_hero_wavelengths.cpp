@@ -1,26 +1,12 @@
 // Hero wavelengths (Wilkie et al. 2014): four stratified wavelengths per path remove the colour
 // noise of one wavelength per path without changing what any estimator converges to.
+#include "stat/furnace_scene.h"
 #include "stat/render_stats.h"
 
 using namespace snell;
 using namespace snell::test;
 
 namespace {
-
-// The white furnace of test_furnace.cpp, with a sensor big enough for per-pixel statistics.
-const char* kFurnace = R"(<scene version="3.0.0">
-  <default name="integrator" value="nee"/>
-  <default name="spectral_samples" value="4"/>
-  <integrator type="$integrator"><integer name="spectral_samples" value="$spectral_samples"/></integrator>
-  <sensor type="perspective">
-    <float name="fov" value="30"/>
-    <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/></film>
-  </sensor>
-  <shape type="sphere"><float name="radius" value="1"/>
-    <bsdf type="diffuse"><rgb name="reflectance" value="1, 1, 1"/></bsdf></shape>
-  <emitter type="constant"><rgb name="radiance" value="1, 1, 1"/></emitter>
-</scene>)";
 
 struct Whiteness {
     double chroma_rms = 0, chroma_max = 0;  ///< per pixel: |R/G - 1| and |B/G - 1|
