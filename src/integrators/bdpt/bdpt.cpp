@@ -63,7 +63,15 @@ std::vector<std::string> BdptTracer::layer_names() const {
         for (int s = 0; s <= k; ++s) {
             const int t = k + 1 - s;
             if (s == 1 && t == 1) continue;
-            names.push_back("d" + std::to_string(k) + "_s" + std::to_string(s) + "_t" + std::to_string(t));
+            // Appended piece by piece: GCC 12 at -O3 warns (-Wrestrict, a false positive) on
+            // "literal" + std::to_string(...).
+            std::string name = "d";
+            name += std::to_string(k);
+            name += "_s";
+            name += std::to_string(s);
+            name += "_t";
+            name += std::to_string(t);
+            names.push_back(std::move(name));
         }
     return names;
 }

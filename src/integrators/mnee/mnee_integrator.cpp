@@ -12,20 +12,6 @@
 
 namespace snell {
 
-namespace {
-
-/// Power-heuristic weight of technique a among three (area densities, same measure),
-/// normalised by the largest density so that squaring cannot overflow.
-double power3(double a, double b, double c) {
-    const double m = std::max(a, std::max(b, c));
-    if (!(m > 0)) return 0.0;
-    if (std::isinf(m)) return std::isinf(a) ? 1.0 / (std::isinf(a) + std::isinf(b) + std::isinf(c)) : 0.0;
-    a /= m, b /= m, c /= m;
-    return a * a / (a * a + b * b + c * c);
-}
-
-}  // namespace
-
 MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     MneeSettings s;
     s.max_vertices = int(p.get_int("max_vertices", s.max_vertices));
@@ -106,7 +92,7 @@ double MneeIntegrator::emitter_hit_weight(const Scene& scene, const PathState& s
     // Sec. 3.5: outlier removal drops transmissive-suffix paths that MNEE cannot find (paths
     // with an internal reflection are not MNEE's class and keep their weight).
     if (m_mnee.biased && s.transmissions_only && !(p_mnee > 0)) return 0.0;
-    return power3(p_bsdf, p_mnee, p_nee);
+    return power_heuristic(p_bsdf, {p_mnee, p_nee});
 }
 
 SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
@@ -133,7 +119,7 @@ SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const S
                                                                       s.k, *light, pmf, lp.p, lp.n, ctx.hero())
                                                            : 0.0;
     if (m_mnee.biased && s.transmissions_only && refracts && !(p_mnee > 0)) return {};
-    return nee_estimate(si, bsdf, ctx, state, *ls, f, pmf, power3(p_nee, p_bsdf, p_mnee));
+    return nee_estimate(si, bsdf, ctx, state, *ls, f, pmf, power_heuristic(p_nee, {p_bsdf, p_mnee}));
 }
 
 SampledSpectrum MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
@@ -179,7 +165,7 @@ SampledSpectrum MneeIntegrator::connect_to_light(const Scene& scene, const Surfa
     if (c.outcome != MneeOutcome::Success) return {};
     // A dispersive chain is the hero's path alone; scale it once unless the throughput already is.
     const SampledSpectrum value = c.hero_only && !state.hero_only ? ctx.wl.hero_only(c.value) : c.value;
-    return value * power3(c.pdf_mnee, c.pdf_bsdf, c.pdf_nee_last);
+    return value * power_heuristic(c.pdf_mnee, {c.pdf_bsdf, c.pdf_nee_last});
 }
 
 SampledSpectrum MneeIntegrator::connect_per_wavelength(const Scene& scene, const SurfaceInteraction& si,
@@ -201,7 +187,8 @@ SampledSpectrum MneeIntegrator::connect_per_wavelength(const Scene& scene, const
         const BSDFContext ctx_i{SampledWavelengths::single(ctx.wl[i], ctx.wl.pdf(i)), ctx.mode};
         const MneeConnection c =
             mnee_connect(scene, m_mnee, si, bsdf, ctx_i, state.media, light, pmf, lp, chain, sampler);
-        if (c.outcome == MneeOutcome::Success) out[i] = c.value[0] * power3(c.pdf_mnee, c.pdf_bsdf, c.pdf_nee_last);
+        if (c.outcome == MneeOutcome::Success)
+            out[i] = c.value[0] * power_heuristic(c.pdf_mnee, {c.pdf_bsdf, c.pdf_nee_last});
     }
     return out;
 }
