@@ -27,33 +27,6 @@
 
 namespace snell::test {
 
-/// Pools the (expected, observed) cells whose expected count is below `min_expected` into one
-/// cell (folded into the smallest regular cell if the pool is still too small), as Pearson's
-/// test needs.
-inline std::vector<std::pair<double, double>> pool_cells(std::vector<std::pair<double, double>> cells,
-                                                         double min_expected) {
-    std::sort(cells.begin(), cells.end());
-    std::vector<std::pair<double, double>> pooled;
-    double pe = 0, po = 0;
-    for (auto& c : cells) {
-        if (c.first < min_expected) {
-            pe += c.first;
-            po += c.second;
-        } else {
-            pooled.push_back(c);
-        }
-    }
-    if (pe > 0 || po > 0) {
-        if (pe >= min_expected || pooled.empty()) {
-            pooled.push_back({pe, po});
-        } else {  // still too small: fold into the smallest regular cell
-            pooled.front().first += pe;
-            pooled.front().second += po;
-        }
-    }
-    return pooled;
-}
-
 /// Upper regularised incomplete gamma function Q(a, x) = Gamma(a, x) / Gamma(a), a > 0.
 /// Series for x < a + 1, modified Lentz continued fraction otherwise (both converge fast).
 inline double regularized_gamma_q(double a, double x) {
@@ -89,6 +62,54 @@ inline double regularized_gamma_q(double a, double x) {
 
 /// P(X >= chi2) for X chi-square distributed with `dof` degrees of freedom.
 inline double chi2_p_value(double chi2, int dof) { return regularized_gamma_q(0.5 * dof, 0.5 * chi2); }
+
+/// Pools the (expected, observed) cells whose expected count is below `min_expected` into one
+/// cell (folded into the smallest regular cell if the pool is still too small), as Pearson's
+/// test needs.
+inline std::vector<std::pair<double, double>> pool_cells(std::vector<std::pair<double, double>> cells,
+                                                         double min_expected) {
+    std::sort(cells.begin(), cells.end());
+    std::vector<std::pair<double, double>> pooled;
+    double pe = 0, po = 0;
+    for (auto& c : cells) {
+        if (c.first < min_expected) {
+            pe += c.first;
+            po += c.second;
+        } else {
+            pooled.push_back(c);
+        }
+    }
+    if (pe > 0 || po > 0) {
+        if (pe >= min_expected || pooled.empty()) {
+            pooled.push_back({pe, po});
+        } else {  // still too small: fold into the smallest regular cell
+            pooled.front().first += pe;
+            pooled.front().second += po;
+        }
+    }
+    return pooled;
+}
+
+/// Pearson's statistic over pooled (expected, observed) cells, its p-value, and the verdict at
+/// family-wise level `significance` over `test_count` tests (Sidak); notes go to `msg`.
+template <class Result>
+void pearson_test(const std::vector<std::pair<double, double>>& pooled, double significance, int test_count,
+                  Result& res, std::ostream& msg) {
+    for (auto& [e, o] : pooled) {
+        if (e <= 0) {
+            if (o > 0) {
+                msg << "observed " << o << " samples where the pdf integrates to zero; ";
+                res.chi2 = kInfinity;
+            }
+            continue;
+        }
+        res.chi2 += sqr(o - e) / e;
+    }
+    res.dof = int(pooled.size()) - 1;
+    res.p_value = std::isfinite(res.chi2) ? chi2_p_value(res.chi2, res.dof) : 0.0;
+    res.threshold = 1 - std::pow(1 - significance, 1.0 / test_count);
+    res.passed = res.p_value >= res.threshold;
+}
 
 /// Adaptive Simpson quadrature of f over [a, b] to absolute tolerance eps, after first
 /// splitting into `panels` equal pieces (so features narrower than the interval are seen).
@@ -201,20 +222,7 @@ inline Chi2Result chi2_sphere_test(const std::function<std::optional<Vec3>(PCG32
         res.message = "fewer than two cells after pooling";
         return res;
     }
-    for (auto& [e, o] : pooled) {
-        if (e <= 0) {
-            if (o > 0) {
-                msg << "observed " << o << " samples where the pdf integrates to zero; ";
-                res.chi2 = kInfinity;
-            }
-            continue;
-        }
-        res.chi2 += sqr(o - e) / e;
-    }
-    res.dof = int(pooled.size()) - 1;
-    res.p_value = std::isfinite(res.chi2) ? chi2_p_value(res.chi2, res.dof) : 0.0;
-    res.threshold = 1 - std::pow(1 - opt.significance, 1.0 / opt.test_count);
-    res.passed = res.p_value >= res.threshold;
+    pearson_test(pooled, opt.significance, opt.test_count, res, msg);
     msg << "chi2 = " << res.chi2 << ", dof = " << res.dof << ", p = " << res.p_value << " (threshold " << res.threshold
         << "), pdf integral = " << total << ", valid samples = " << res.valid_samples << "/" << opt.samples;
     if (!res.passed) {

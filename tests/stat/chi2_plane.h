@@ -78,20 +78,7 @@ inline Chi2Result chi2_plane_test(const std::function<std::optional<Vec2>(PCG32&
         return res;
     }
     std::ostringstream msg;
-    for (auto& [e, o] : pooled) {
-        if (e <= 0) {
-            if (o > 0) {
-                msg << "observed " << o << " samples where the pdf integrates to zero; ";
-                res.chi2 = kInfinity;
-            }
-            continue;
-        }
-        res.chi2 += sqr(o - e) / e;
-    }
-    res.dof = int(pooled.size()) - 1;
-    res.p_value = std::isfinite(res.chi2) ? chi2_p_value(res.chi2, res.dof) : 0.0;
-    res.threshold = 1 - std::pow(1 - opt.significance, 1.0 / opt.test_count);
-    res.passed = res.p_value >= res.threshold;
+    pearson_test(pooled, opt.significance, opt.test_count, res, msg);
     msg << "chi2 = " << res.chi2 << ", dof = " << res.dof << ", p = " << res.p_value << " (threshold " << res.threshold
         << "), pdf integral = " << total << ", outside = " << outside << "/" << opt.samples;
     if (!res.passed) {
