@@ -50,27 +50,14 @@ public:
     }
     SampledSpectrum operator/(double s) const { return *this * (1.0 / s); }
     friend SampledSpectrum operator*(double s, const SampledSpectrum& v) { return v * s; }
-    /// Element-wise division; 0 where the divisor is 0.
-    SampledSpectrum safe_div(const SampledSpectrum& d) const {
-        SampledSpectrum r;
-        for (int i = 0; i < kSpectrumSamples; ++i) r[i] = d[i] != 0 ? (*this)[i] / d[i] : 0.0;
-        return r;
-    }
-
     bool is_zero() const {
         for (double v : m_v)
             if (v != 0) return false;
         return true;
     }
-    bool is_positive() const { return !is_zero(); }
+    bool is_nonzero() const { return !is_zero(); }  ///< some wavelength carries a value
     double max_component() const { return *std::max_element(m_v.begin(), m_v.end()); }
-    double min_component() const { return *std::min_element(m_v.begin(), m_v.end()); }
     double average() const { return (m_v[0] + m_v[1] + m_v[2] + m_v[3]) / kSpectrumSamples; }
-    bool has_nan() const {
-        for (double v : m_v)
-            if (std::isnan(v)) return true;
-        return false;
-    }
 
 private:
     std::array<double, kSpectrumSamples> m_v;

@@ -86,12 +86,6 @@ Vec3 linear_srgb_to_xyz(const Vec3& rgb);
 double sample_visible_wavelength(double u, double* pdf = nullptr);
 double visible_wavelength_pdf(double lambda);
 
-/// XYZ contribution of radiance `L` carried at wavelength `lambda` sampled with density
-/// `pdf`: L * cmf(lambda) / (pdf * ∫ȳ). Accumulating these gives the pixel's XYZ.
-inline Vec3 radiance_to_xyz(double L, double lambda, double pdf) {
-    return cie_xyz(lambda) * (L / (pdf * cie_y_integral()));
-}
-
 /// Named IOR of a dielectric ("water", "bk7", "air", ...) at the d line; throws on unknown.
 double named_ior(const std::string& name);
 

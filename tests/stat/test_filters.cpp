@@ -13,6 +13,7 @@
 #include "camera/filter.h"
 #include "io/scene_loader.h"
 #include "stat/chi2_plane.h"
+#include "unit/loader_errors.h"
 
 using namespace snell;
 using snell::test::adaptive_simpson;
@@ -297,19 +298,8 @@ std::shared_ptr<const Filter> load_filter(const std::string& xml) {
     return load_scene_string(xml, "test.xml", kDataDir).film.filter;
 }
 
-std::string load_error(const std::string& xml) {
-    try {
-        load_scene_string(xml, "test.xml", kDataDir);
-    } catch (const SceneError& e) {
-        return e.what();
-    }
-    return "";
-}
-
 void expect_error(const std::string& xml, const std::string& where, const std::string& what) {
-    const std::string msg = load_error(xml);
-    EXPECT_EQ(msg.rfind(where, 0), 0u) << "expected prefix '" << where << "' in: " << msg;
-    EXPECT_NE(msg.find(what), std::string::npos) << "expected '" << what << "' in: " << msg;
+    test::expect_load_error(xml, kDataDir, where, what);
 }
 
 }  // namespace

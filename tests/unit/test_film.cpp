@@ -65,8 +65,8 @@ TEST(Film, LayoutAndEmptyPixels) {
 }
 
 TEST(Film, SampledWavelengthsConvergeToSpectrumXyz) {
-    // Monte Carlo over wavelength, as the integrators do: one wavelength per sample, weighted by
-    // radiance_to_xyz. The pixel mean must agree with the deterministic spectrum_to_xyz within
+    // Monte Carlo over wavelength, as the integrators do: four hero wavelengths per sample,
+    // converted by SampledWavelengths::to_xyz. The pixel mean must agree with the deterministic spectrum_to_xyz within
     // 4 standard errors (per channel; 3 channels, so a false alarm has probability < 2e-4).
     const Spectrum s = Spectrum::from_rgb_illuminant(RGB(0.9, 0.4, 0.2));
     const int n = 200000;
@@ -74,8 +74,9 @@ TEST(Film, SampledWavelengthsConvergeToSpectrumXyz) {
     PCG32 rng(12345, 7);
     Vec3 sum, sum2;
     for (int i = 0; i < n; ++i) {
-        const double lambda = sample_visible_wavelength(rng.next_double());
-        const Vec3 xyz = radiance_to_xyz(s.eval(lambda), lambda, visible_wavelength_pdf(lambda));
+        const double u = rng.next_double();
+        const SampledWavelengths wl = SampledWavelengths::sample_visible(Vec2(u, rng.next_double()));
+        const Vec3 xyz = wl.to_xyz(s.eval(wl));
         film.add(0, 0, xyz);
         const Vec3 rgb = xyz_to_linear_srgb(xyz);  // per-sample sRGB for the standard error
         sum += rgb;

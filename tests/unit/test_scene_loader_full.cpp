@@ -9,6 +9,7 @@
 #include "integrators/integrator.h"
 #include "io/scene_loader.h"
 #include "light/light.h"
+#include "unit/loader_errors.h"
 
 using namespace snell;
 
@@ -23,18 +24,11 @@ std::string scene_with(const std::string& body) {
 }
 
 std::string load_error(const std::string& xml, const Defines& defines = {}) {
-    try {
-        load_scene_string(xml, "test.xml", kDataDir, defines);
-    } catch (const SceneError& e) {
-        return e.what();
-    }
-    return "";
+    return test::load_error(xml, kDataDir, defines);
 }
 
 void expect_error(const std::string& xml, const std::string& where, const std::string& what) {
-    const std::string msg = load_error(xml);
-    EXPECT_EQ(msg.rfind(where, 0), 0u) << "expected prefix '" << where << "' in: " << msg;
-    EXPECT_NE(msg.find(what), std::string::npos) << "expected '" << what << "' in: " << msg;
+    test::expect_load_error(xml, kDataDir, where, what);
 }
 
 }  // namespace

@@ -89,7 +89,7 @@ SampledSpectrum BdptTracer::li_splat(const CameraSample& cs, const Ray& ray, con
     const auto record = [&](int s, int t, const SampledSpectrum& c, const Vec2& raster) {
         if (!m_layers) return;
         const int layer = layer_of(s, t);
-        if (layer > 0 && c.is_positive()) splats.push_back({raster, wl.to_xyz(c), layer, t >= 2});
+        if (layer > 0 && c.is_nonzero()) splats.push_back({raster, wl.to_xyz(c), layer, t >= 2});
     };
 
     thread_local std::vector<Vertex> cam, lig;
@@ -117,7 +117,7 @@ SampledSpectrum BdptTracer::li_splat(const CameraSample& cs, const Ray& ray, con
         // s = 0: the camera subpath ends on an area light.
         if (z.light && !(m_settings.hide_emitters && t == 2)) {
             const SampledSpectrum le = z.light->le(z.si.p, z.si.n, z.si.wo, wl);
-            if (le.is_positive()) {
+            if (le.is_nonzero()) {
                 const SampledSpectrum c = z.beta * le * mis_weight(scene, disk, cam, lig, 0, t, wl);
                 L += c;
                 record(0, t, c, cs.pixel_centre);
@@ -126,7 +126,7 @@ SampledSpectrum BdptTracer::li_splat(const CameraSample& cs, const Ray& ray, con
         for (int s = 1; s <= nl; ++s) {
             if (md >= 0 && s + t - 1 > md) break;
             SampledSpectrum c = connect(scene, cam, lig, s, t, wl);
-            if (c.is_positive()) {
+            if (c.is_nonzero()) {
                 c *= mis_weight(scene, disk, cam, lig, s, t, wl);
                 L += c;
                 record(s, t, c, cs.pixel_centre);
@@ -140,7 +140,7 @@ SampledSpectrum BdptTracer::li_splat(const CameraSample& cs, const Ray& ray, con
         SampledSpectrum c = connect_camera(scene, cam[0], lig[size_t(s - 1)], wl, &raster);
         if (c.is_zero()) continue;
         c *= mis_weight(scene, disk, cam, lig, s, 1, wl);
-        if (c.is_positive()) splats.push_back({raster, wl.to_xyz(c), 0});
+        if (c.is_nonzero()) splats.push_back({raster, wl.to_xyz(c), 0});
         record(s, 1, c, raster);
     }
     // s = 0 at infinity: the camera subpath escaped; its end is a vertex at infinity on each

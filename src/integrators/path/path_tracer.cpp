@@ -31,7 +31,7 @@ std::optional<LightSample> PathTracer::sample_light(const Scene& scene, const Su
     const Vec2 u = sampler.next_2d();
     if (!*light || !(*pmf > 0)) return std::nullopt;
     auto ls = (*light)->sample_li({si.p, si.n}, u, wl);
-    if (!ls || !(ls->pdf > 0) || !(keep_dark || ls->Le.is_positive())) return std::nullopt;
+    if (!ls || !(ls->pdf > 0) || !(keep_dark || ls->Le.is_nonzero())) return std::nullopt;
     return ls;
 }
 
@@ -108,7 +108,7 @@ SampledSpectrum PathTracer::trace(const Ray& camera_ray, const Scene& scene, Sam
             if (emitters_visible) {
                 for (const Light* light : scene.infinite_lights()) {
                     const SampledSpectrum le = light->le_escaped(ray.d, wl);
-                    if (le.is_positive())
+                    if (le.is_nonzero())
                         L += beta * le * emitter_hit_weight(scene, state, *light, Vec3(), Vec3(), ray.d, ctx);
                 }
             }
@@ -120,7 +120,7 @@ SampledSpectrum PathTracer::trace(const Ray& camera_ray, const Scene& scene, Sam
         // it is computed before the vertex is recorded.
         if (const Light* em = si.emitter(); em && emitters_visible) {
             const SampledSpectrum le = em->le(si.p, si.n, -ray.d, wl);
-            if (le.is_positive()) L += beta * le * emitter_hit_weight(scene, state, *em, si.p, si.n, ray.d, ctx);
+            if (le.is_nonzero()) L += beta * le * emitter_hit_weight(scene, state, *em, si.p, si.n, ray.d, ctx);
         }
         on_arrival(state, si, ray, ctx);
         if (m_settings.max_depth >= 0 && depth + 1 >= m_settings.max_depth) break;
