@@ -81,8 +81,9 @@ Vec3 xyz_to_linear_srgb(const Vec3& xyz);
 Vec3 linear_srgb_to_xyz(const Vec3& rgb);
 
 /// Samples a wavelength over [kLambdaMin, kLambdaMax] proportionally to a smooth fit of the
-/// visual response (pbrt-v4's 1/cosh^2 density), for low colour noise.
-/// The density at the returned wavelength goes to `pdf` when given.
+/// visual response (pbrt-v4's 1/cosh^2 density, tabulated: see spectrum.cpp), for low colour
+/// noise. The density at the returned wavelength goes to `pdf` when given; it equals
+/// visible_wavelength_pdf() there.
 double sample_visible_wavelength(double u, double* pdf = nullptr);
 double visible_wavelength_pdf(double lambda);
 

@@ -41,12 +41,11 @@ inline double fraction_32(uint32_t digits, uint64_t low) {
     return double((uint64_t(digits) << 21) | (low & 0x1fffffULL)) * 0x1.0p-53;
 }
 
-inline uint32_t reverse_bits(uint32_t v) {
-    v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
-    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+constexpr uint32_t reverse_bits(uint32_t v) {
+    v = __builtin_bswap32(v);  // std::byteswap is C++23
     v = ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
-    v = ((v >> 8) & 0x00ff00ffu) | ((v & 0x00ff00ffu) << 8);
-    return (v >> 16) | (v << 16);
+    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+    return ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
 }
 
 /// A pseudo-random permutation of [0, n) chosen by `seed`, evaluated at `i` < n without tables:
@@ -76,9 +75,10 @@ inline uint32_t permute_index(uint32_t i, uint32_t n, uint64_t seed) {
 /// (add a key, multiply by an odd key, xor with a multiple by an even constant) changes bit b only
 /// by a function of bits below b, which is exactly a nested (Owen) scramble. Owen scrambling maps
 /// every (t, m, s)-net to a (t, m, s)-net, so scrambled Sobol points keep their stratification.
-inline uint32_t owen_scramble(uint32_t v, uint64_t seed) {
+/// owen_scramble_reversed() works on the bit-reversed word directly: the Sobol sampler chains
+/// scrambles and keeps its words reversed in between, which saves most of the bit reversals.
+inline uint32_t owen_scramble_reversed(uint32_t r, uint64_t seed) {
     const uint32_t k0 = uint32_t(seed), k1 = uint32_t(seed >> 32);
-    uint32_t r = reverse_bits(v);
     r += k0;
     r ^= r * 0x6a09e666u;
     r *= k1 | 1u;
@@ -87,7 +87,10 @@ inline uint32_t owen_scramble(uint32_t v, uint64_t seed) {
     r ^= r * 0xa54ff53au;
     r *= (k0 >> 1) | 1u;
     r ^= r * 0x510e527eu;
-    return reverse_bits(r);
+    return r;
+}
+inline uint32_t owen_scramble(uint32_t v, uint64_t seed) {
+    return reverse_bits(owen_scramble_reversed(reverse_bits(v), seed));
 }
 
 /// Shuffles the first 2^bits sample indices (0 < bits <= 32) by an Owen scramble of the index
@@ -104,22 +107,29 @@ inline uint32_t shuffle_index(uint32_t i, int bits, uint64_t seed) {
 /// modulo 2). Both are 32-digit binary fractions; any aligned block of 2^m indices is a (0,m,2)-net.
 inline uint32_t zero_two_x(uint32_t i) { return reverse_bits(i); }
 /// Sobol's second dimension bit by bit: the reference for zero_two_y's tables.
-inline uint32_t zero_two_y_bitwise(uint32_t i) {
+constexpr uint32_t zero_two_y_bitwise(uint32_t i) {
     uint32_t v = 0x80000000u, y = 0;
     for (; i; i >>= 1, v ^= v >> 1)
         if (i & 1u) y ^= v;
     return y;
 }
-/// The same by four byte tables: the map is linear over GF(2), so y(i) is the xor of the images of
-/// i's bytes. Shuffled indices use all 32 bits, where the bitwise loop would take 32 steps.
+/// Byte tables of Sobol's second dimension, optionally bit-reversed: the map is linear over
+/// GF(2), so y(i) is the xor of the images of i's bytes. Shuffled indices use all 32 bits, where
+/// the bitwise loop would take 32 steps. Built at compile time (no guard on the hot path).
+template <bool Reversed>
+inline constexpr std::array<std::array<uint32_t, 256>, 4> kZeroTwoYTable = [] {
+    std::array<std::array<uint32_t, 256>, 4> t{};
+    for (uint32_t k = 0; k < 4; ++k)
+        for (uint32_t b = 0; b < 256; ++b) {
+            const uint32_t y = zero_two_y_bitwise(b << (8 * k));
+            t[k][b] = Reversed ? reverse_bits(y) : y;
+        }
+    return t;
+}();
+template <bool Reversed = false>
 inline uint32_t zero_two_y(uint32_t i) {
-    static const std::array<std::array<uint32_t, 256>, 4> table = [] {
-        std::array<std::array<uint32_t, 256>, 4> t{};
-        for (uint32_t k = 0; k < 4; ++k)
-            for (uint32_t b = 0; b < 256; ++b) t[k][b] = zero_two_y_bitwise(b << (8 * k));
-        return t;
-    }();
-    return table[0][i & 255u] ^ table[1][(i >> 8) & 255u] ^ table[2][(i >> 16) & 255u] ^ table[3][i >> 24];
+    const auto& t = kZeroTwoYTable<Reversed>;
+    return t[0][i & 255u] ^ t[1][(i >> 8) & 255u] ^ t[2][(i >> 16) & 255u] ^ t[3][i >> 24];
 }
 
 }  // namespace snell

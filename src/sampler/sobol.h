@@ -36,11 +36,13 @@ public:
 
 private:
     uint64_t next_dimension_hash();
+    uint32_t shuffled_index(uint64_t h) const;
 
     int m_count;
     uint64_t m_seed;
     uint64_t m_pixel = 0;             ///< hash of (seed, pixel, index / 2^32)
     uint32_t m_index = 0, m_dim = 0;  ///< index modulo 2^32; dimensions drawn so far
+    uint32_t m_index_reversed = 0;    ///< reverse_bits(m_index)
 };
 
 }  // namespace snell

@@ -364,6 +364,9 @@ TEST(Samplers, HashingBuildingBlocks) {
     for (int k = 0; k < 10000; ++k) {
         const uint32_t i = rng.next_u32();
         ASSERT_EQ(zero_two_y(i), zero_two_y_bitwise(i)) << i;
+        ASSERT_EQ(zero_two_y<true>(i), reverse_bits(zero_two_y_bitwise(i))) << i;
+        // The reversed-word scramble is the scramble between two reversals.
+        ASSERT_EQ(owen_scramble(i, 77u * k), reverse_bits(owen_scramble_reversed(reverse_bits(i), 77u * k)));
     }
     EXPECT_EQ(zero_two_x(1), 0x80000000u);
     EXPECT_EQ(reverse_bits(0x1u), 0x80000000u);

@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <cmath>
 
 #include "core/spectrum.h"
 
@@ -69,6 +70,22 @@ TEST(Spectrum, WavelengthSamplingPdfIntegratesToOne) {
     // Inverse-CDF consistency: u -> lambda stays inside the range.
     EXPECT_NEAR(sample_visible_wavelength(0.0), kLambdaMin, 0.5);
     EXPECT_NEAR(sample_visible_wavelength(1.0), kLambdaMax, 0.5);
+}
+
+// The tabulated inverse CDF: the density handed back with a sample is the density of the
+// sample's bin, and both stay within 0.5 % of pbrt-v4's closed form 1/cosh^2 over 400-700 nm
+// and within 3 % at the ends of the range, where the bins are a few nm wide.
+TEST(Spectrum, TabulatedWavelengthDensityMatchesClosedForm) {
+    for (int i = 0; i < 4000; ++i) {
+        const double u = (i + 0.37) / 4000;
+        double pdf = 0;
+        const double lambda = sample_visible_wavelength(u, &pdf);
+        ASSERT_GE(lambda, kLambdaMin);
+        ASSERT_LE(lambda, kLambdaMax);
+        EXPECT_DOUBLE_EQ(pdf, visible_wavelength_pdf(lambda)) << "u = " << u;
+        const double closed = 0.0039398042 / std::pow(std::cosh(0.0072 * (lambda - 538.0)), 2);
+        EXPECT_NEAR(pdf / closed, 1.0, lambda > 400 && lambda < 700 ? 5e-3 : 3e-2) << "lambda = " << lambda;
+    }
 }
 
 TEST(Spectrum, NamedIor) {
