@@ -2,6 +2,7 @@
 snell_library(snell_integrators
   src/integrators/registry.cpp
   src/integrators/integrator.cpp
+  src/integrators/light_connection.cpp
   src/integrators/path/path_tracer.cpp
   src/integrators/mnee/mnee_integrator.cpp
   src/integrators/bdpt/bdpt.cpp

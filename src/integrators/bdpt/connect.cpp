@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "geometry/scene.h"
+#include "integrators/scatter.h"
 
 namespace snell::bdpt {
 
@@ -18,10 +19,7 @@ SampledSpectrum adjoint_f(const Vertex& y, const Vec3& d, const SampledWavelengt
 // Beer-Lambert transmittance of a connection edge of length `dist` leaving vertex v along d:
 // the edge lies in v's medium, or the one behind v's interface when it refracts there.
 SampledSpectrum edge_transmittance(const Vertex& v, const Vec3& d, double dist, const SampledWavelengths& wl) {
-    MediumStack media = v.media;
-    if (dot(v.si.wo, v.si.ng) * dot(d, v.si.ng) < 0 && (v.bsdf->eta(wl.hero()) != 1.0 || v.bsdf->interior_absorption()))
-        media.cross(v.bsdf->interior_absorption(), dot(v.si.wo, v.si.ng) > 0);
-    return media.transmittance(dist, wl);
+    return medium_towards(v.media, v.si, *v.bsdf, d, wl.hero()).transmittance(dist, wl);
 }
 
 // Both subpaths passed a dispersive refraction: each scaled its hero by the wavelength count,

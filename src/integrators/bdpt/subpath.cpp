@@ -6,6 +6,7 @@
 #include "core/warp.h"
 #include "geometry/scene.h"
 #include "geometry/shape.h"
+#include "integrators/scatter.h"
 #include "light/light_sampler.h"
 #include "light/point.h"
 #include "light/spot.h"
@@ -19,12 +20,11 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, const SampledWav
     const BSDFContext ctx_rev{wl,
                               mode == TransportMode::Radiance ? TransportMode::Importance : TransportMode::Radiance};
     MediumStack media;
-    double eta_scale = 1;
-    bool hero_only = !path.empty() && path.back().hero_only;
+    Throughput tp{beta, 1.0, !path.empty() && path.back().hero_only};
     while (path.size() < max_vertices) {
         SurfaceInteraction si;
         if (!scene.intersect(ray, &si)) {
-            if (escape) *escape = {true, ray.d, beta, pdf_dir};
+            if (escape) *escape = {true, ray.d, tp.beta, pdf_dir};
             break;
         }
         // A light subpath may start inside a dielectric (a light in coloured glass): it finds
@@ -35,14 +35,14 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, const SampledWav
             if (b && (b->eta(wl.hero()) != 1.0 || b->interior_absorption()))
                 media.cross(b->interior_absorption(), true);
         }
-        if (media.inside()) beta *= media.transmittance(si.t, wl);
+        if (media.inside()) tp.beta *= media.transmittance(si.t, wl);
         Vertex v;
         v.si = si;
         v.bsdf = si.bsdf();
         v.light = si.emitter();
-        v.beta = beta;
+        v.beta = tp.beta;
         v.media = media;
-        v.hero_only = hero_only;
+        v.hero_only = tp.hero_only;
         v.pdf_fwd = to_area(pdf_dir, path.back(), v);
         path.push_back(v);
         if (path.size() >= max_vertices || !v.bsdf) break;
@@ -60,24 +60,13 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, const SampledWav
             pdf_dir = bs->pdf;
             pdf_rev_dir = cur.bsdf->pdf(ctx_rev, bs->wi, wo);
         }
-        beta *= bs->weight;
-        // A dispersive refraction: the rest of this subpath is the hero's alone.
-        if (bs->hero_only && !hero_only) {
-            beta = wl.hero_only(beta);
-            hero_only = true;
-        }
-        if (mode == TransportMode::Importance) beta *= shading_correction(si, si.wo, wi);
+        tp.scatter(*bs, wl, mode);
+        if (mode == TransportMode::Importance) tp.beta *= shading_correction(si, si.wo, wi);
         path[path.size() - 2].pdf_rev = to_area(pdf_rev_dir, cur, path[path.size() - 2]);
-        if ((bs->lobe & kTransmission) && (bs->eta != 1.0 || cur.bsdf->interior_absorption()))
-            media.cross(cur.bsdf->interior_absorption(), dot(si.wo, si.ng) > 0);
-        if (mode == TransportMode::Radiance && (bs->lobe & kTransmission) && bs->eta != 1.0) eta_scale *= sqr(bs->eta);
+        if (crosses_interior(*cur.bsdf, *bs)) cross_interface(media, si, *cur.bsdf);
         ray = scene.spawn_ray(si, wi);
         // Roulette after the same number of surface vertices as the path tracer.
-        if (int(path.size()) - 1 >= rr_depth) {
-            const double q = std::min(0.95, beta.max_component() * eta_scale);
-            if (!(sampler.next_1d() < q)) break;
-            beta /= q;
-        }
+        if (int(path.size()) - 1 >= rr_depth && !tp.survives_roulette(sampler.next_1d())) break;
     }
 }
 

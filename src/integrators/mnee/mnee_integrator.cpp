@@ -6,6 +6,7 @@
 #include "core/props.h"
 #include "core/stats.h"
 #include "geometry/scene.h"
+#include "integrators/light_connection.h"
 #include "integrators/mis.h"
 #include "manifold/mnee.h"
 #include "manifold/seed_path.h"
@@ -103,7 +104,7 @@ SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const S
     double pmf = 0;
     const auto ls = sample_light(scene, si, ctx.wl, sampler, &light, &pmf);
     if (!ls) return {};
-    if (!s.has_xb || s.k == 0) return nee_connect(scene, si, bsdf, ctx, state, *ls, pmf);
+    if (!s.has_xb || s.k == 0) return nee_connect(scene, si, bsdf, ctx, state.media, *ls, pmf);
     const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls->wi);
     const SampledSpectrum f = bsdf.eval(ctx, wo, wi);
     if (f.is_zero()) return {};
@@ -119,7 +120,7 @@ SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const S
                                                                       s.k, *light, pmf, lp.p, lp.n, ctx.hero())
                                                            : 0.0;
     if (m_mnee.biased && s.transmissions_only && refracts && !(p_mnee > 0)) return {};
-    return nee_estimate(si, bsdf, ctx, state, *ls, f, pmf, power_heuristic(p_nee, {p_bsdf, p_mnee}));
+    return nee_estimate(si, bsdf, ctx, state.media, *ls, f, pmf, power_heuristic(p_nee, {p_bsdf, p_mnee}));
 }
 
 SampledSpectrum MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
@@ -142,7 +143,7 @@ SampledSpectrum MneeIntegrator::connect_to_light(const Scene& scene, const Surfa
             {
                 const SampledSpectrum f = bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls->wi));
                 if (f.is_zero()) return {};
-                return nee_estimate(si, bsdf, ctx, state, *ls, f, pmf, nee_weight(si, bsdf, ctx, *ls, pmf));
+                return nee_estimate(si, bsdf, ctx, state.media, *ls, f, pmf, nee_weight(si, bsdf, ctx, *ls, pmf));
             }
         case SeedStatus::Occluded:
             thread_counters().seeds_occluded++;

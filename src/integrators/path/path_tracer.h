@@ -62,25 +62,6 @@ protected:
     virtual void on_scatter(PathState& state, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFSample& bs,
                             const BSDFContext& ctx) const;
 
-    /// Picks a light and samples it as NEE does (same random numbers in the same order).
-    /// `keep_dark` keeps samples that emit nothing towards si (a spot light seen from outside
-    /// its cone): MNEE reaches the light along another direction.
-    static std::optional<LightSample> sample_light(const Scene& scene, const SurfaceInteraction& si,
-                                                   const SampledWavelengths& wl, Sampler& sampler, const Light** light,
-                                                   double* pmf, bool keep_dark = false);
-    /// NEE for an already drawn light sample: shadow ray, power heuristic against BSDF sampling.
-    static SampledSpectrum nee_connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
-                                       const BSDFContext& ctx, const PathState& state, const LightSample& ls,
-                                       double pmf);
-    /// MIS weight of NEE against BSDF sampling (power heuristic, solid angle).
-    static double nee_weight(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
-                             const LightSample& ls, double pmf);
-    /// NEE estimate for a visible light sample with BSDF value `f` (towards ls.wi) and MIS
-    /// weight `w`: f |cos| Tr Le w / (pmf pdf).
-    static SampledSpectrum nee_estimate(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
-                                        const PathState& state, const LightSample& ls, const SampledSpectrum& f,
-                                        double pmf, double w);
-
     PathSettings m_settings;
     bool m_nee;
 };

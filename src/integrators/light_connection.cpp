@@ -1,0 +1,50 @@
+#include "integrators/light_connection.h"
+
+#include <cmath>
+
+#include "bsdf/bsdf.h"
+#include "core/sampler.h"
+#include "geometry/scene.h"
+#include "integrators/mis.h"
+#include "integrators/scatter.h"
+#include "light/light.h"
+
+namespace snell {
+
+std::optional<LightSample> sample_light(const Scene& scene, const SurfaceInteraction& si, const SampledWavelengths& wl,
+                                        Sampler& sampler, const Light** light, double* pmf, bool keep_dark) {
+    *light = scene.light_sampler().sample(sampler.next_1d(), pmf);
+    const Vec2 u = sampler.next_2d();
+    if (!*light || !(*pmf > 0)) return std::nullopt;
+    auto ls = (*light)->sample_li({si.p, si.n}, u, wl);
+    if (!ls || !(ls->pdf > 0) || !(keep_dark || ls->Le.is_nonzero())) return std::nullopt;
+    return ls;
+}
+
+SampledSpectrum nee_estimate(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
+                             const MediumStack& path_media, const LightSample& ls, const SampledSpectrum& f, double pmf,
+                             double w) {
+    // Unoccluded, so the shadow segment lies entirely in one medium: the current one, or the
+    // one on the other side when the light is reached by refracting here (rough dielectrics).
+    const MediumStack media = medium_towards(path_media, si, bsdf, ls.wi, ctx.hero());
+    const SampledSpectrum tr = media.inside() ? media.transmittance(ls.dist, ctx.wl) : SampledSpectrum(1.0);
+    return f * tr * ls.Le * (std::abs(dot(si.n, ls.wi)) * w / (pmf * ls.pdf));
+}
+
+double nee_weight(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx, const LightSample& ls,
+                  double pmf) {
+    // Delta lights cannot be hit by BSDF sampling.
+    if (ls.delta) return 1.0;
+    return power_heuristic(pmf * ls.pdf, bsdf.pdf(ctx, si.to_local(si.wo), si.to_local(ls.wi)));
+}
+
+SampledSpectrum nee_connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
+                            const MediumStack& media, const LightSample& ls, double pmf) {
+    const SampledSpectrum f = bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls.wi));
+    if (f.is_zero()) return {};
+    const Ray shadow = std::isinf(ls.dist) ? scene.spawn_ray(si, ls.wi) : scene.spawn_ray_to(si, ls.p);
+    if (scene.occluded(shadow)) return {};
+    return nee_estimate(si, bsdf, ctx, media, ls, f, pmf, nee_weight(si, bsdf, ctx, ls, pmf));
+}
+
+}  // namespace snell

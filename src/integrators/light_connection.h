@@ -1,0 +1,42 @@
+#pragma once
+// Next event estimation pieces shared by the integrators that connect to lights (nee, mnee,
+// and through them pssmlt and erpt): the light choice, the connection with its shadow ray,
+// and its power-heuristic weight against BSDF sampling.
+#include <optional>
+
+#include "core/medium_stack.h"
+#include "core/sampled_spectrum.h"
+
+namespace snell {
+
+class Scene;
+class Sampler;
+class BSDF;
+class Light;
+struct BSDFContext;
+struct LightSample;
+struct SurfaceInteraction;
+
+/// Picks a light (the scene's light sampler) and samples a point on it as seen from `si`; the
+/// chosen light and its probability go to `light` and `pmf`. `keep_dark` keeps samples that
+/// emit nothing towards si (a spot light seen from outside its cone): MNEE reaches the light
+/// along another direction. Draws next_1d() then next_2d(), whatever happens.
+std::optional<LightSample> sample_light(const Scene& scene, const SurfaceInteraction& si, const SampledWavelengths& wl,
+                                        Sampler& sampler, const Light** light, double* pmf, bool keep_dark = false);
+
+/// NEE for an already drawn light sample: shadow ray, power heuristic against BSDF sampling.
+/// `media` is the medium the path is in at si.
+SampledSpectrum nee_connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
+                            const MediumStack& media, const LightSample& ls, double pmf);
+
+/// MIS weight of NEE against BSDF sampling (power heuristic, solid angle); 1 for delta lights.
+double nee_weight(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx, const LightSample& ls,
+                  double pmf);
+
+/// NEE estimate for a visible light sample with BSDF value `f` (towards ls.wi) and MIS weight
+/// `w`: f |cos| Tr Le w / (pmf pdf).
+SampledSpectrum nee_estimate(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
+                             const MediumStack& media, const LightSample& ls, const SampledSpectrum& f, double pmf,
+                             double w);
+
+}  // namespace snell
