@@ -22,7 +22,7 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
                const std::vector<std::string>& define_items, bool strategies) {
     const Defines defines = parse_defines(define_items);
     LoadedScene ls = load_scene_arg(scene_arg, defines);
-    const Integrator* integ = ls.scene->integrator().get();
+    const Integrator* integ = ls.integrator.get();
     if (!integ) throw std::runtime_error(scene_arg + ": the scene declares no <integrator>");
 
     RenderOptions opt;

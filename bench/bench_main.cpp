@@ -79,7 +79,7 @@ void render_bench(benchmark::State& state, const char* integrator, int threads =
     opt.threads = threads;
     Counters total;
     for (auto _ : state) {
-        RenderResult r = render(*ls.scene, *ls.scene->integrator(), ls.film, opt);
+        RenderResult r = render(*ls.scene, *ls.integrator, ls.film, opt);
         total += r.counters;
         benchmark::DoNotOptimize(r.film.xyz(0, 0));
     }

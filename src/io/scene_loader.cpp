@@ -71,10 +71,10 @@ public:
             Props p = props(*integrator);
             auto integ = located(*integrator, [&] { return create_integrator(p); });
             p.check_unused();
-            scene->set_integrator(integ);
+            m_out.integrator = integ;
         } else {  // Mitsuba's default integrator
             Props p("integrator", "path", root.loc);
-            scene->set_integrator(create_integrator(p));
+            m_out.integrator = create_integrator(p);
         }
         located(root, [&] { scene->build(); });
         m_out.scene = std::move(scene);
