@@ -7,11 +7,11 @@
 
 #include "app_common.h"
 #include "commands.h"
-#include "geometry/scene.h"
 #include "integrators/integrator.h"
 #include "io/stats_json.h"
 #include "manifold/walk_statistics.h"
 #include "render/renderer.h"
+#include "scene/scene.h"
 
 namespace fs = std::filesystem;
 

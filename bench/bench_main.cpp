@@ -45,10 +45,10 @@
 #include "core/stats.h"
 #include "core/warp.h"
 #include "geometry/embree_context.h"
-#include "geometry/scene.h"
 #include "integrators/integrator.h"
-#include "io/scene_loader.h"
+#include "loader/scene_loader.h"
 #include "render/renderer.h"
+#include "scene/scene.h"
 
 using namespace snell;
 

@@ -2,12 +2,12 @@
 # closest-point projection, OBJ/PLY readers (owner: geometry).
 snell_library(snell_geometry
   src/geometry/shape.cpp
-  src/geometry/mesh_data.cpp
+  src/core/mesh_data.cpp
   src/geometry/sphere.cpp
   src/geometry/mesh.cpp
   src/geometry/builders.cpp
-  src/geometry/scene.cpp
-  src/geometry/factory.cpp
+  src/scene/scene.cpp
+  src/loader/shape_factory.cpp
   src/io/mesh_obj.cpp
   src/io/mesh_ply.cpp
 )

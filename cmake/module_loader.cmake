@@ -1,12 +1,12 @@
 # Mitsuba 2/3 XML scene loading (owner: loader). Stage 1 (snell_xml) parses the document into an
 # intermediate tree and needs no plugin; stage 2 (snell_loader) instantiates it via the factories.
 snell_library(snell_xml
-  src/io/xml_scene.cpp
+  src/loader/xml_scene.cpp
 )
 target_link_libraries(snell_xml PUBLIC snell_props PRIVATE pugixml::pugixml)
 
 snell_library(snell_loader
-  src/io/scene_loader.cpp
+  src/loader/scene_loader.cpp
   src/camera/factory.cpp
 )
 target_link_libraries(snell_loader PUBLIC snell_xml snell_sampler)

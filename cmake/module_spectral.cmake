@@ -5,7 +5,7 @@ snell_library(snell_spectral
   src/camera/film.cpp
   src/io/image.cpp
   src/io/stats_json.cpp
-  src/io/image_metrics.cpp
+  src/report/image_metrics.cpp
 )
 target_link_libraries(snell_spectral PUBLIC snell_base nlohmann_json::nlohmann_json
                       PRIVATE OpenEXR::OpenEXR ${STB_LIBRARY})

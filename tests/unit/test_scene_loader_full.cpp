@@ -7,8 +7,8 @@
 
 #include "bsdf/bsdf.h"
 #include "integrators/integrator.h"
-#include "io/scene_loader.h"
 #include "light/light.h"
+#include "loader/scene_loader.h"
 #include "unit/loader_errors.h"
 
 using namespace snell;

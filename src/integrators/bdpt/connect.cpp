@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "geometry/scene.h"
+#include "scene/scene.h"
 
 namespace snell::bdpt {
 

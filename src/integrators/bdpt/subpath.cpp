@@ -4,11 +4,11 @@
 #include <cmath>
 
 #include "core/warp.h"
-#include "geometry/scene.h"
 #include "geometry/shape.h"
 #include "light/light_sampler.h"
 #include "light/point.h"
 #include "light/spot.h"
+#include "scene/scene.h"
 
 namespace snell::bdpt {
 

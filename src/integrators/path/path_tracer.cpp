@@ -5,8 +5,8 @@
 #include "bsdf/bsdf.h"
 #include "core/props.h"
 #include "core/stats.h"
-#include "geometry/scene.h"
 #include "integrators/mis.h"
+#include "scene/scene.h"
 
 namespace snell {
 

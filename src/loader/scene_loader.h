@@ -6,9 +6,9 @@
 
 #include "camera/camera.h"
 #include "core/props.h"
-#include "geometry/scene.h"
 #include "integrators/integrator.h"
 #include "sampler/factory.h"
+#include "scene/scene.h"
 
 namespace snell {
 
