@@ -47,3 +47,9 @@ endif()
 if(SNELL_BUILD_TESTS)
   add_test(NAME style.clang_format COMMAND bash ${PROJECT_SOURCE_DIR}/scripts/check-format.sh)
 endif()
+
+# Includes in src/ and library links run from higher layers to lower ones only, and each folder
+# is one library (scripts/check-layers.sh; the layer order is listed there).
+if(SNELL_BUILD_TESTS)
+  add_test(NAME style.layers COMMAND bash ${PROJECT_SOURCE_DIR}/scripts/check-layers.sh)
+endif()
