@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Fails (and prints file:line of each violation) when the folders of src/ stop being layers:
-#   1. an #include "folder/..." in src/ runs from a lower layer to a higher one, or between two
+#   1. a folder of src/ is missing from LAYERS below;
+#   2. an #include "folder/..." in src/ runs from a lower layer to a higher one, or between two
 #      peers of one layer;
-#   2. a library snell_<folder> (cmake/*.cmake) compiles a source from another folder, a source is
-#      compiled into two libraries or into none, or a folder has no layer below;
-#   3. target_link_libraries(snell_<folder> ...) links a library of the same or a higher layer.
+#   3. a library snell_<folder> (cmake/*.cmake) compiles a source from another folder, or a
+#      source is compiled into two libraries or into none;
+#   4. target_link_libraries(snell_<folder> ...) links a library of the same or a higher layer.
 # Registered with ctest as style.layers, so `make test` (and CI) checks it. Bash and POSIX awk
 # only (mawk or gawk), like the other scripts. A new folder goes into LAYERS first.
 set -euo pipefail
@@ -31,7 +32,7 @@ done
 
 status=0
 
-# Every folder of src/ must have a layer.
+# 1. Every folder of src/ has a layer.
 for dir in src/*/; do
   folder=$(basename "$dir")
   case " $ranks" in
@@ -40,7 +41,7 @@ for dir in src/*/; do
   esac
 done
 
-# 1. Includes.
+# 2. Includes.
 mapfile -t sources < <(find src -type f \( -name '*.h' -o -name '*.hpp' -o -name '*.cpp' -o -name '*.inl' \) | sort)
 awk -v ranks="$ranks" '
   BEGIN {
@@ -70,7 +71,7 @@ awk -v ranks="$ranks" '
   END { exit bad }
 ' "${sources[@]}" || status=1
 
-# 2 and 3. Libraries and their links, from snell_library(...) and target_link_libraries(...)
+# 3 and 4. Libraries and their links, from snell_library(...) and target_link_libraries(...)
 # calls (possibly spanning several lines) in CMakeLists.txt and cmake/*.cmake.
 awk -v ranks="$ranks" '
   BEGIN {
