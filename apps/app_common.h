@@ -7,8 +7,8 @@
 
 #include "camera/film.h"
 #include "io/image.h"
-#include "io/scene_loader.h"
-#include "io/xml_scene.h"
+#include "loader/scene_loader.h"
+#include "loader/xml_scene.h"
 
 namespace snell {
 

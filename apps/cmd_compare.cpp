@@ -15,15 +15,15 @@
 #include "app_common.h"
 #include "commands.h"
 #include "core/props.h"
-#include "geometry/scene.h"
 #include "integrators/integrator.h"
-#include "io/image_metrics.h"
 #include "manifold/walk_statistics.h"
 #include "render/renderer.h"
 #include "report/compare_report.h"
 #include "report/false_colour.h"
 #include "report/html_report.h"
+#include "report/image_metrics.h"
 #include "report/image_ops.h"
+#include "scene/scene.h"
 
 namespace fs = std::filesystem;
 

@@ -6,7 +6,7 @@
 
 #include "commands.h"
 #include "io/image.h"
-#include "io/image_metrics.h"
+#include "report/image_metrics.h"
 
 namespace snell {
 

@@ -7,11 +7,11 @@
 
 #include "app_common.h"
 #include "commands.h"
-#include "geometry/scene.h"
 #include "integrators/integrator.h"
 #include "io/stats_json.h"
 #include "manifold/walk_statistics.h"
 #include "render/renderer.h"
+#include "scene/scene.h"
 
 namespace fs = std::filesystem;
 
@@ -22,7 +22,7 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
                const std::vector<std::string>& define_items, bool strategies) {
     const Defines defines = parse_defines(define_items);
     LoadedScene ls = load_scene_arg(scene_arg, defines);
-    const Integrator* integ = ls.scene->integrator().get();
+    const Integrator* integ = ls.integrator.get();
     if (!integ) throw std::runtime_error(scene_arg + ": the scene declares no <integrator>");
 
     RenderOptions opt;

@@ -45,10 +45,10 @@
 #include "core/stats.h"
 #include "core/warp.h"
 #include "geometry/embree_context.h"
-#include "geometry/scene.h"
 #include "integrators/integrator.h"
-#include "io/scene_loader.h"
+#include "loader/scene_loader.h"
 #include "render/renderer.h"
+#include "scene/scene.h"
 
 using namespace snell;
 
@@ -79,7 +79,7 @@ void render_bench(benchmark::State& state, const char* integrator, int threads =
     opt.threads = threads;
     Counters total;
     for (auto _ : state) {
-        RenderResult r = render(*ls.scene, *ls.scene->integrator(), ls.film, opt);
+        RenderResult r = render(*ls.scene, *ls.integrator, ls.film, opt);
         total += r.counters;
         benchmark::DoNotOptimize(r.film.xyz(0, 0));
     }

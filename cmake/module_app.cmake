@@ -3,16 +3,6 @@ file(READ ${PROJECT_SOURCE_DIR}/scenes/droplet/droplet.xml DROPLET_XML)
 configure_file(${PROJECT_SOURCE_DIR}/apps/builtin_scenes.cpp.in ${PROJECT_BINARY_DIR}/generated/builtin_scenes.cpp @ONLY)
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/scenes/droplet/droplet.xml)
 
-# Comparison reports (HTML, SVG plot, false-colour error images) for `snell compare`.
-snell_library(snell_report
-  src/report/compare_report.cpp
-  src/report/false_colour.cpp
-  src/report/html_report.cpp
-  src/report/image_ops.cpp
-  src/report/svg_plot.cpp
-)
-target_link_libraries(snell_report PUBLIC snell_spectral nlohmann_json::nlohmann_json PRIVATE ${STB_LIBRARY})
-
 add_executable(snell
   apps/snell.cpp
   apps/app_common.cpp
@@ -37,15 +27,11 @@ if(SNELL_BUILD_TESTS)
   set_tests_properties(cli.end_to_end PROPERTIES TIMEOUT 300)
 endif()
 
-snell_test(test_report
-  SOURCES tests/unit/test_report.cpp
-  LIBS snell_report)
-
 # `snell compare` end to end: cli.compare writes a report (and checks report.json and the error
 # messages); cli.compare_html opens that report in headless Chromium.
 if(SNELL_BUILD_TESTS)
   add_executable(test_compare_cli tests/cli/test_compare.cpp)
-  target_link_libraries(test_compare_cli PRIVATE snell_spectral GTest::gtest GTest::gtest_main)
+  target_link_libraries(test_compare_cli PRIVATE snell_report GTest::gtest GTest::gtest_main)
   target_compile_options(test_compare_cli PRIVATE ${SNELL_WARNINGS})
   set(SNELL_COMPARE_ENV "SNELL_BIN=$<TARGET_FILE:snell>;SNELL_COMPARE_DIR=${PROJECT_BINARY_DIR}/test_compare_report")
   add_test(NAME cli.compare COMMAND test_compare_cli --gtest_filter=CompareCli.*)
@@ -60,4 +46,10 @@ endif()
 # The layout of every tracked C++ source against .clang-format (STYLE.md habit 9).
 if(SNELL_BUILD_TESTS)
   add_test(NAME style.clang_format COMMAND bash ${PROJECT_SOURCE_DIR}/scripts/check-format.sh)
+endif()
+
+# Includes in src/ and library links run from higher layers to lower ones only, and each folder
+# is one library (scripts/check-layers.sh; the layer order is listed there).
+if(SNELL_BUILD_TESTS)
+  add_test(NAME style.layers COMMAND bash ${PROJECT_SOURCE_DIR}/scripts/check-layers.sh)
 endif()

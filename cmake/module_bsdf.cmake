@@ -13,12 +13,11 @@ snell_library(snell_bsdf
   src/bsdf/twosided.cpp
   src/bsdf/factory.cpp
 )
-target_link_libraries(snell_bsdf PUBLIC snell_spectral snell_props)
+target_link_libraries(snell_bsdf PUBLIC snell_core)
 
 snell_test(test_bsdf_chi2
   SOURCES tests/stat/test_bsdf_chi2.cpp
   LIBS snell_bsdf)
-
 
 snell_test(test_bsdf_furnace
   SOURCES tests/stat/test_bsdf_furnace.cpp

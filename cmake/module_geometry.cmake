@@ -1,19 +1,12 @@
-# Shapes (analytic sphere, triangle meshes and Mitsuba's built-in meshes), the Embree scene,
-# closest-point projection, OBJ/PLY readers (owner: geometry).
+# Shapes (analytic sphere, triangle meshes and Mitsuba's built-in meshes) with their Embree
+# geometry and closest-point projection (owner: geometry). The Scene is in scene/, the shape
+# factory in loader/ (it attaches BSDFs), the OBJ/PLY readers in io/.
 snell_library(snell_geometry
   src/geometry/shape.cpp
-  src/geometry/mesh_data.cpp
   src/geometry/sphere.cpp
   src/geometry/mesh.cpp
   src/geometry/builders.cpp
-  src/geometry/scene.cpp
-  src/geometry/factory.cpp
-  src/io/mesh_obj.cpp
-  src/io/mesh_ply.cpp
 )
-target_link_libraries(snell_geometry PUBLIC snell_spectral embree TBB::tbb tinyobjloader::tinyobjloader)
+target_link_libraries(snell_geometry PUBLIC snell_core embree TBB::tbb)
 
-snell_test(test_geometry
-  SOURCES tests/unit/test_geometry_sphere.cpp tests/unit/test_geometry_mesh.cpp
-          tests/unit/test_geometry_scene.cpp tests/unit/test_mesh_io.cpp
-  LIBS snell_geometry)
+# Its tests trace rays through a Scene: test_geometry is in module_scene.cmake.

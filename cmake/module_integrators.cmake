@@ -17,7 +17,8 @@ snell_library(snell_integrators
   src/integrators/erpt/energy_redistribution.cpp
   src/integrators/erpt/shape_watch.cpp
 )
-target_link_libraries(snell_integrators PUBLIC snell_render snell_sampler snell_manifold snell_geometry snell_bsdf snell_light snell_props TBB::tbb)
+target_link_libraries(snell_integrators PUBLIC snell_render snell_manifold snell_scene snell_sampler snell_camera
+                      snell_geometry snell_bsdf snell_light snell_core TBB::tbb)
 
 set(SNELL_ALL_LIBS snell_loader snell_integrators)
 snell_test(test_integrators

@@ -10,8 +10,8 @@ snell_library(snell_light
   src/light/rgb_illuminant_table.cpp
   src/light/factory.cpp
 )
-# read_exr lives in snell_spectral (src/io/image.cpp); area lights use the Shape interface.
-target_link_libraries(snell_light PUBLIC snell_spectral snell_props snell_geometry OpenEXR::OpenEXR TBB::tbb)
+# Environment maps are read with io/image.h; area lights use the Shape interface.
+target_link_libraries(snell_light PUBLIC snell_geometry snell_io snell_core TBB::tbb)
 
 snell_test(test_light
   SOURCES tests/unit/test_light.cpp

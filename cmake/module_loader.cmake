@@ -1,24 +1,20 @@
-# Mitsuba 2/3 XML scene loading (owner: loader). Stage 1 (snell_xml) parses the document into an
-# intermediate tree and needs no plugin; stage 2 (snell_loader) instantiates it via the factories.
-snell_library(snell_xml
-  src/io/xml_scene.cpp
-)
-target_link_libraries(snell_xml PUBLIC snell_props PRIVATE pugixml::pugixml)
-
+# Mitsuba 2/3 XML scene loading (owner: loader). Stage 1 (xml_scene.cpp) parses the document into
+# an intermediate tree and needs no plugin; stage 2 (scene_loader.cpp, with the shape factory)
+# instantiates it through every factory and picks the integrator, so the folder sits above the
+# integrators. Both stages are one library, as every folder is one library: test_scene_parser
+# links it, yet from a static library the linker takes only the parser's objects, so that test
+# still exercises stage 1 alone (it merely waits for the plugin libraries to build).
 snell_library(snell_loader
-  src/io/scene_loader.cpp
-  src/camera/factory.cpp
+  src/loader/xml_scene.cpp
+  src/loader/scene_loader.cpp
+  src/loader/shape_factory.cpp
 )
-target_link_libraries(snell_loader PUBLIC snell_xml snell_sampler)
-foreach(dep snell_bsdf snell_geometry snell_light snell_integrators)
-  if(TARGET ${dep})
-    target_link_libraries(snell_loader PUBLIC ${dep})
-  endif()
-endforeach()
+target_link_libraries(snell_loader PUBLIC snell_integrators snell_scene snell_sampler snell_camera snell_geometry
+                      snell_bsdf snell_light snell_io snell_core PRIVATE pugixml::pugixml)
 
 snell_test(test_scene_parser
   SOURCES tests/unit/test_scene_parser.cpp
-  LIBS snell_xml)
+  LIBS snell_loader)
 
 # Full instantiation through every factory (needs all plugin libraries).
 snell_test(test_scene_loader_full

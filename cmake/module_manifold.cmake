@@ -11,7 +11,8 @@ snell_library(snell_manifold
   src/manifold/light_point.cpp
   src/manifold/walk_statistics.cpp
 )
-target_link_libraries(snell_manifold PUBLIC snell_geometry snell_bsdf snell_light nlohmann_json::nlohmann_json)
+target_link_libraries(snell_manifold PUBLIC snell_scene snell_geometry snell_bsdf snell_light snell_core
+                      nlohmann_json::nlohmann_json)
 
 snell_test(test_manifold
   SOURCES tests/manifold/test_constraints.cpp tests/manifold/test_walk.cpp

@@ -4,4 +4,4 @@ snell_library(snell_render
   src/render/renderer.cpp
   src/render/camera_sample.cpp
 )
-target_link_libraries(snell_render PUBLIC snell_sampler snell_geometry TBB::tbb)
+target_link_libraries(snell_render PUBLIC snell_scene snell_sampler snell_camera snell_core TBB::tbb)

@@ -7,8 +7,8 @@ snell_library(snell_sampler
   src/sampler/sobol.cpp
   src/sampler/factory.cpp
 )
-target_link_libraries(snell_sampler PUBLIC snell_base)
+target_link_libraries(snell_sampler PUBLIC snell_core)
 
 snell_test(test_samplers
-  SOURCES tests/unit/test_samplers.cpp
+  SOURCES tests/unit/test_samplers.cpp tests/unit/test_sampler.cpp
   LIBS snell_sampler)

@@ -1,7 +1,6 @@
 #pragma once
-// Factories of camera-side plugins that read a parameter dictionary. Kept apart from
-// camera/filter.h because the filters live in snell_base, below snell_props (core/props.h);
-// this file is compiled into snell_loader.
+// Factories of camera-side plugins that read a parameter dictionary (core/props.h). Kept apart
+// from camera/filter.h, which the camera and the render loop use without a dictionary.
 #include <memory>
 
 #include "camera/filter.h"

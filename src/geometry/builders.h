@@ -1,7 +1,7 @@
 #pragma once
 // Mitsuba's built-in mesh shapes, as MeshData in world space (already transformed).
+#include "core/mesh_data.h"
 #include "core/transform.h"
-#include "geometry/mesh_data.h"
 
 namespace snell {
 

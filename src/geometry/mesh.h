@@ -2,7 +2,7 @@
 #include <vector>
 
 #include "core/distribution.h"
-#include "geometry/mesh_data.h"
+#include "core/mesh_data.h"
 #include "geometry/shape.h"
 
 namespace snell {

@@ -4,10 +4,10 @@
 
 #include "bsdf/bsdf.h"
 #include "core/sampler.h"
-#include "geometry/scene.h"
 #include "integrators/mis.h"
 #include "integrators/scatter.h"
 #include "light/light.h"
+#include "scene/scene.h"
 
 namespace snell {
 

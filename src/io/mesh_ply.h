@@ -1,7 +1,7 @@
 #pragma once
 #include <string>
 
-#include "geometry/mesh_data.h"
+#include "core/mesh_data.h"
 
 namespace snell {
 

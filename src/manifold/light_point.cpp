@@ -1,6 +1,6 @@
 #include "manifold/light_point.h"
 
-#include "geometry/scene.h"
+#include "scene/scene.h"
 
 namespace snell {
 

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "geometry/scene.h"
 #include "geometry/shape.h"
+#include "scene/scene.h"
 
 namespace snell {
 

@@ -5,10 +5,10 @@
 
 #include "bsdf/microfacet.h"
 #include "core/stats.h"
-#include "geometry/scene.h"
 #include "manifold/generalized_geometry.h"
 #include "manifold/manifold_walk.h"
 #include "manifold/seed_path.h"
+#include "scene/scene.h"
 
 namespace snell {
 

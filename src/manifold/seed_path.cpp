@@ -1,7 +1,7 @@
 #include "manifold/seed_path.h"
 
 #include "bsdf/bsdf.h"
-#include "geometry/scene.h"
+#include "scene/scene.h"
 
 namespace snell {
 

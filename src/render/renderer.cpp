@@ -13,8 +13,8 @@
 
 #include "core/progress.h"
 #include "core/sampler.h"
-#include "geometry/scene.h"
 #include "render/camera_sample.h"
+#include "scene/scene.h"
 
 namespace snell {
 

@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/image_metrics.h"
 #include "io/stats_json.h"
+#include "report/image_metrics.h"
 
 namespace snell {
 

@@ -18,7 +18,7 @@ using Rgb8 = std::array<uint8_t, 3>;
 Rgb8 viridis(double t);
 
 /// Per-pixel relative error sqrt(mean over RGB of (a - r)^2 / (r^2 + 0.01)): the square root of
-/// the pixel's share of relMSE (io/image_metrics.h), so the image shows where relMSE comes from.
+/// the pixel's share of relMSE (report/image_metrics.h), so the image shows where relMSE comes from.
 /// Both images must be the same size (not checked here).
 double pixel_relative_error(const Image& img, const Image& ref, int x, int y);
 

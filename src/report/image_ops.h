@@ -2,7 +2,7 @@
 // Small image manipulations for reports: cutting out a crop and enlarging it without smoothing,
 // so that individual noisy pixels stay visible (the paper's inset crops).
 #include "io/image.h"
-#include "io/image_metrics.h"
+#include "report/image_metrics.h"
 
 namespace snell {
 

@@ -18,7 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/image.h"
-#include "io/image_metrics.h"
+#include "report/image_metrics.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "geometry/scene.h"
 #include "integrators/integrator.h"
-#include "io/scene_loader.h"
+#include "loader/scene_loader.h"
 #include "render/renderer.h"
+#include "scene/scene.h"
 
 namespace snell::test {
 

@@ -73,7 +73,7 @@ inline ReplicaStats replica_stats(const LoadedScene& ls, int spp, int block, uin
         opt.seed = seed;
         opt.progress = false;
         opt.tile_size = 8;  // enough tiles for every core on these small images
-        return render(*ls.scene, *ls.scene->integrator(), ls.film, opt);
+        return render(*ls.scene, *ls.integrator, ls.film, opt);
     });
 }
 

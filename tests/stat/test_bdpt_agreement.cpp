@@ -68,9 +68,9 @@ void expect_bdpt_and_nee_agree(const char* xml, const Defines& d, int spp_bdpt, 
     dn["integrator"] = "nee";
     const LoadedScene b = load_xml(xml, db);
     const LoadedScene n = load_xml(xml, dn);
-    ASSERT_EQ(b.scene->integrator()->name(), "bdpt");
-    const auto eb = block_estimates(b, *b.scene->integrator(), spp_bdpt, replicas, block, 1000);
-    const auto en = block_estimates(n, *n.scene->integrator(), spp_nee, replicas, block, 2000);
+    ASSERT_EQ(b.integrator->name(), "bdpt");
+    const auto eb = block_estimates(b, *b.integrator, spp_bdpt, replicas, block, 1000);
+    const auto en = block_estimates(n, *n.integrator, spp_nee, replicas, block, 2000);
     // Per block (localised errors) and for the whole image (small errors spread everywhere,
     // such as MIS weights a few percent off), each at level 0.01.
     expect_agreement(eb, en, 0.01, what);
@@ -147,8 +147,8 @@ TEST(BdptAgreement, MatchesNeeWithAnEnvironmentAndHiddenEmitters) {
 TEST(BdptAgreement, DetectsALightThreePercentBrighter) {
     const LoadedScene b = load_xml(kCornellBox, {{"integrator", "bdpt"}, {"radiance", "6.18"}});
     const LoadedScene n = load_xml(kCornellBox, {{"integrator", "nee"}});
-    const auto eb = block_estimates(b, *b.scene->integrator(), 32, 12, 8, 3000);
-    const auto en = block_estimates(n, *n.scene->integrator(), 64, 12, 8, 4000);
+    const auto eb = block_estimates(b, *b.integrator, 32, 12, 8, 3000);
+    const auto en = block_estimates(n, *n.integrator, 64, 12, 8, 4000);
     EXPECT_GT(count_disagreements(eb, en, 0.01), 0);
 }
 

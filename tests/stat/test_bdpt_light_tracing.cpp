@@ -34,7 +34,7 @@ RenderResult render_once(const LoadedScene& ls, const FilmSpec& spec, int spp, u
     opt.threads = threads;
     opt.progress = false;
     opt.debug_layers = layers;
-    return render(*ls.scene, *ls.scene->integrator(), spec, opt);
+    return render(*ls.scene, *ls.integrator, spec, opt);
 }
 
 }  // namespace
@@ -45,7 +45,7 @@ const std::vector<Estimate>& path_reference() {
         Defines d = kSmallLight;
         d["integrator"] = "path";
         const LoadedScene p = load_xml(caustic_box(), d);
-        return block_estimates(p, *p.scene->integrator(), 2048, 12, 12, 6000);
+        return block_estimates(p, *p.integrator, 2048, 12, 12, 6000);
     }();
     return e;
 }
@@ -55,7 +55,7 @@ std::vector<Estimate> bdpt_blocks(const std::string& radiance) {
     d["integrator"] = "bdpt";
     d["radiance"] = radiance;
     const LoadedScene b = load_xml(caustic_box(), d);
-    return block_estimates(b, *b.scene->integrator(), 128, 12, 12, 5000);
+    return block_estimates(b, *b.integrator, 128, 12, 12, 5000);
 }
 
 TEST(BdptLightTracing, MatchesPathOnADirectlySeenCaustic) {
@@ -126,9 +126,7 @@ TEST(BdptLightTracing, StrategyLayersSumToTheImage) {
     const auto names = [&] {
         RenderOptions opt;
         opt.debug_layers = true;
-        return dynamic_cast<const TileIntegrator&>(*ls.scene->integrator())
-            .prepare(*ls.scene, ls.film, opt)
-            ->layer_names();
+        return dynamic_cast<const TileIntegrator&>(*ls.integrator).prepare(*ls.scene, ls.film, opt)->layer_names();
     }();
     ASSERT_EQ(names.size(), 1u + 3u + 4u);  // lengths 1..3: (0,2); (0,3) (1,2) (2,1); (0,4) ... (3,1)
     EXPECT_EQ(names.front(), "d1_s0_t2");
@@ -158,7 +156,7 @@ TEST(BdptLightTracing, TimedRenderKeepsWholePasses) {
     RenderOptions opt;
     opt.time_limit = 0.3;
     opt.progress = false;
-    const RenderResult r = render(*ls.scene, *ls.scene->integrator(), ls.film, opt);
+    const RenderResult r = render(*ls.scene, *ls.integrator, ls.film, opt);
     ASSERT_GT(r.spp_completed, 0u);
     for (int y = 0; y < r.film.height(); ++y)
         for (int x = 0; x < r.film.width(); ++x) ASSERT_EQ(r.film.samples(x, y), r.spp_completed) << x << "," << y;
@@ -195,7 +193,7 @@ const char* kSunAndSky = R"(<scene version="3.0.0">
 
 std::vector<Estimate> sun_blocks(const std::string& integrator, const std::string& irradiance, int spp, uint64_t seed) {
     const LoadedScene ls = load_xml(kSunAndSky, {{"integrator", integrator}, {"irradiance", irradiance}});
-    std::vector<Estimate> blocks = block_estimates(ls, *ls.scene->integrator(), spp, 12, 6, seed);
+    std::vector<Estimate> blocks = block_estimates(ls, *ls.integrator, spp, 12, 6, seed);
     // Drop the caustic under the ball (blocks 9 and 10 of 4 x 4), which nee cannot render.
     blocks.erase(blocks.begin() + 9, blocks.begin() + 11);
     return blocks;

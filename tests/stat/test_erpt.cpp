@@ -54,12 +54,10 @@ RenderResult render_once(const LoadedScene& ls, uint64_t seed, int threads = 0, 
     opt.progress = false;
     opt.threads = threads;
     opt.tile_size = 8;
-    return render(*ls.scene, *ls.scene->integrator(), ls.film, opt);
+    return render(*ls.scene, *ls.integrator, ls.film, opt);
 }
 
-const ErptIntegrator& erpt_of(const LoadedScene& ls) {
-    return dynamic_cast<const ErptIntegrator&>(*ls.scene->integrator());
-}
+const ErptIntegrator& erpt_of(const LoadedScene& ls) { return dynamic_cast<const ErptIntegrator&>(*ls.integrator); }
 
 /// The tracer a render with `seed` uses (E_d and the bootstrap's mean depend on the seed only).
 std::unique_ptr<ErptTracer> prepared(const LoadedScene& ls, uint64_t seed) {

@@ -11,7 +11,7 @@
 
 #include "camera/factory.h"
 #include "camera/filter.h"
-#include "io/scene_loader.h"
+#include "loader/scene_loader.h"
 #include "stat/chi2_plane.h"
 #include "unit/loader_errors.h"
 

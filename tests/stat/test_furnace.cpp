@@ -11,7 +11,7 @@ TEST_P(Furnace, WhiteSphereInWhiteWorldIsWhite) {
     LoadedScene ls = load_xml(kFurnace, {{"integrator", GetParam()}});
     for (int c = 0; c < 3; ++c) {
         // One block covering the whole image; replicas give the standard error.
-        const auto e = block_estimates(ls, *ls.scene->integrator(), 8, 6, 16, 77, c);
+        const auto e = block_estimates(ls, *ls.integrator, 8, 6, 16, 77, c);
         ASSERT_EQ(e.size(), 1u);
         // 4 standard errors, plus the white illuminant's fit error: its sRGB is (1,1,1) to
         // 1e-4 per channel (Spectrum.WhiteIlluminantIsSrgbWhite checks that bound).

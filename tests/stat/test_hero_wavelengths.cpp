@@ -24,7 +24,7 @@ Whiteness furnace_whiteness(const std::string& integrator, int spectral_samples,
     opt.seed = 5;
     opt.progress = false;
     opt.sampler.type = sampler;
-    const std::vector<float> rgb = render(*ls.scene, *ls.scene->integrator(), ls.film, opt).film.to_linear_srgb();
+    const std::vector<float> rgb = render(*ls.scene, *ls.integrator, ls.film, opt).film.to_linear_srgb();
     Whiteness w;
     double sq = 0, mean[3] = {0, 0, 0};
     const size_t n = rgb.size() / 3;
@@ -75,7 +75,7 @@ std::vector<Estimate> droplet_blocks(const std::string& integrator, int spectral
     const LoadedScene ls = load_xml(
         xml,
         {{"integrator", integrator}, {"spectral_samples", std::to_string(spectral_samples)}, {"radiance", radiance}});
-    return block_estimates(ls, *ls.scene->integrator(), spp, 12, 6, seed, channel);
+    return block_estimates(ls, *ls.integrator, spp, 12, 6, seed, channel);
 }
 
 }  // namespace

@@ -60,8 +60,8 @@ void expect_mnee_matches_nee(const std::string& xml, int nee_spp, int mnee_spp, 
                              const std::string& nee_xml = "") {
     LoadedScene nee = load_xml(nee_xml.empty() ? xml : nee_xml, {{"integrator", "nee"}});
     LoadedScene mnee = load_xml(xml, {{"integrator", "mnee"}});
-    const auto a = block_estimates(nee, *nee.scene->integrator(), nee_spp, 8, 6, 100);
-    const auto b = block_estimates(mnee, *mnee.scene->integrator(), mnee_spp, 8, 6, 200);
+    const auto a = block_estimates(nee, *nee.integrator, nee_spp, 8, 6, 100);
+    const auto b = block_estimates(mnee, *mnee.integrator, mnee_spp, 8, 6, 200);
     expect_agreement(a, b, 0.01, what);
 }
 
@@ -89,8 +89,8 @@ TEST(MneeAgreement, WithoutRefractionMneeIsNeeSampleForSample) {
     RenderOptions opt;
     opt.spp = 4;
     opt.progress = false;
-    const auto a = render(*nee.scene, *nee.scene->integrator(), nee.film, opt).film.to_linear_srgb();
-    const auto b = render(*mnee.scene, *mnee.scene->integrator(), mnee.film, opt).film.to_linear_srgb();
+    const auto a = render(*nee.scene, *nee.integrator, nee.film, opt).film.to_linear_srgb();
+    const auto b = render(*mnee.scene, *mnee.integrator, mnee.film, opt).film.to_linear_srgb();
     ASSERT_EQ(a.size(), b.size());
     for (size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << "component " << i;
 }
@@ -101,8 +101,8 @@ TEST(MneeAgreement, BiasedVariantOnlyRemovesEnergy) {
     const std::string xml = scene_with(smooth_water(), R"(<boolean name="biased" value="$biased"/>)");
     LoadedScene unbiased = load_xml(xml, {{"integrator", "mnee"}, {"biased", "false"}});
     LoadedScene biased = load_xml(xml, {{"integrator", "mnee"}, {"biased", "true"}});
-    const auto u = block_estimates(unbiased, *unbiased.scene->integrator(), 64, 8, 6, 300);
-    const auto b = block_estimates(biased, *biased.scene->integrator(), 64, 8, 6, 400);
+    const auto u = block_estimates(unbiased, *unbiased.integrator, 64, 8, 6, 300);
+    const auto b = block_estimates(biased, *biased.integrator, 64, 8, 6, 400);
     double su = 0, sb = 0;
     for (size_t i = 0; i < u.size(); ++i) {
         // One-sided: the biased mean may not exceed the unbiased one beyond noise.
@@ -141,8 +141,8 @@ TEST(MneeAgreement, SceneScaledBy1000RendersTheSame) {
     LoadedScene a = load_xml(xml, {{"integrator", "mnee"}});
     LoadedScene b = load_xml(scaled, {{"integrator", "mnee"}});
     // Radiance is scale-free, so the images agree statistically block by block.
-    const auto ea = block_estimates(a, *a.scene->integrator(), 32, 8, 6, 500);
-    const auto eb = block_estimates(b, *b.scene->integrator(), 32, 8, 6, 600);
+    const auto ea = block_estimates(a, *a.integrator, 32, 8, 6, 500);
+    const auto eb = block_estimates(b, *b.integrator, 32, 8, 6, 600);
     expect_agreement(ea, eb, 0.01, "scaled by 1000");
 }
 
@@ -164,10 +164,10 @@ TEST(MneeAgreement, AbsorbingRoughGlassMatchesPathTracing) {
         <float name="ext_ior" value="1"/><rgb name="sigma_a" value="0.5, 0.2, 0.8"/></bsdf>)";
     const std::string xml = scene_with(glass);
     LoadedScene path = load_xml(xml, {{"integrator", "path"}});
-    const auto ref = block_estimates(path, *path.scene->integrator(), 512, 8, 6, 700);
+    const auto ref = block_estimates(path, *path.integrator, 512, 8, 6, 700);
     for (const char* integ : {"nee", "mnee"}) {
         LoadedScene ls = load_xml(xml, {{"integrator", integ}});
-        expect_agreement(ref, block_estimates(ls, *ls.scene->integrator(), 96, 8, 6, 800), 0.01, integ);
+        expect_agreement(ref, block_estimates(ls, *ls.integrator, 96, 8, 6, 800), 0.01, integ);
     }
 }
 
@@ -178,8 +178,8 @@ TEST(MneeAgreement, EmissiveDielectricMatchesPathTracing) {
         <emitter type="area"><rgb name="radiance" value="0.5, 0.5, 0.5"/></emitter>)");
     LoadedScene path = load_xml(xml, {{"integrator", "path"}});
     LoadedScene mnee = load_xml(xml, {{"integrator", "mnee"}});
-    expect_agreement(block_estimates(path, *path.scene->integrator(), 256, 8, 6, 900),
-                     block_estimates(mnee, *mnee.scene->integrator(), 64, 8, 6, 1000), 0.01, "emissive dielectric");
+    expect_agreement(block_estimates(path, *path.integrator, 256, 8, 6, 900),
+                     block_estimates(mnee, *mnee.integrator, 64, 8, 6, 1000), 0.01, "emissive dielectric");
 }
 
 // An air bubble (interior less dense than the outside, eta < 1): the walk must converge
@@ -192,7 +192,7 @@ TEST(MneeAgreement, BubbleWithEtaBelowOneConvergesAndMatchesNee) {
     RenderOptions opt;
     opt.spp = 8;
     opt.progress = false;
-    const RenderResult r = render(*mnee.scene, *mnee.scene->integrator(), mnee.film, opt);
+    const RenderResult r = render(*mnee.scene, *mnee.integrator, mnee.film, opt);
     ASSERT_GT(r.counters.walks_started, 100u);
     EXPECT_GT(double(r.counters.walks_converged), 0.2 * double(r.counters.walks_started));
     expect_mnee_matches_nee(xml, 256, 64, "bubble");

@@ -40,7 +40,7 @@ std::vector<float> render_rgb(const LoadedScene& ls, int spp, uint64_t seed) {
     opt.spp = spp;
     opt.seed = seed;
     opt.progress = false;
-    return render(*ls.scene, *ls.scene->integrator(), ls.film, opt).film.to_linear_srgb();
+    return render(*ls.scene, *ls.integrator, ls.film, opt).film.to_linear_srgb();
 }
 
 }  // namespace

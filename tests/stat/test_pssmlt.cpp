@@ -22,7 +22,7 @@ constexpr int kBlock = 4;  // 4 x 4 blocks of 4 x 4 pixels
 constexpr int kReplicas = 20;
 
 PssmltSettings test_settings(const LoadedScene& ls, int chains = 8) {
-    PssmltSettings s = dynamic_cast<const PssmltIntegrator&>(*ls.scene->integrator()).settings();
+    PssmltSettings s = dynamic_cast<const PssmltIntegrator&>(*ls.integrator).settings();
     s.mutations_per_pixel = kMutationsPerPixel;
     s.bootstrap_samples = 65536;
     s.chains = chains;
@@ -118,7 +118,7 @@ TEST(Pssmlt, AgreesWithNeeWithoutKelemenWeights) {
     xml.replace(xml.find(depth), depth.size(),
                 std::string(depth) + R"(<boolean name="kelemen_weights" value="false"/>)");
     LoadedScene mlt = load_xml(xml, {{"integrator", "pssmlt"}, {"res", "16"}});
-    ASSERT_FALSE(dynamic_cast<const PssmltIntegrator&>(*mlt.scene->integrator()).settings().kelemen_weights);
+    ASSERT_FALSE(dynamic_cast<const PssmltIntegrator&>(*mlt.integrator).settings().kelemen_weights);
     LoadedScene nee = load_xml(kCornellBox, {{"integrator", "nee"}, {"res", "16"}});
     expect_replicas_agree(pssmlt_replica_stats(mlt, 5000), replica_stats(nee, 256, kBlock, 6000, kReplicas),
                           "pssmlt(nee), plain weights, vs nee");
@@ -143,7 +143,7 @@ TEST(Pssmlt, MneeSamplerRunsAndUnknownSamplerIsRejected) {
     std::string xml = kCornellBox;
     xml.replace(xml.find(depth), depth.size(), depth + R"(<string name="sampler" value="mnee"/>)");
     LoadedScene ls = load_xml(xml, {{"integrator", "pssmlt"}, {"res", "16"}});
-    const auto& integ = dynamic_cast<const PssmltIntegrator&>(*ls.scene->integrator());
+    const auto& integ = dynamic_cast<const PssmltIntegrator&>(*ls.integrator);
     EXPECT_EQ(integ.settings().sampler, "mnee");
     PssmltSettings s = integ.settings();
     s.mutations_per_pixel = 16;

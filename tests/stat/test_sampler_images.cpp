@@ -35,7 +35,7 @@ double mean_pixel_variance(const LoadedScene& ls, const std::string& sampler, in
         opt.seed = uint64_t(1000 + 17 * s);
         opt.progress = false;
         opt.sampler.type = sampler;
-        const std::vector<float> rgb = render(*ls.scene, *ls.scene->integrator(), ls.film, opt).film.to_linear_srgb();
+        const std::vector<float> rgb = render(*ls.scene, *ls.integrator, ls.film, opt).film.to_linear_srgb();
         sum.resize(rgb.size(), 0.0);
         sq.resize(rgb.size(), 0.0);
         for (size_t i = 0; i < rgb.size(); ++i) sum[i] += rgb[i], sq[i] += double(rgb[i]) * rgb[i];
@@ -73,7 +73,7 @@ TEST_P(SamplerImages, DeterministicWhateverTheThreadCount) {
         opt.tile_size = 5;
         opt.progress = false;
         opt.sampler.type = GetParam();
-        images.push_back(render(*ls.scene, *ls.scene->integrator(), ls.film, opt).film.to_linear_srgb());
+        images.push_back(render(*ls.scene, *ls.integrator, ls.film, opt).film.to_linear_srgb());
     }
     EXPECT_EQ(images[0], images[1]);
     EXPECT_EQ(images[0], images[2]);

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "core/props.h"
-#include "io/scene_loader.h"
+#include "loader/scene_loader.h"
 
 namespace snell::test {
 

@@ -4,7 +4,7 @@
 #include "core/warp.h"
 #include "geometry/builders.h"
 #include "geometry/mesh.h"
-#include "geometry/scene.h"
+#include "scene/scene.h"
 #include "test_geometry_util.h"
 
 using namespace snell;

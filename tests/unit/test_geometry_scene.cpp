@@ -5,8 +5,8 @@
 #include "core/warp.h"
 #include "geometry/builders.h"
 #include "geometry/mesh.h"
-#include "geometry/scene.h"
 #include "geometry/sphere.h"
+#include "scene/scene.h"
 #include "test_geometry_util.h"
 
 using namespace snell;

@@ -2,8 +2,8 @@
 
 #include "core/rng.h"
 #include "core/warp.h"
-#include "geometry/scene.h"
 #include "geometry/sphere.h"
+#include "scene/scene.h"
 #include "test_geometry_util.h"
 
 using namespace snell;

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <vector>
 
+#include "core/mesh_data.h"
 #include "core/rng.h"
 #include "core/vector.h"
-#include "geometry/mesh_data.h"
 
 namespace snell::test {
 

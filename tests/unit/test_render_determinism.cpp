@@ -20,10 +20,10 @@ TEST(Render, IndependentOfThreadCount) {
     opt.spp = 5;
     opt.progress = false;
     opt.threads = 1;
-    const RenderResult a = render(*ls.scene, *ls.scene->integrator(), ls.film, opt);
+    const RenderResult a = render(*ls.scene, *ls.integrator, ls.film, opt);
     opt.threads = 2;
     opt.tile_size = 7;
-    const RenderResult b = render(*ls.scene, *ls.scene->integrator(), ls.film, opt);
+    const RenderResult b = render(*ls.scene, *ls.integrator, ls.film, opt);
     const auto ia = a.film.to_linear_srgb(), ib = b.film.to_linear_srgb();
     ASSERT_EQ(ia.size(), ib.size());
     size_t nonzero = 0;
@@ -35,6 +35,6 @@ TEST(Render, IndependentOfThreadCount) {
     EXPECT_EQ(a.spp_completed, 5u);
     // A different seed gives a different image.
     opt.seed = 1;
-    const RenderResult c = render(*ls.scene, *ls.scene->integrator(), ls.film, opt);
+    const RenderResult c = render(*ls.scene, *ls.integrator, ls.film, opt);
     EXPECT_NE(c.film.to_linear_srgb(), ia);
 }

@@ -7,8 +7,8 @@
 
 #include "bsdf/bsdf.h"
 #include "integrators/integrator.h"
-#include "io/scene_loader.h"
 #include "light/light.h"
+#include "loader/scene_loader.h"
 #include "unit/loader_errors.h"
 
 using namespace snell;
@@ -49,8 +49,8 @@ TEST(SceneLoaderFull, LoadsEverySection) {
     EXPECT_NEAR(s.scene->camera()->tan_half_x(), std::tan(20.0 * kPi / 180.0), 1e-12);
     const Vec3 eye = s.scene->camera()->position();
     EXPECT_NEAR(eye.z, -4.0, 1e-12);
-    ASSERT_TRUE(s.scene->integrator());
-    EXPECT_EQ(s.scene->integrator()->name(), "path");
+    ASSERT_TRUE(s.integrator);
+    EXPECT_EQ(s.integrator->name(), "path");
     // sphere, rectangle (emissive), OBJ triangle from the included file; area + point light.
     ASSERT_EQ(s.scene->shapes().size(), 3u);
     EXPECT_EQ(s.scene->lights().size(), 2u);
@@ -63,7 +63,7 @@ TEST(SceneLoaderFull, LoadsEverySection) {
 
 TEST(SceneLoaderFull, DefaultIntegratorIsPath) {
     const LoadedScene s = load_scene_string(scene_with("<shape type=\"sphere\"/>"), "test.xml", kDataDir);
-    EXPECT_EQ(s.scene->integrator()->name(), "path");
+    EXPECT_EQ(s.integrator->name(), "path");
     EXPECT_EQ(s.spp, 16);
 }
 
@@ -180,6 +180,6 @@ TEST(SceneLoaderFull, ShippedScenesLoad) {
     EXPECT_GE(n, 1);
     const std::string droplet = std::string(SNELL_SOURCE_DIR) + "/scenes/droplet/droplet.xml";
     const LoadedScene s = load_scene_file(droplet, {{"integrator", "path"}, {"spp", "3"}});
-    EXPECT_EQ(s.scene->integrator()->name(), "path");
+    EXPECT_EQ(s.integrator->name(), "path");
     EXPECT_EQ(s.spp, 3);
 }

@@ -1,11 +1,11 @@
-// Stage 1 of scene loading (io/xml_scene.h), independent of the plugin factories: substitution,
+// Stage 1 of scene loading (loader/xml_scene.h), independent of the plugin factories: substitution,
 // includes, refs, value tags, transform composition and error messages with file:line.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 
-#include "io/xml_scene.h"
+#include "loader/xml_scene.h"
 
 using namespace snell;
 

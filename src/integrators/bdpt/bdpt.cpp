@@ -6,12 +6,12 @@
 
 #include "core/spectrum.h"
 #include "core/stats.h"
-#include "geometry/scene.h"
 #include "integrators/bdpt/connect.h"
 #include "integrators/bdpt/mis_weight.h"
 #include "integrators/bdpt/subpath.h"
 #include "integrators/bdpt/vertex.h"
 #include "render/renderer.h"
+#include "scene/scene.h"
 
 namespace snell {
 

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "geometry/scene.h"
 #include "integrators/scatter.h"
+#include "scene/scene.h"
 
 namespace snell::bdpt {
 

@@ -1,6 +1,6 @@
 #include "integrators/bdpt/mis_weight.h"
 
-#include "geometry/scene.h"
+#include "scene/scene.h"
 
 namespace snell::bdpt {
 

@@ -4,12 +4,12 @@
 #include <cmath>
 
 #include "core/warp.h"
-#include "geometry/scene.h"
 #include "geometry/shape.h"
 #include "integrators/scatter.h"
 #include "light/light_sampler.h"
 #include "light/point.h"
 #include "light/spot.h"
+#include "scene/scene.h"
 
 namespace snell::bdpt {
 

@@ -1,9 +1,9 @@
 #include "integrators/bdpt/vertex.h"
 
 #include "core/warp.h"
-#include "geometry/scene.h"
 #include "geometry/shape.h"
 #include "light/light_sampler.h"
+#include "scene/scene.h"
 
 namespace snell::bdpt {
 

@@ -12,7 +12,6 @@
 
 #include "core/rng.h"
 #include "core/spectrum.h"
-#include "geometry/scene.h"
 #include "integrators/erpt/energy_redistribution.h"
 #include "integrators/erpt/recording_sampler.h"
 #include "integrators/erpt/shape_watch.h"
@@ -22,6 +21,7 @@
 #include "render/camera_sample.h"
 #include "render/renderer.h"
 #include "sampler/independent.h"
+#include "scene/scene.h"
 
 namespace snell {
 

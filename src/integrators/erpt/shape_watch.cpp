@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <utility>
 
-#include "geometry/scene.h"
 #include "geometry/shape.h"
 #include "integrators/mnee/mnee_integrator.h"
+#include "scene/scene.h"
 
 namespace snell {
 

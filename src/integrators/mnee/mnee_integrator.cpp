@@ -5,11 +5,11 @@
 
 #include "core/props.h"
 #include "core/stats.h"
-#include "geometry/scene.h"
 #include "integrators/light_connection.h"
 #include "integrators/mis.h"
 #include "manifold/mnee.h"
 #include "manifold/seed_path.h"
+#include "scene/scene.h"
 
 namespace snell {
 

@@ -5,10 +5,10 @@
 #include "bsdf/bsdf.h"
 #include "core/props.h"
 #include "core/stats.h"
-#include "geometry/scene.h"
 #include "integrators/light_connection.h"
 #include "integrators/mis.h"
 #include "integrators/scatter.h"
+#include "scene/scene.h"
 
 namespace snell {
 

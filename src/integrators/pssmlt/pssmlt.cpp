@@ -13,10 +13,10 @@
 #include "core/progress.h"
 #include "core/props.h"
 #include "core/spectrum.h"
-#include "geometry/scene.h"
 #include "integrators/mnee/mnee_integrator.h"
 #include "integrators/pssmlt/path_sample.h"
 #include "integrators/pssmlt/primary_sample_sampler.h"
+#include "scene/scene.h"
 
 namespace snell {
 

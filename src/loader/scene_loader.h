@@ -6,14 +6,19 @@
 
 #include "camera/camera.h"
 #include "core/props.h"
-#include "geometry/scene.h"
+#include "integrators/integrator.h"
 #include "sampler/factory.h"
+#include "scene/scene.h"
 
 namespace snell {
 
 /// Everything a render needs from a scene file.
 struct LoadedScene {
-    std::unique_ptr<Scene> scene;  ///< built (BVH committed), camera and integrator set
+    std::unique_ptr<Scene> scene;  ///< built (BVH committed), camera set
+    /// The scene file's <integrator> (`path` without one, as in Mitsuba). Kept beside the Scene,
+    /// not in it: the integrators sit above the Scene they render (pbrt-v4 keeps them apart too).
+    /// Declared after `scene`, so it is destroyed first.
+    std::shared_ptr<Integrator> integrator;
     FilmSpec film;
     int spp = 16;         ///< sampler sample_count
     uint64_t seed = 0;    ///< sampler seed (offsets every random stream of the render)

@@ -1,4 +1,4 @@
-#include "geometry/scene.h"
+#include "scene/scene.h"
 
 #include <cstdio>
 #include <stdexcept>

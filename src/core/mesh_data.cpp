@@ -1,4 +1,4 @@
-#include "geometry/mesh_data.h"
+#include "core/mesh_data.h"
 
 #include <stdexcept>
 

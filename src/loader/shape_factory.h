@@ -1,4 +1,6 @@
 #pragma once
+// The shape factory sits in loader/, not geometry/: it attaches a BSDF (bsdf/) and skips nested
+// emitters (light/), both of which are above geometry in the layer order (scripts/check-layers.sh).
 #include <memory>
 
 #include "core/props.h"

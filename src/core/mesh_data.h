@@ -1,6 +1,7 @@
 #pragma once
 // Plain triangle-mesh arrays, as produced by the OBJ/PLY readers and the shape builders and
-// consumed by TriangleMesh. Kept separate from TriangleMesh so the readers need no Embree.
+// consumed by TriangleMesh. Kept separate from TriangleMesh so the readers need no Embree, and
+// in core/ because both io/ (the readers) and geometry/ (the builders, TriangleMesh) use it.
 #include <array>
 #include <cstdint>
 #include <string>

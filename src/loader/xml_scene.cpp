@@ -1,4 +1,4 @@
-#include "io/xml_scene.h"
+#include "loader/xml_scene.h"
 
 #include <pugixml.hpp>
 

@@ -1,4 +1,4 @@
-#include "geometry/factory.h"
+#include "loader/shape_factory.h"
 
 #include <filesystem>
 

@@ -1,4 +1,4 @@
-#include "io/image_metrics.h"
+#include "report/image_metrics.h"
 
 #include <algorithm>
 #include <cmath>

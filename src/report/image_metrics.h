@@ -1,6 +1,7 @@
 #pragma once
 // Error metrics between an image and a reference, as used in rendering comparisons (the paper
-// reports PSNR; relative MSE is the usual figure for Monte Carlo noise).
+// reports PSNR; relative MSE is the usual figure for Monte Carlo noise). Part of report/, as io/
+// holds file formats only.
 #include <string>
 #include <vector>
 

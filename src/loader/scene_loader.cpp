@@ -1,7 +1,7 @@
-// Stage 2 of scene loading: instantiate the parsed XML (io/xml_scene.h) through the plugin
+// Stage 2 of scene loading: instantiate the parsed XML (loader/xml_scene.h) through the plugin
 // factories. Every Props is checked for unused entries after its factory ran, so a parameter no
 // plugin understood is always an error with its file:line. The syntax is in docs/scene-format.md.
-#include "io/scene_loader.h"
+#include "loader/scene_loader.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -9,10 +9,10 @@
 
 #include "bsdf/factory.h"
 #include "camera/factory.h"
-#include "geometry/factory.h"
 #include "integrators/integrator.h"
-#include "io/xml_scene.h"
 #include "light/factory.h"
+#include "loader/shape_factory.h"
+#include "loader/xml_scene.h"
 
 namespace snell {
 
@@ -71,10 +71,10 @@ public:
             Props p = props(*integrator);
             auto integ = located(*integrator, [&] { return create_integrator(p); });
             p.check_unused();
-            scene->set_integrator(integ);
+            m_out.integrator = integ;
         } else {  // Mitsuba's default integrator
             Props p("integrator", "path", root.loc);
-            scene->set_integrator(create_integrator(p));
+            m_out.integrator = create_integrator(p);
         }
         located(root, [&] { scene->build(); });
         m_out.scene = std::move(scene);

@@ -12,8 +12,6 @@
 
 namespace snell {
 
-class Integrator;
-
 /// The scene: shapes in an Embree BVH, lights and their sampler, the camera.
 /// Tolerances (ray offsets, projection radii) are relative to the scene's size
 /// (project promise 5): a scene scaled by 1000 behaves identically.
@@ -27,7 +25,6 @@ public:
     void add_shape(std::shared_ptr<Shape> shape);
     void add_light(std::shared_ptr<Light> light);
     void set_camera(std::shared_ptr<PerspectiveCamera> cam) { m_camera = std::move(cam); }
-    void set_integrator(std::shared_ptr<Integrator> integ) { m_integrator = std::move(integ); }
     /// Builds the BVH, preprocesses lights, builds the light sampler. Call once after adding.
     void build();
 
@@ -56,7 +53,6 @@ public:
     const std::vector<const Light*>& infinite_lights() const { return m_infinite; }
     const LightSampler& light_sampler() const { return m_light_sampler; }
     const PerspectiveCamera* camera() const { return m_camera.get(); }
-    const std::shared_ptr<Integrator>& integrator() const { return m_integrator; }
     RTCDevice device() const { return m_device; }
     /// The committed Embree scene (for benchmarks that measure Embree's raw rate).
     RTCScene rtc_scene() const { return m_scene; }
@@ -70,7 +66,6 @@ private:
     std::vector<const Light*> m_infinite;
     LightSampler m_light_sampler;
     std::shared_ptr<PerspectiveCamera> m_camera;
-    std::shared_ptr<Integrator> m_integrator;
     Bounds3 m_bounds;
     double m_radius = 1, m_eps = 1e-5;
 };

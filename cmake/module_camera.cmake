@@ -1,0 +1,12 @@
+# Perspective camera, film, pixel filters and the filter factory (owner: camera).
+snell_library(snell_camera
+  src/camera/camera.cpp
+  src/camera/filter.cpp
+  src/camera/film.cpp
+  src/camera/factory.cpp
+)
+target_link_libraries(snell_camera PUBLIC snell_core)
+
+snell_test(test_film
+  SOURCES tests/unit/test_film.cpp
+  LIBS snell_camera)

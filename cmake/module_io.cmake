@@ -1,0 +1,23 @@
+# File formats only (owner: io): EXR/PNG images, OBJ/PLY meshes, render statistics JSON. Nothing
+# here knows the film, shapes or scenes; callers convert to and from plain buffers and MeshData.
+snell_library(snell_io
+  src/io/image.cpp
+  src/io/stats_json.cpp
+  src/io/mesh_obj.cpp
+  src/io/mesh_ply.cpp
+)
+target_link_libraries(snell_io PUBLIC snell_core nlohmann_json::nlohmann_json
+                      PRIVATE OpenEXR::OpenEXR tinyobjloader::tinyobjloader ${STB_LIBRARY})
+target_include_directories(snell_io PRIVATE ${STB_INCLUDE_DIR})
+
+snell_test(test_image
+  SOURCES tests/unit/test_image.cpp tests/unit/test_image_stats.cpp
+          tests/unit/test_image_progress.cpp
+  LIBS snell_io OpenEXR::OpenEXR ${STB_LIBRARY})
+if(TARGET test_image)
+  target_include_directories(test_image PRIVATE ${STB_INCLUDE_DIR})
+endif()
+
+snell_test(test_mesh_io
+  SOURCES tests/unit/test_mesh_io.cpp
+  LIBS snell_io)
