@@ -7,8 +7,6 @@
 #include <memory>
 #include <mutex>
 
-#include <tbb/enumerable_thread_specific.h>
-
 namespace snell {
 
 namespace {
@@ -128,32 +126,6 @@ void reset_stats() {
     Registry& r = registry();
     std::lock_guard lock(r.mutex);
     for (const auto& b : r.blocks) std::fill(b->slots.begin(), b->slots.end(), 0);
-}
-
-// Legacy fixed counters.
-namespace {
-tbb::enumerable_thread_specific<Counters>& legacy_registry() {
-    static tbb::enumerable_thread_specific<Counters> r;
-    return r;
-}
-}  // namespace
-
-Counters& thread_counters() {
-    // enumerable_thread_specific::local() hashes the thread id into a table on every call,
-    // which showed at ~2% of a path-traced render (one call per ray). Its elements never move
-    // and the registry is never cleared (reset assigns), so each thread keeps its pointer.
-    thread_local Counters* local = &legacy_registry().local();
-    return *local;
-}
-
-Counters total_counters() {
-    Counters sum;
-    for (const Counters& c : legacy_registry()) sum += c;
-    return sum;
-}
-
-void reset_counters() {
-    for (Counters& c : legacy_registry()) c = Counters();
 }
 
 }  // namespace snell

@@ -4,9 +4,9 @@
 
 #include "bsdf/bsdf.h"
 #include "core/props.h"
-#include "core/stats.h"
 #include "geometry/scene.h"
 #include "integrators/mis.h"
+#include "render/camera_sample.h"
 
 namespace snell {
 
@@ -92,7 +92,7 @@ void PathTracer::on_scatter(PathState& state, const SurfaceInteraction& si, cons
 
 SampledSpectrum PathTracer::trace(const Ray& camera_ray, const Scene& scene, Sampler& sampler,
                                   const SampledWavelengths& wl, PathState& state) const {
-    thread_counters().paths++;
+    ++render_stats::paths;
     const BSDFContext ctx{wl, TransportMode::Radiance};
 
     SampledSpectrum L, beta(1.0);
