@@ -141,7 +141,7 @@ RenderReport make_report(const std::string& scene, const std::string& name, cons
     rep.seed = seed;
     rep.interrupted = r.interrupted;
     rep.set_counters(r.counters);
-    if (r.counters.walks_started > 0 || r.counters.pdf_walks > 0) rep.extra["mnee"] = mnee_stats_json(r.counters);
+    if (has_mnee_stats(r.counters)) rep.extra["mnee"] = mnee_stats_json(r.counters);
     return rep;
 }
 

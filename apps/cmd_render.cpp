@@ -92,16 +92,10 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
     rep.threads = nthreads;
     rep.seed = seed;
     rep.interrupted = r.interrupted;
-    rep.paths = r.counters.paths;
-    rep.rays = r.counters.rays;
-    rep.shadow_rays = r.counters.shadow_rays;
-    rep.discarded_nan = r.counters.discarded_nan;
-    rep.discarded_inf = r.counters.discarded_inf;
-    rep.discarded_negative = r.counters.discarded_negative;
-    const Counters& c = r.counters;
-    if (c.walks_started > 0 || c.pdf_walks > 0) {
-        rep.extra["mnee"] = mnee_stats_json(c);
-        if (!quiet) std::fprintf(stderr, "%s", mnee_stats_text(c).c_str());
+    rep.set_counters(r.counters);
+    if (has_mnee_stats(r.counters)) {
+        rep.extra["mnee"] = mnee_stats_json(r.counters);
+        if (!quiet) std::fprintf(stderr, "%s", mnee_stats_text(r.counters).c_str());
     }
     write_stats_json(stats_path, rep);
 
@@ -111,9 +105,9 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
                      "snell: %s%.2f s, %llu spp (mean %.1f), %.3g paths/s, %.3g rays/s; discarded NaN %llu, Inf %llu, "
                      "negative %llu\n  wrote %s, %s, %s\n",
                      r.interrupted ? "INTERRUPTED after " : "", r.seconds, (unsigned long long)r.spp_completed,
-                     r.spp_mean, r.counters.paths / s, (r.counters.rays + r.counters.shadow_rays) / s,
-                     (unsigned long long)r.counters.discarded_nan, (unsigned long long)r.counters.discarded_inf,
-                     (unsigned long long)r.counters.discarded_negative, out_path.c_str(), png_path.c_str(),
+                     r.spp_mean, double(rep.paths) / s, double(rep.rays + rep.shadow_rays) / s,
+                     (unsigned long long)rep.discarded_nan, (unsigned long long)rep.discarded_inf,
+                     (unsigned long long)rep.discarded_negative, out_path.c_str(), png_path.c_str(),
                      stats_path.c_str());
     return r.interrupted ? 130 : 0;
 }

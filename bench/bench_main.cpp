@@ -47,6 +47,7 @@
 #include "geometry/embree_context.h"
 #include "integrators/integrator.h"
 #include "loader/scene_loader.h"
+#include "render/camera_sample.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 
@@ -77,16 +78,18 @@ void render_bench(benchmark::State& state, const char* integrator, int threads =
     opt.sampler = ls.sampler;
     opt.progress = false;
     opt.threads = threads;
-    Counters total;
+    StatTotals total;
     for (auto _ : state) {
         RenderResult r = render(*ls.scene, *ls.integrator, ls.film, opt);
         total += r.counters;
         benchmark::DoNotOptimize(r.film.xyz(0, 0));
     }
-    state.counters["paths/s"] = benchmark::Counter(double(total.paths), benchmark::Counter::kIsRate);
-    state.counters["rays/s"] = benchmark::Counter(double(total.rays + total.shadow_rays), benchmark::Counter::kIsRate);
-    state.counters["closest/s"] = benchmark::Counter(double(total.rays), benchmark::Counter::kIsRate);
-    state.counters["rays/path"] = double(total.rays + total.shadow_rays) / double(std::max<uint64_t>(1, total.paths));
+    const double paths = double(total[render_stats::paths]), rays = double(total[scene_stats::rays]);
+    const double all_rays = rays + double(total[scene_stats::shadow_rays]);
+    state.counters["paths/s"] = benchmark::Counter(paths, benchmark::Counter::kIsRate);
+    state.counters["rays/s"] = benchmark::Counter(all_rays, benchmark::Counter::kIsRate);
+    state.counters["closest/s"] = benchmark::Counter(rays, benchmark::Counter::kIsRate);
+    state.counters["rays/path"] = all_rays / std::max(1.0, paths);
 }
 void BM_RenderPath(benchmark::State& s) { render_bench(s, "path"); }
 void BM_RenderNEE(benchmark::State& s) { render_bench(s, "nee"); }

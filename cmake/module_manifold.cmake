@@ -10,6 +10,7 @@ snell_library(snell_manifold
   src/manifold/mnee.cpp
   src/manifold/light_point.cpp
   src/manifold/walk_statistics.cpp
+  src/manifold/walk_counters.cpp
 )
 target_link_libraries(snell_manifold PUBLIC snell_scene snell_geometry snell_bsdf snell_light snell_core
                       nlohmann_json::nlohmann_json)

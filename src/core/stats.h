@@ -1,66 +1,144 @@
 #pragma once
-// Per-thread event counters (pbrt-v4's STAT_COUNTER idea): incremented without atomics on
-// hot paths, summed when a render ends.
+// Statistics registry (pbrt-v4's STAT_COUNTER idea): a counter is declared where it is counted,
+// incremented without atomics on hot paths (each thread owns a block of slots), and summed over
+// all threads when a render ends. Declare a statistic at namespace scope in the .cpp of the
+// component that counts it, and expose it with `extern` in that component's header:
+//
+//     extern StatCounter walks_started;          // manifold/walk_counters.h
+//     StatCounter walks_started{"mnee.walks_started", "manifold walks started"};  // ... .cpp
+//     ++walks_started;                           // anywhere, on any thread
+//     stat_totals()[walks_started]               // once the threads have joined, or by name
+//     stat_totals().get("mnee.walks_started")    // from code that cannot see the declaration
+//
+// Names are "<component>.<what>" and global: two statistics declared with the same name, kind and
+// size share their slots. A statistic registers when its translation unit's static initialisers
+// run, i.e. before main() for every object file the program links; an object file of a static
+// library is linked when something references it, which the code that counts always does.
 #include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace snell {
 
-struct Counters {
-    uint64_t rays = 0;                ///< closest-hit queries
-    uint64_t shadow_rays = 0;         ///< any-hit queries
-    uint64_t paths = 0;               ///< camera paths traced
-    uint64_t discarded_nan = 0;       ///< samples dropped because they were NaN
-    uint64_t discarded_inf = 0;       ///< samples dropped because they were infinite
-    uint64_t discarded_negative = 0;  ///< samples dropped because they were negative
-
-    // Manifold walks (MNEE, paper Table 1): outcomes by kind, iterations, time.
-    static constexpr int kIterationBins = 64;  ///< histogram of iterations of successful walks
-    uint64_t walks_started = 0;
-    uint64_t walks_converged = 0;          ///< converged and admissible (before visibility)
-    uint64_t walk_iterations_success = 0;  ///< summed over converged walks
-    uint64_t walk_fail_no_convergence = 0;
-    uint64_t walk_fail_singular = 0;
-    uint64_t walk_fail_projection = 0;
-    uint64_t walk_fail_scattering = 0;  ///< converged to a reflection or a non-physical refraction
-    uint64_t walk_fail_occluded = 0;    ///< admissible path blocked
-    uint64_t walk_time_ns = 0;
-    uint64_t seeds_occluded = 0;   ///< seed segment blocked by an opaque surface
-    uint64_t seeds_too_many = 0;   ///< seed with more refractive vertices than allowed
-    uint64_t seeds_culled = 0;     ///< seed culled at x_b (Fig. 3 margin)
-    uint64_t pdf_walks = 0;        ///< Alg. 2 walks (MIS densities of BSDF-sampled paths)
-    uint64_t pdf_walks_found = 0;  ///< ... that reproduced the input path
-    uint64_t iteration_histogram[kIterationBins] = {};
-
-    Counters& operator+=(const Counters& o) {
-        walks_started += o.walks_started;
-        walks_converged += o.walks_converged;
-        walk_iterations_success += o.walk_iterations_success;
-        walk_fail_no_convergence += o.walk_fail_no_convergence;
-        walk_fail_singular += o.walk_fail_singular;
-        walk_fail_projection += o.walk_fail_projection;
-        walk_fail_scattering += o.walk_fail_scattering;
-        walk_fail_occluded += o.walk_fail_occluded;
-        walk_time_ns += o.walk_time_ns;
-        seeds_occluded += o.seeds_occluded;
-        seeds_too_many += o.seeds_too_many;
-        seeds_culled += o.seeds_culled;
-        pdf_walks += o.pdf_walks;
-        pdf_walks_found += o.pdf_walks_found;
-        for (int i = 0; i < kIterationBins; ++i) iteration_histogram[i] += o.iteration_histogram[i];
-        rays += o.rays;
-        shadow_rays += o.shadow_rays;
-        paths += o.paths;
-        discarded_nan += o.discarded_nan;
-        discarded_inf += o.discarded_inf;
-        discarded_negative += o.discarded_negative;
-        return *this;
-    }
+enum class StatKind : uint8_t {
+    Count,        ///< events (StatCounter)
+    Nanoseconds,  ///< accumulated time (StatTimer)
+    Histogram,    ///< counts per bin (StatHistogram)
 };
 
-/// The calling thread's counters.
-Counters& thread_counters();
-/// Sum over all threads since the last reset.
-Counters total_counters();
-void reset_counters();
+/// A registered statistic: where its values live in every thread's block of slots.
+struct StatInfo {
+    std::string name;         ///< "<component>.<what>", e.g. "mnee.walks_started"
+    std::string description;  ///< one line for people
+    StatKind kind = StatKind::Count;
+    uint32_t offset = 0;  ///< first slot
+    uint32_t size = 1;    ///< slots (bins of a histogram, else 1)
+};
+
+/// Slots every thread's block holds. Slot 0 is never handed out: a statistic used before its
+/// static initialiser ran (initialisation order across translation units) counts there, unseen.
+inline constexpr uint32_t kMaxStatSlots = 1024;
+
+namespace detail {
+/// Registers a statistic (or finds the one with the same name) and returns its first slot.
+/// Aborts when the name is taken by a statistic of another kind or size, or slots run out.
+uint32_t register_stat(const char* name, const char* description, StatKind kind, uint32_t size);
+/// Gives the calling thread its block of slots (once per thread).
+uint64_t* attach_thread();
+/// The calling thread's block; constant-initialised, so reading it is one TLS load.
+inline thread_local uint64_t* t_stat_slots = nullptr;
+inline uint64_t* thread_stat_slots() {
+    uint64_t* s = t_stat_slots;
+    return s ? s : attach_thread();
+}
+}  // namespace detail
+
+/// Counts events. `++c` and `c += n` touch the calling thread's slot only.
+class StatCounter {
+public:
+    StatCounter(const char* name, const char* description)
+        : m_slot(detail::register_stat(name, description, StatKind::Count, 1)) {}
+    StatCounter(const StatCounter&) = delete;
+    StatCounter& operator=(const StatCounter&) = delete;
+    void operator++() { detail::thread_stat_slots()[m_slot]++; }
+    void operator++(int) { detail::thread_stat_slots()[m_slot]++; }
+    void operator+=(uint64_t n) { detail::thread_stat_slots()[m_slot] += n; }
+    uint32_t slot() const { return m_slot; }
+
+private:
+    uint32_t m_slot;
+};
+
+/// Accumulates time in nanoseconds (e.g. `t.add_ns(elapsed)`, or a StatTimer::Scope).
+class StatTimer {
+public:
+    StatTimer(const char* name, const char* description)
+        : m_slot(detail::register_stat(name, description, StatKind::Nanoseconds, 1)) {}
+    StatTimer(const StatTimer&) = delete;
+    StatTimer& operator=(const StatTimer&) = delete;
+    void add_ns(uint64_t ns) { detail::thread_stat_slots()[m_slot] += ns; }
+    uint32_t slot() const { return m_slot; }
+
+private:
+    uint32_t m_slot;
+};
+
+/// Counts per bin; `add(b)` clamps b to [0, bins - 1], so the last bin collects the rest.
+class StatHistogram {
+public:
+    StatHistogram(const char* name, const char* description, uint32_t bins)
+        : m_slot(detail::register_stat(name, description, StatKind::Histogram, bins)), m_bins(bins) {}
+    StatHistogram(const StatHistogram&) = delete;
+    StatHistogram& operator=(const StatHistogram&) = delete;
+    void add(int64_t bin, uint64_t n = 1) {
+        const uint32_t b = bin <= 0 ? 0 : bin >= int64_t(m_bins) ? m_bins - 1 : uint32_t(bin);
+        detail::thread_stat_slots()[m_slot + b] += n;
+    }
+    uint32_t slot() const { return m_slot; }
+    uint32_t bins() const { return m_bins; }
+
+private:
+    uint32_t m_slot;
+    uint32_t m_bins;
+};
+
+/// Every statistic registered so far, in registration order.
+std::vector<StatInfo> registered_stats();
+/// The statistic of that name, if one is registered.
+std::optional<StatInfo> find_stat(std::string_view name);
+
+/// A snapshot of every statistic summed over threads. Statistics registered after the
+/// snapshot read as zero.
+class StatTotals {
+public:
+    uint64_t operator[](const StatCounter& c) const { return slot(c.slot()); }
+    uint64_t operator[](const StatTimer& t) const { return slot(t.slot()); }
+    double seconds(const StatTimer& t) const { return double(slot(t.slot())) * 1e-9; }
+    /// One value per bin.
+    std::vector<uint64_t> bins(const StatHistogram& h) const;
+    /// The value of the statistic of that name (a histogram's: the sum of its bins); 0 when no
+    /// statistic has that name.
+    uint64_t get(std::string_view name) const;
+    /// The slots of a statistic (one, or a histogram's bins), zeros past the snapshot.
+    std::vector<uint64_t> values(const StatInfo& info) const;
+    /// Adds another snapshot slot by slot (e.g. totals over several renders).
+    StatTotals& operator+=(const StatTotals& o);
+
+    /// Raw slots, indexed by StatInfo::offset.
+    const std::vector<uint64_t>& slots() const { return m_slots; }
+
+private:
+    friend StatTotals stat_totals();
+    uint64_t slot(uint32_t i) const { return i < m_slots.size() ? m_slots[i] : 0; }
+    std::vector<uint64_t> m_slots;
+};
+
+/// Sum over all threads since the last reset. Read it once the counting threads have joined
+/// (after tbb::parallel_for returns, say); reading during a render gives approximate values.
+StatTotals stat_totals();
+/// Zeroes every thread's slots (not while other threads are counting).
+void reset_stats();
 
 }  // namespace snell

@@ -5,13 +5,25 @@
 
 namespace snell {
 
-void RenderReport::set_counters(const Counters& c) {
-    paths = c.paths;
-    rays = c.rays;
-    shadow_rays = c.shadow_rays;
-    discarded_nan = c.discarded_nan;
-    discarded_inf = c.discarded_inf;
-    discarded_negative = c.discarded_negative;
+void RenderReport::set_counters(const StatTotals& t) {
+    // By name: the counters are declared by the code that counts them (render/camera_sample.h,
+    // scene/scene.h), above this library.
+    paths = t.get("render.paths");
+    rays = t.get("scene.rays");
+    shadow_rays = t.get("scene.shadow_rays");
+    discarded_nan = t.get("render.discarded_nan");
+    discarded_inf = t.get("render.discarded_inf");
+    discarded_negative = t.get("render.discarded_negative");
+    counters = nlohmann::json::object();
+    for (const StatInfo& s : registered_stats()) {
+        std::vector<uint64_t> v = t.values(s);
+        if (s.kind != StatKind::Histogram) {
+            counters[s.name] = v[0];
+            continue;
+        }
+        while (!v.empty() && v.back() == 0) v.pop_back();
+        counters[s.name] = v;
+    }
 }
 
 double RenderReport::paths_per_second() const { return seconds > 0 ? double(paths) / seconds : 0.0; }
@@ -39,6 +51,7 @@ void to_json(nlohmann::json& j, const RenderReport& r) {
         {"rays_per_second", r.rays_per_second()},
         {"discarded", {{"nan", r.discarded_nan}, {"inf", r.discarded_inf}, {"negative", r.discarded_negative}}},
         {"extra", r.extra},
+        {"counters", r.counters},
     };
 }
 
@@ -67,6 +80,7 @@ void from_json(const nlohmann::json& j, RenderReport& r) {
         if (auto it = d->find("negative"); it != d->end()) it->get_to(r.discarded_negative);
     }
     if (auto it = j.find("extra"); it != j.end()) r.extra = *it;
+    if (auto it = j.find("counters"); it != j.end()) r.counters = *it;
 }
 
 void write_stats_json(const std::string& path, const RenderReport& report) {

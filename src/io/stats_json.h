@@ -31,9 +31,13 @@ struct RenderReport {
     uint64_t discarded_negative = 0;  ///< samples dropped as negative
     /// Free-form technique statistics (e.g. MNEE walk outcomes); written under "extra".
     nlohmann::json extra = nlohmann::json::object();
+    /// Every registered statistic by name (core/stats.h): a count, nanoseconds, or a
+    /// histogram's bins as an array (trailing empty bins left out); written under "counters".
+    nlohmann::json counters = nlohmann::json::object();
 
-    /// Copies the ray/path/discard counts from summed per-thread counters.
-    void set_counters(const Counters& c);
+    /// Copies the ray/path/discard counts ("render.paths", "scene.rays", ...) and every
+    /// registered statistic (into `counters`) from a snapshot of the statistics registry.
+    void set_counters(const StatTotals& t);
     /// Camera paths per wall-clock second (0 when no time was measured).
     double paths_per_second() const;
     /// All ray queries (closest-hit plus shadow) per wall-clock second (0 when no time).

@@ -4,15 +4,17 @@
 #include <cmath>
 
 #include "bsdf/microfacet.h"
-#include "core/stats.h"
 #include "manifold/generalized_geometry.h"
 #include "manifold/manifold_walk.h"
 #include "manifold/seed_path.h"
+#include "manifold/walk_counters.h"
 #include "scene/scene.h"
 
 namespace snell {
 
 namespace {
+
+namespace wc = walk_counters;
 
 bool is_specular(const ManifoldVertex& v) { return !v.bsdf->microfacet(); }
 
@@ -110,45 +112,44 @@ bool mnee_seed_culled(const SurfaceInteraction& xb, const BSDF& bsdf_b, const Ve
 MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb,
                             const BSDF& bsdf_b, const BSDFContext& ctx, const MediumStack& media, const Light& light,
                             double pmf, const LightPoint& lp, std::vector<ManifoldVertex>& chain, Sampler& sampler) {
-    Counters& counters = thread_counters();
     MneeConnection out;
     if (mnee_seed_culled(xb, bsdf_b, lp.p, st.cull_margin)) {
-        counters.seeds_culled++;
+        ++wc::seeds_culled;
         out.outcome = MneeOutcome::SeedCulled;
         return out;
     }
     // Sec. 3.2 then Sec. 3.4: half vectors, then the walk from the seed.
     sample_half_vectors(chain, sampler);
-    counters.walks_started++;
+    ++wc::walks_started;
     const auto t0 = std::chrono::steady_clock::now();
     const TangentBasis seed_basis = light_basis(lp.p, lp.n, normalize(lp.p - xb.p));
     const WalkResult walk = manifold_walk(&scene, xb.p, chain, seed_basis, st.walk);
-    counters.walk_time_ns += elapsed_ns(t0);
+    wc::walk_time.add_ns(elapsed_ns(t0));
     switch (walk.outcome) {
         case WalkOutcome::Converged:
             break;
         case WalkOutcome::MaxIterations:
-            counters.walk_fail_no_convergence++;
+            ++wc::walk_fail_no_convergence;
             out.outcome = MneeOutcome::NoConvergence;
             return out;
         case WalkOutcome::SingularMatrix:
-            counters.walk_fail_singular++;
+            ++wc::walk_fail_singular;
             out.outcome = MneeOutcome::Singular;
             return out;
         case WalkOutcome::ProjectionFailed:
-            counters.walk_fail_projection++;
+            ++wc::walk_fail_projection;
             out.outcome = MneeOutcome::ProjectionFailed;
             return out;
     }
     const Vec3 xc = lp.p;
     if (!admissible(xb.p, chain, xc)) {
-        counters.walk_fail_scattering++;
+        ++wc::walk_fail_scattering;
         out.outcome = MneeOutcome::WrongScattering;
         return out;
     }
-    counters.walks_converged++;
-    counters.walk_iterations_success += uint64_t(walk.iterations);
-    counters.iteration_histogram[std::min(walk.iterations, Counters::kIterationBins - 1)]++;
+    ++wc::walks_converged;
+    wc::walk_iterations_success += uint64_t(walk.iterations);
+    wc::iteration_histogram.add(walk.iterations);
 
     // Self-occlusion was ignored for the seed; the admissible path must be visible (Sec. 3.1).
     const size_t k = chain.size();
@@ -156,7 +157,7 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     for (size_t i = 0; i < k && visible; ++i)
         visible = !scene.occluded(scene.spawn_ray_to(chain[i].si, i + 1 < k ? chain[i + 1].p : xc));
     if (!visible) {
-        counters.walk_fail_occluded++;
+        ++wc::walk_fail_occluded;
         out.outcome = MneeOutcome::Occluded;
         return out;
     }
@@ -173,7 +174,7 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     }
     const ChainJacobians jac = chain_jacobians(xb.p, chain, light_basis(xc, lp.n, -from_light));
     if (!jac.valid) {
-        counters.walk_fail_singular++;
+        ++wc::walk_fail_singular;
         out.outcome = MneeOutcome::Singular;
         return out;
     }
@@ -220,7 +221,6 @@ double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInterac
                 const SurfaceInteraction* path, int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
                 double lambda) {
     if (k <= 0 || k > st.max_vertices) return 0;
-    Counters& counters = thread_counters();
     // Alg. 2, line 1: density of x_c as the light sampler would produce it from x_b.
     const double p_point = light_point_pdf(scene, light, xb.p, xc, nc);
     if (!(p_point > 0) || mnee_seed_culled(xb, bsdf_b, xc, st.cull_margin)) return 0;
@@ -251,11 +251,11 @@ double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInterac
     if (!(p_dH > 0)) return 0;
 
     // Line 4: walk from the seed with those half vectors.
-    counters.pdf_walks++;
+    ++wc::pdf_walks;
     const TangentBasis basis = light_basis(xc, nc, normalize(xc - xb.p));
     const auto t0 = std::chrono::steady_clock::now();
     const WalkResult walk = manifold_walk(&scene, xb.p, seed, basis, st.walk);
-    counters.walk_time_ns += elapsed_ns(t0);
+    wc::walk_time.add_ns(elapsed_ns(t0));
     if (walk.outcome != WalkOutcome::Converged) return 0;
     // Lines 5-7: a different admissible path means MNEE cannot produce the input one. Both
     // paths are only approximately admissible (the walk stops at its threshold; a traced path
@@ -274,7 +274,7 @@ double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInterac
         const double scale = length(input[size_t(i)].p - prev);
         if (length(seed[size_t(i)].p - target[size_t(i)].p) > 1e-5 * scale) return 0;
     }
-    counters.pdf_walks_found++;
+    ++wc::pdf_walks_found;
     // Line 8: p_dX = p_dH |dH/dX| (Eq. 7, 8), times the light point's density.
     const ChainJacobians jac = chain_jacobians(xb.p, input, basis);
     if (!jac.valid) return 0;

@@ -50,7 +50,7 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
 
     RenderResult result;
     result.film = Film(w, h);
-    reset_counters();
+    reset_stats();
 
     const int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
     tbb::task_arena arena(threads);
@@ -72,12 +72,11 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
     const bool splatting = tracer.splats();
     const size_t group = splatting ? std::max<size_t>(64, size_t(threads) * 8) : tiles.size();
     std::vector<SplatList> tile_splats(splatting ? std::min(group, tiles.size()) : 0);
-    Counters splat_counters;
     const auto merge_splats = [&](size_t n) {
         for (size_t k = 0; k < n; ++k) {
             for (const FilmSplat& sp : tile_splats[k]) {
                 // One count per invalid splat; XYZ of a non-negative radiance is non-negative.
-                const double c = sanitize(sp.xyz.x + sp.xyz.y + sp.xyz.z, splat_counters);
+                const double c = sanitize(sp.xyz.x + sp.xyz.y + sp.xyz.z);
                 if (!(c > 0 && sp.xyz.x >= 0 && sp.xyz.y >= 0 && sp.xyz.z >= 0)) continue;
                 const Vec2 p(sp.raster.x - spec.crop_x, sp.raster.y - spec.crop_y);  // output window
                 if (sp.binned) {
@@ -119,7 +118,6 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
                     }
                     const Tile& t = tiles[ti];
                     auto sampler = prototype->clone();
-                    Counters& counters = thread_counters();
                     SplatList dummy;
                     SplatList& splats = splatting ? tile_splats[ti - g0] : dummy;
                     for (int y = t.y0; y < t.y1; ++y) {
@@ -139,7 +137,7 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
                                 const Vec2 raster = centre + fs.offset;
                                 const Vec2 u_lambda = sampler->next_2d();
                                 sum += trace_camera_sample(scene, *camera, tracer, spectral_samples, centre, raster,
-                                                           u_lambda, *sampler, splats, counters)
+                                                           u_lambda, *sampler, splats)
                                            .xyz *
                                        fs.weight;
                             }
@@ -171,10 +169,7 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
     // Splat estimators divide by the camera samples each pixel received (total / pixels).
     result.film.set_splat_scale(total > 0 ? double(w) * double(h) / double(total) : 0.0);
     result.interrupted = cancel && cancel->load() && (timed || done_spp < uint64_t(opt.spp));
-    result.counters = total_counters();
-    result.counters.discarded_nan += splat_counters.discarded_nan;
-    result.counters.discarded_inf += splat_counters.discarded_inf;
-    result.counters.discarded_negative += splat_counters.discarded_negative;
+    result.counters = stat_totals();
     result.layer_names = tracer.layer_names();
     return result;
 }

@@ -29,7 +29,8 @@ struct RenderResult {
     uint64_t spp_completed = 0;  ///< samples every pixel received (complete passes)
     double spp_mean = 0;         ///< mean samples per pixel, partial passes included
     bool interrupted = false;    ///< cancelled (Ctrl-C) before the requested spp
-    Counters counters;
+    /// Every registered statistic (core/stats.h), summed over the threads of the render.
+    StatTotals counters;
     std::vector<std::string> layer_names;  ///< names of the film's debug layers 1, 2, ...
 };
 

@@ -3,10 +3,15 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "core/stats.h"
 #include "geometry/embree_context.h"
 
 namespace snell {
+
+namespace scene_stats {
+StatCounter rays{"scene.rays", "closest-hit ray queries"};
+StatCounter shadow_rays{"scene.shadow_rays", "any-hit (visibility) ray queries"};
+}  // namespace scene_stats
+
 namespace {
 
 // Relative tolerances (project promise 5: a scene scaled by 1000 behaves identically).
@@ -90,7 +95,7 @@ bool Scene::intersect(const Ray& ray, SurfaceInteraction* si) const {
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(m_scene, &ctx.ctx, &rh);
-    ++thread_counters().rays;
+    ++scene_stats::rays;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     // Analytic shapes report their exact double t through the context.
     const double t = ctx.geom_exact == rh.hit.geomID ? ctx.t_exact : double(rh.ray.tfar);
@@ -106,7 +111,7 @@ bool Scene::occluded(const Ray& ray) const {
     RTCRay r;
     to_embree(ray, r);
     rtcOccluded1(m_scene, &ctx.ctx, &r);
-    ++thread_counters().shadow_rays;
+    ++scene_stats::shadow_rays;
     return r.tfar < 0;  // Embree sets tfar = -inf on any hit
 }
 

@@ -5,12 +5,19 @@
 #include <vector>
 
 #include "camera/camera.h"
+#include "core/stats.h"
 #include "geometry/interaction.h"
 #include "geometry/shape.h"
 #include "light/light.h"
 #include "light/light_sampler.h"
 
 namespace snell {
+
+// Ray queries, counted by Scene::intersect() and Scene::occluded() (core/stats.h).
+namespace scene_stats {
+extern StatCounter rays;         ///< "scene.rays": closest-hit queries
+extern StatCounter shadow_rays;  ///< "scene.shadow_rays": any-hit queries
+}  // namespace scene_stats
 
 /// The scene: shapes in an Embree BVH, lights and their sampler, the camera.
 /// Tolerances (ray offsets, projection radii) are relative to the scene's size

@@ -13,6 +13,7 @@
 #include "integrators/erpt/recording_sampler.h"
 #include "integrators/pssmlt/path_sample.h"
 #include "integrators/pssmlt/primary_sample_sampler.h"
+#include "manifold/walk_counters.h"
 #include "sampler/independent.h"
 #include "stat/box_scene.h"
 #include "stat/replica_stats.h"
@@ -319,7 +320,7 @@ TEST(Erpt, DeterministicForASeed) {
 TEST(Erpt, MneeSamplerRuns) {
     const LoadedScene ls = load_erpt(R"(<string name="sampler" value="mnee"/>)");
     const RenderResult r = render_once(ls, 9, 0, 1);
-    EXPECT_GT(r.counters.walks_started, 0u);
+    EXPECT_GT(r.counters[walk_counters::walks_started], 0u);
     expect_finite_and_lit(r.film);
 }
 

@@ -1,6 +1,7 @@
 // MNEE is unbiased: on scenes where NEE converges (a large light), `mnee` and `nee` agree per
 // pixel block within their confidence intervals, for smooth and rough droplets; without
 // refractive objects `mnee` is `nee` sample for sample; the biased variant only removes energy.
+#include "manifold/walk_counters.h"
 #include "stat/render_stats.h"
 
 using namespace snell;
@@ -193,7 +194,8 @@ TEST(MneeAgreement, BubbleWithEtaBelowOneConvergesAndMatchesNee) {
     opt.spp = 8;
     opt.progress = false;
     const RenderResult r = render(*mnee.scene, *mnee.integrator, mnee.film, opt);
-    ASSERT_GT(r.counters.walks_started, 100u);
-    EXPECT_GT(double(r.counters.walks_converged), 0.2 * double(r.counters.walks_started));
+    ASSERT_GT(r.counters[walk_counters::walks_started], 100u);
+    EXPECT_GT(double(r.counters[walk_counters::walks_converged]),
+              0.2 * double(r.counters[walk_counters::walks_started]));
     expect_mnee_matches_nee(xml, 256, 64, "bubble");
 }

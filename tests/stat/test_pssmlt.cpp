@@ -8,6 +8,7 @@
 
 #include "integrators/pssmlt/primary_sample_sampler.h"
 #include "integrators/pssmlt/pssmlt.h"
+#include "manifold/walk_counters.h"
 #include "sampler/independent.h"
 #include "stat/box_scene.h"
 #include "stat/replica_stats.h"
@@ -152,7 +153,7 @@ TEST(Pssmlt, MneeSamplerRunsAndUnknownSamplerIsRejected) {
     RenderOptions opt;
     opt.progress = false;
     const RenderResult r = render_pssmlt(*ls.scene, s, kSpectrumSamples, ls.film, opt);
-    EXPECT_GT(r.counters.walks_started, 0u);
+    EXPECT_GT(r.counters[walk_counters::walks_started], 0u);
     expect_finite_and_lit(r.film);
 
     std::string bad = kCornellBox;

@@ -40,7 +40,7 @@ TEST(GeometryScene, OccludedAgreesWithIntersect) {
     Scene scene;
     fill_scene(scene, Transform(), 1);
     PCG32 rng(1, 1);
-    reset_counters();
+    reset_stats();
     int agree = 0, n = 4000;
     for (int i = 0; i < n; ++i) {
         const Vec3 o = Vec3(rng.next_double() * 8 - 4, rng.next_double() * 8 - 4, rng.next_double() * 3 + 0.01);
@@ -57,9 +57,10 @@ TEST(GeometryScene, OccludedAgreesWithIntersect) {
         agree += hit;
     }
     EXPECT_GT(agree, n / 10);  // the test exercises hits, not only misses
-    const Counters c = total_counters();
-    EXPECT_EQ(c.rays, uint64_t(n));
-    EXPECT_EQ(c.shadow_rays, uint64_t(n));
+    const StatTotals c = stat_totals();
+    EXPECT_EQ(c[scene_stats::rays], uint64_t(n));
+    EXPECT_EQ(c[scene_stats::shadow_rays], uint64_t(n));
+    EXPECT_EQ(c.get("scene.rays"), uint64_t(n));  // the name the stats JSON reads
 }
 
 // The same scene scaled by 1000 (and moved) gives the same hits relative to the scale, for

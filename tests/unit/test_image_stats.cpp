@@ -11,6 +11,16 @@ using namespace snell;
 namespace fs = std::filesystem;
 
 namespace {
+// The counters of render/ and geometry/ (not linked here) under the names the report reads,
+// and a histogram for the generic "counters" object.
+StatCounter g_paths{"render.paths", "camera paths traced"};
+StatCounter g_rays{"scene.rays", "closest-hit ray queries"};
+StatCounter g_shadow_rays{"scene.shadow_rays", "any-hit ray queries"};
+StatCounter g_nan{"render.discarded_nan", "NaN samples"};
+StatCounter g_inf{"render.discarded_inf", "infinite samples"};
+StatCounter g_negative{"render.discarded_negative", "negative samples"};
+StatHistogram g_histogram{"test.histogram", "a histogram", 8};
+
 RenderReport sample_report() {
     RenderReport r;
     r.scene = "scenes/caustic pool/scene.xml";
@@ -22,14 +32,16 @@ RenderReport sample_report() {
     r.seconds = 12.5;
     r.threads = 16;
     r.seed = 0xdeadbeefcafeULL;  // above 2^32: must survive as an integer
-    Counters c;
-    c.paths = 46080000;
-    c.rays = 100000000;
-    c.shadow_rays = 25000000;
-    c.discarded_nan = 3;
-    c.discarded_inf = 2;
-    c.discarded_negative = 1;
-    r.set_counters(c);
+    reset_stats();
+    g_paths += 46080000;
+    g_rays += 100000000;
+    g_shadow_rays += 25000000;
+    g_nan += 3;
+    g_inf += 2;
+    g_negative += 1;
+    g_histogram.add(1, 4);
+    g_histogram.add(3);
+    r.set_counters(stat_totals());
     r.extra = {{"walks", {{"attempted", 1000}, {"converged", 640}, {"mean_iterations", 4.25}}}};
     return r;
 }
@@ -71,6 +83,10 @@ TEST(StatsJson, FileRoundTrip) {
     EXPECT_EQ(j.at("discarded").at("inf"), 2u);
     EXPECT_EQ(j.at("discarded").at("negative"), 1u);
     EXPECT_EQ(j.at("extra").at("walks").at("converged"), 640);
+    // Every registered statistic by name; a histogram without its trailing empty bins.
+    EXPECT_EQ(j.at("counters").at("render.paths"), 46080000u);
+    EXPECT_EQ(j.at("counters").at("scene.shadow_rays"), 25000000u);
+    EXPECT_EQ(j.at("counters").at("test.histogram"), nlohmann::json::array({0, 4, 0, 1}));
 
     const RenderReport back = j.get<RenderReport>();
     EXPECT_EQ(nlohmann::json(back), j);  // every field survives (rates are re-derived)
@@ -83,6 +99,7 @@ TEST(StatsJson, FromJsonKeepsDefaultsForMissingKeys) {
     EXPECT_EQ(r.height, 0);
     EXPECT_TRUE(r.extra.is_object());
     EXPECT_TRUE(r.extra.empty());
+    EXPECT_TRUE(r.counters.empty());
 }
 
 TEST(StatsJson, UnwritablePathThrowsWithPath) {

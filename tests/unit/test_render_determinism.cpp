@@ -1,6 +1,7 @@
 // The image is a pure function of (scene, seed, spp): thread count must not change a bit.
 #include <gtest/gtest.h>
 
+#include "io/stats_json.h"
 #include "stat/render_stats.h"
 
 using namespace snell;
@@ -33,6 +34,21 @@ TEST(Render, IndependentOfThreadCount) {
     }
     EXPECT_GT(nonzero, ia.size() / 2);
     EXPECT_EQ(a.spp_completed, 5u);
+    // So are the counts, summed over however many threads counted them; the stats JSON
+    // finds them by the names their components registered (core/stats.h).
+    RenderReport ra, rb;
+    ra.set_counters(a.counters);
+    rb.set_counters(b.counters);
+    EXPECT_EQ(ra.paths, 40u * 30u * 5u);
+    EXPECT_GT(ra.rays, ra.paths);
+    EXPECT_GT(ra.shadow_rays, 0u);
+    EXPECT_EQ(ra.rays, rb.rays);
+    EXPECT_EQ(ra.shadow_rays, rb.shadow_rays);
+    EXPECT_EQ(ra.counters, rb.counters);
+    EXPECT_EQ(ra.counters.at("render.paths"), ra.paths);
+    EXPECT_EQ(ra.counters.at("scene.rays"), ra.rays);
+    EXPECT_EQ(ra.counters.at("mnee.walks_started"), 0u);  // registered (linked), not counted
+    EXPECT_EQ(ra.counters.at("mnee.iteration_histogram"), nlohmann::json::array());
     // A different seed gives a different image.
     opt.seed = 1;
     const RenderResult c = render(*ls.scene, *ls.integrator, ls.film, opt);

@@ -5,11 +5,11 @@
 #include <vector>
 
 #include "core/spectrum.h"
-#include "core/stats.h"
 #include "integrators/bdpt/connect.h"
 #include "integrators/bdpt/mis_weight.h"
 #include "integrators/bdpt/subpath.h"
 #include "integrators/bdpt/vertex.h"
+#include "render/camera_sample.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 
@@ -78,7 +78,7 @@ std::vector<std::string> BdptTracer::layer_names() const {
 
 SampledSpectrum BdptTracer::li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
                                      SplatList& splats) const {
-    thread_counters().paths++;
+    ++render_stats::paths;
     const SampledWavelengths& wl = cs.wl;
     const int md = m_settings.max_depth;
     const PerspectiveCamera& camera = *scene.camera();

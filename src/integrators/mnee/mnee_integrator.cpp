@@ -4,11 +4,11 @@
 #include <cmath>
 
 #include "core/props.h"
-#include "core/stats.h"
 #include "integrators/light_connection.h"
 #include "integrators/mis.h"
 #include "manifold/mnee.h"
 #include "manifold/seed_path.h"
+#include "manifold/walk_counters.h"
 #include "scene/scene.h"
 
 namespace snell {
@@ -146,10 +146,10 @@ SampledSpectrum MneeIntegrator::connect_to_light(const Scene& scene, const Surfa
                 return nee_estimate(si, bsdf, ctx, state.media, *ls, f, pmf, nee_weight(si, bsdf, ctx, *ls, pmf));
             }
         case SeedStatus::Occluded:
-            thread_counters().seeds_occluded++;
+            ++walk_counters::seeds_occluded;
             return {};
         case SeedStatus::TooMany:
-            thread_counters().seeds_too_many++;
+            ++walk_counters::seeds_too_many;
             return {};
         case SeedStatus::Refractive:
             break;

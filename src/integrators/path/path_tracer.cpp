@@ -4,10 +4,10 @@
 
 #include "bsdf/bsdf.h"
 #include "core/props.h"
-#include "core/stats.h"
 #include "integrators/light_connection.h"
 #include "integrators/mis.h"
 #include "integrators/scatter.h"
+#include "render/camera_sample.h"
 #include "scene/scene.h"
 
 namespace snell {
@@ -51,7 +51,7 @@ void PathTracer::on_scatter(PathState& state, const SurfaceInteraction& si, cons
 
 SampledSpectrum PathTracer::trace(const Ray& camera_ray, const Scene& scene, Sampler& sampler,
                                   const SampledWavelengths& wl, PathState& state) const {
-    thread_counters().paths++;
+    ++render_stats::paths;
     const BSDFContext ctx{wl, TransportMode::Radiance};
 
     SampledSpectrum L;

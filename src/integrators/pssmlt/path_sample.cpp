@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "core/spectrum.h"
-#include "core/stats.h"
 #include "integrators/path/path_tracer.h"
 #include "render/camera_sample.h"
 
@@ -24,7 +23,7 @@ PathSample evaluate(const Scene& scene, const PerspectiveCamera& camera, const P
     SplatList no_splats;
     const Vec2 centre(spec.crop_x + s.x + 0.5, spec.crop_y + s.y + 0.5);
     s.xyz = trace_camera_sample(scene, camera, RadianceTracer(inner), spectral_samples, centre, s.raster,
-                                sampler.next_2d(), sampler, no_splats, thread_counters())
+                                sampler.next_2d(), sampler, no_splats)
                 .xyz;
     return s;
 }

@@ -73,7 +73,7 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, i
         for_each_pixel_in_support(filter, p, w, h, [&](int x, int y, double wt) { film[size_t(y) * w + x] += v * wt; });
     };
     tbb::task_arena arena(threads);
-    reset_counters();
+    reset_stats();
 
     const auto stop_requested = [&] {
         return (cancel && cancel->load(std::memory_order_relaxed)) || (timed && elapsed() >= opt.time_limit);
@@ -101,7 +101,7 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, i
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) result.film.add_sum(x, y, Vec3(), 1);
         result.seconds = elapsed();
-        result.counters = total_counters();
+        result.counters = stat_totals();
         return result;
     }
     const Distribution1D seeds(boot_y);
@@ -182,7 +182,7 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, i
     result.spp_mean = double(mutations) / double(pixels);
     result.spp_completed = mutations / pixels;
     result.interrupted = cancel && cancel->load() && (timed || mutations < total);
-    result.counters = total_counters();
+    result.counters = stat_totals();
     return result;
 }
 

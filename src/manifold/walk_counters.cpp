@@ -1,0 +1,22 @@
+#include "manifold/walk_counters.h"
+
+namespace snell::walk_counters {
+
+StatCounter walks_started{"mnee.walks_started", "manifold walks started (Alg. 1)"};
+StatCounter walks_converged{"mnee.walks_converged", "walks converged to an admissible path, before visibility"};
+StatCounter walk_iterations_success{"mnee.walk_iterations_success", "iterations summed over converged walks"};
+StatCounter walk_fail_no_convergence{"mnee.walk_fail_no_convergence", "walks out of iterations"};
+StatCounter walk_fail_singular{"mnee.walk_fail_singular", "walks or Jacobians with a singular matrix"};
+StatCounter walk_fail_projection{"mnee.walk_fail_projection", "walks whose projection onto the shapes failed"};
+StatCounter walk_fail_scattering{"mnee.walk_fail_scattering",
+                                 "walks converged to a reflection or a non-physical refraction"};
+StatCounter walk_fail_occluded{"mnee.walk_fail_occluded", "admissible paths blocked"};
+StatTimer walk_time{"mnee.walk_time_ns", "time in manifold walks (Alg. 1 and Alg. 2)"};
+StatCounter seeds_occluded{"mnee.seeds_occluded", "seed segments blocked by an opaque surface"};
+StatCounter seeds_too_many{"mnee.seeds_too_many", "seeds with more refractive vertices than allowed"};
+StatCounter seeds_culled{"mnee.seeds_culled", "seeds culled at x_b (Fig. 3 margin)"};
+StatCounter pdf_walks{"mnee.pdf_walks", "Alg. 2 walks (MIS densities of BSDF-sampled paths)"};
+StatCounter pdf_walks_found{"mnee.pdf_walks_found", "Alg. 2 walks that reproduced their input path"};
+StatHistogram iteration_histogram{"mnee.iteration_histogram", "iterations of converged walks", kIterationBins};
+
+}  // namespace snell::walk_counters
