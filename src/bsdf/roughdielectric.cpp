@@ -108,39 +108,33 @@ std::optional<BSDFSample> RoughDielectricBSDF::sample(const BSDFContext& ctx, co
         // does the same; the others' f/pdf would have a heavy tail at small roughness).
         s.hero_only = dispersive();
     }
-    if (!dispersive()) {
-        // The closed forms of pdf() and eval() at the sampled microfacet m, without finding m
-        // again from (wo, wi): the BSDF is sampled at every rough-glass vertex, and evaluating
-        // both cost half of sample(). With c = |wi.m| / (|wo.m + eta_it wi.m|^2) eta_it^2 for
-        // refraction (Walter et al. Eq. 17) and 1 / (4 |wi.m|) for reflection (Eq. 14):
-        //   pdf = p(m) (F or 1 - F) c,   f |cos_i| / pdf = D G |wo.m| / (|cos_o| p(m)) (times
-        // the radiance scale 1 / eta_it^2 for refraction; reflection has |wi.m| = |wo.m|).
-        const double cos_o = wo.z, wo_m = dot(wo, m), wi_m = dot(s.wi, m);
-        if (wo_m * cos_o <= 0 || wi_m * s.wi.z <= 0) return std::nullopt;
-        const bool reflected = s.lobe & kReflection;
-        double c;
-        if (reflected) {
-            c = 1.0 / (4 * std::abs(wi_m));
-        } else {
-            const double eta_it = cos_o > 0 ? eta : 1.0 / eta;
-            c = sqr(eta_it) * std::abs(wi_m) / sqr(wo_m + eta_it * wi_m);
-        }
-        s.pdf = pm * (reflected ? f.R : 1 - f.R) * c;
-        if (!(s.pdf > 0)) return std::nullopt;
+    // The closed forms of pdf() and eval() at the sampled microfacet m, without finding m again
+    // from (wo, wi): the BSDF is sampled at every rough-glass vertex, and evaluating both cost
+    // half of sample(). With c = |wi.m| / (|wo.m + eta_it wi.m|^2) eta_it^2 for refraction
+    // (Walter et al. Eq. 17) and 1 / (4 |wi.m|) for reflection (Eq. 14):
+    //   pdf = p(m) (F or 1 - F) c,   f |cos_i| / pdf = D G |wo.m| / (|cos_o| p(m)) (times the
+    // radiance scale 1 / eta_it^2 for refraction; reflection has |wi.m| = |wo.m|).
+    // Both are the hero's: m is the hero's half vector for (wo, wi).
+    const double cos_o = wo.z, wo_m = dot(wo, m), wi_m = dot(s.wi, m);
+    if (wo_m * cos_o <= 0 || wi_m * s.wi.z <= 0) return std::nullopt;
+    const bool reflected = s.lobe & kReflection;
+    const double eta_it = cos_o > 0 ? eta : 1.0 / eta;
+    const double c = reflected ? 1.0 / (4 * std::abs(wi_m)) : sqr(eta_it) * std::abs(wi_m) / sqr(wo_m + eta_it * wi_m);
+    s.pdf = pm * (reflected ? f.R : 1 - f.R) * c;
+    if (!(s.pdf > 0)) return std::nullopt;
+    if (!dispersive() || s.hero_only) {
         double w = m_distr.D(m) * m_distr.G(wo, s.wi, m) * std::abs(wo_m) / (std::abs(cos_o) * pm);
-        if (!reflected && ctx.mode == TransportMode::Radiance) w /= sqr(cos_o > 0 ? eta : 1.0 / eta);
-        s.weight = w * (reflected ? m_specular_reflectance : m_specular_transmittance).eval(ctx.wl);
+        if (!reflected && ctx.mode == TransportMode::Radiance) w /= sqr(eta_it);
+        if (s.hero_only) {
+            s.weight[0] = w * m_specular_transmittance(ctx.hero());
+        } else {
+            s.weight = w * (reflected ? m_specular_reflectance : m_specular_transmittance).eval(ctx.wl);
+        }
         return s;
     }
-    // Dispersive: each wavelength has its own half vector for (wo, wi), so evaluate the closed
-    // forms, which also keeps weight == f |cos| / pdf exactly consistent.
-    s.pdf = pdf(ctx, wo, s.wi);
-    if (!(s.pdf > 0)) return std::nullopt;
-    if (s.hero_only) {
-        s.weight[0] = eval_scalar(eta, ctx.mode, wo, s.wi) * m_specular_transmittance(ctx.hero());
-    } else {
-        s.weight = eval(ctx, wo, s.wi);
-    }
+    // A dispersive reflection: one direction for every wavelength, each with its own Fresnel
+    // factor (and, through eta, its own half vector for refraction, which eval() handles).
+    s.weight = eval(ctx, wo, s.wi);
     s.weight *= std::abs(s.wi.z) / s.pdf;
     return s;
 }
