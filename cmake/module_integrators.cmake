@@ -24,6 +24,7 @@ set(SNELL_ALL_LIBS snell_loader snell_integrators)
 snell_test(test_integrators
   SOURCES tests/stat/test_integrator_agreement.cpp tests/stat/test_furnace.cpp tests/unit/test_render_determinism.cpp
   LIBS ${SNELL_ALL_LIBS})
+snell_test(test_scatter SOURCES tests/unit/test_scatter.cpp LIBS snell_integrators)
 snell_test(test_mnee
   SOURCES tests/stat/test_mnee_agreement.cpp tests/stat/test_mnee_estimator.cpp
   LIBS ${SNELL_ALL_LIBS})
