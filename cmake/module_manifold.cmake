@@ -11,10 +11,11 @@ snell_library(snell_manifold
   src/manifold/light_point.cpp
   src/manifold/walk_statistics.cpp
   src/manifold/walk_counters.cpp
+  src/manifold/solution_set.cpp
 )
 target_link_libraries(snell_manifold PUBLIC snell_scene snell_geometry snell_bsdf snell_light snell_core
                       nlohmann_json::nlohmann_json)
 
 snell_test(test_manifold
-  SOURCES tests/manifold/test_constraints.cpp tests/manifold/test_walk.cpp
+  SOURCES tests/manifold/test_constraints.cpp tests/manifold/test_walk.cpp tests/manifold/test_solution_set.cpp
   LIBS snell_manifold)

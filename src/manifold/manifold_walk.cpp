@@ -127,8 +127,8 @@ WalkResult manifold_walk(const Scene* scene, const Vec3& x_b, std::vector<Manifo
         } else {
             // Variant A: revert to X^i and halve the step.
             beta *= 0.5;
-            if (beta < 1e-4) {
-                res.outcome = projected ? WalkOutcome::MaxIterations : WalkOutcome::ProjectionFailed;
+            if (beta < st.min_step) {
+                res.outcome = projected ? WalkOutcome::Stalled : WalkOutcome::ProjectionFailed;
                 res.error = err;
                 return res;
             }

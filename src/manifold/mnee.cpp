@@ -7,6 +7,7 @@
 #include "manifold/generalized_geometry.h"
 #include "manifold/manifold_walk.h"
 #include "manifold/seed_path.h"
+#include "manifold/solution_set.h"
 #include "manifold/walk_counters.h"
 #include "scene/scene.h"
 
@@ -47,6 +48,22 @@ void vertex_directions(const Vec3& xb, const std::vector<ManifoldVertex>& chain,
                        Vec3* wo) {
     *wi = normalize((i == 0 ? xb : chain[i - 1].p) - chain[i].p);
     *wo = normalize((i + 1 == chain.size() ? xc : chain[i + 1].p) - chain[i].p);
+}
+
+wc::WalkEnd walk_end_of(WalkOutcome o) {
+    switch (o) {
+        case WalkOutcome::Converged:
+            return wc::WalkEnd::Found;
+        case WalkOutcome::MaxIterations:
+            return wc::WalkEnd::MaxIterations;
+        case WalkOutcome::Stalled:
+            return wc::WalkEnd::Stalled;
+        case WalkOutcome::SingularMatrix:
+            return wc::WalkEnd::Singular;
+        case WalkOutcome::ProjectionFailed:
+            return wc::WalkEnd::ProjectionFailed;
+    }
+    return wc::WalkEnd::Singular;
 }
 
 uint64_t elapsed_ns(std::chrono::steady_clock::time_point t0) {
@@ -130,20 +147,29 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
             break;
         case WalkOutcome::MaxIterations:
             ++wc::walk_fail_no_convergence;
+            wc::count_walk_end(false, wc::WalkEnd::MaxIterations);
             out.outcome = MneeOutcome::NoConvergence;
+            return out;
+        case WalkOutcome::Stalled:
+            ++wc::walk_fail_no_convergence;
+            wc::count_walk_end(false, wc::WalkEnd::Stalled);
+            out.outcome = MneeOutcome::Stalled;
             return out;
         case WalkOutcome::SingularMatrix:
             ++wc::walk_fail_singular;
+            wc::count_walk_end(false, wc::WalkEnd::Singular);
             out.outcome = MneeOutcome::Singular;
             return out;
         case WalkOutcome::ProjectionFailed:
             ++wc::walk_fail_projection;
+            wc::count_walk_end(false, wc::WalkEnd::ProjectionFailed);
             out.outcome = MneeOutcome::ProjectionFailed;
             return out;
     }
     const Vec3 xc = lp.p;
     if (!admissible(xb.p, chain, xc)) {
         ++wc::walk_fail_scattering;
+        wc::count_walk_end(false, wc::WalkEnd::WrongScattering);
         out.outcome = MneeOutcome::WrongScattering;
         return out;
     }
@@ -158,6 +184,7 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
         visible = !scene.occluded(scene.spawn_ray_to(chain[i].si, i + 1 < k ? chain[i + 1].p : xc));
     if (!visible) {
         ++wc::walk_fail_occluded;
+        wc::count_walk_end(false, wc::WalkEnd::Occluded);
         out.outcome = MneeOutcome::Occluded;
         return out;
     }
@@ -169,12 +196,14 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     const Vec3 from_light = normalize(chain[k - 1].p - xc);
     const SampledSpectrum Le = light_point_emission(light, xc, lp.n, from_light, xb.p, ctx.wl);
     if (f_b.is_zero() || Le.is_zero()) {
+        wc::count_walk_end(false, wc::WalkEnd::Zero);
         out.outcome = MneeOutcome::Zero;
         return out;
     }
     const ChainJacobians jac = chain_jacobians(xb.p, chain, light_basis(xc, lp.n, -from_light));
     if (!jac.valid) {
         ++wc::walk_fail_singular;
+        wc::count_walk_end(false, wc::WalkEnd::Singular);
         out.outcome = MneeOutcome::Singular;
         return out;
     }
@@ -203,9 +232,11 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     }
     const double p_point = lp.pdf;
     if (throughput.is_zero() || !(p_point > 0)) {
+        wc::count_walk_end(false, wc::WalkEnd::Zero);
         out.outcome = MneeOutcome::Zero;
         return out;
     }
+    wc::count_walk_end(false, wc::WalkEnd::Found);
     out.outcome = MneeOutcome::Success;
     out.value = f_b * throughput * Le * tr * (jac.do_b_dx_c / (pmf * p_point));  // Alg. 1, last line
     out.pdf_mnee = pmf * p_point * p_dH * jac.dH_dX;                             // Eq. 7 with Eq. 8
@@ -256,28 +287,26 @@ double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInterac
     const auto t0 = std::chrono::steady_clock::now();
     const WalkResult walk = manifold_walk(&scene, xb.p, seed, basis, st.walk);
     wc::walk_time.add_ns(elapsed_ns(t0));
-    if (walk.outcome != WalkOutcome::Converged) return 0;
-    // Lines 5-7: a different admissible path means MNEE cannot produce the input one. Both
-    // paths are only approximately admissible (the walk stops at its threshold; a traced path
-    // carries ray offsets), and near caustics the constraints hardly depend on position, so
-    // first polish both to the same solution precision with a few Newton steps (quadratic
-    // convergence), then compare positions relative to the segment lengths.
-    WalkSettings polish = st.walk;
-    polish.threshold = 1e-13;
-    polish.max_iterations = 6;
-    polish.allow_error_increase = false;
+    if (walk.outcome != WalkOutcome::Converged) {
+        wc::count_walk_end(true, walk_end_of(walk.outcome));
+        return 0;
+    }
+    // Lines 5-7: a different admissible path means MNEE cannot produce the input one.
     std::vector<ManifoldVertex> target = input;
-    manifold_walk(&scene, xb.p, seed, basis, polish);
-    manifold_walk(&scene, xb.p, target, basis, polish);
-    for (int i = 0; i < k; ++i) {
-        const Vec3& prev = i == 0 ? xb.p : input[size_t(i - 1)].p;
-        const double scale = length(input[size_t(i)].p - prev);
-        if (length(seed[size_t(i)].p - target[size_t(i)].p) > 1e-5 * scale) return 0;
+    polish_solution(&scene, xb.p, seed, basis, st.walk);
+    polish_solution(&scene, xb.p, target, basis, st.walk);
+    if (!same_solution(xb.p, seed, target, xc)) {
+        wc::count_walk_end(true, wc::WalkEnd::OtherSolution);
+        return 0;
     }
     ++wc::pdf_walks_found;
     // Line 8: p_dX = p_dH |dH/dX| (Eq. 7, 8), times the light point's density.
     const ChainJacobians jac = chain_jacobians(xb.p, input, basis);
-    if (!jac.valid) return 0;
+    if (!jac.valid) {
+        wc::count_walk_end(true, wc::WalkEnd::Singular);
+        return 0;
+    }
+    wc::count_walk_end(true, wc::WalkEnd::Found);
     return pmf * p_point * p_dH * jac.dH_dX;
 }
 

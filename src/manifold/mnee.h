@@ -30,6 +30,7 @@ enum class MneeOutcome {
     SeedTooMany,
     SeedCulled,
     NoConvergence,
+    Stalled,
     Singular,
     ProjectionFailed,
     WrongScattering,

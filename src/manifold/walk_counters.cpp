@@ -18,5 +18,33 @@ StatCounter seeds_culled{"mnee.seeds_culled", "seeds culled at x_b (Fig. 3 margi
 StatCounter pdf_walks{"mnee.pdf_walks", "Alg. 2 walks (MIS densities of BSDF-sampled paths)"};
 StatCounter pdf_walks_found{"mnee.pdf_walks_found", "Alg. 2 walks that reproduced their input path"};
 StatHistogram iteration_histogram{"mnee.iteration_histogram", "iterations of converged walks", kIterationBins};
+StatHistogram walk_end_alg1{"mnee.walk_end_alg1", "Alg. 1 walks by how they ended (WalkEnd)", uint32_t(WalkEnd::Count)};
+StatHistogram walk_end_alg2{"mnee.walk_end_alg2", "Alg. 2 walks by how they ended (WalkEnd)", uint32_t(WalkEnd::Count)};
+
+const char* walk_end_name(WalkEnd e) {
+    switch (e) {
+        case WalkEnd::Found:
+            return "found";
+        case WalkEnd::MaxIterations:
+            return "max_iterations";
+        case WalkEnd::Stalled:
+            return "stalled";
+        case WalkEnd::Singular:
+            return "singular";
+        case WalkEnd::ProjectionFailed:
+            return "projection_failed";
+        case WalkEnd::WrongScattering:
+            return "wrong_scattering";
+        case WalkEnd::Occluded:
+            return "occluded";
+        case WalkEnd::Zero:
+            return "zero";
+        case WalkEnd::OtherSolution:
+            return "other_solution";
+        case WalkEnd::Count:
+            break;
+    }
+    return "unknown";
+}
 
 }  // namespace snell::walk_counters

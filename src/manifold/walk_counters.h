@@ -9,6 +9,23 @@ namespace snell::walk_counters {
 /// Bins of the iteration histogram; the last collects longer walks.
 inline constexpr uint32_t kIterationBins = 64;
 
+/// How a manifold walk ended, counting what happens after convergence too: every walk started
+/// lands in exactly one bin (a test checks the sums).
+enum class WalkEnd : uint32_t {
+    Found,             ///< Alg. 1: the path contributes; Alg. 2: the walk reproduced the input path
+    MaxIterations,     ///< out of iterations (Sec. 3.4: 15 by default)
+    Stalled,           ///< rejected steps shrank the step below min_step
+    Singular,          ///< singular constraint matrix, in the walk or in the final Jacobians
+    ProjectionFailed,  ///< a vertex could not be brought back onto its shape
+    WrongScattering,   ///< Alg. 1: converged to a reflection or a non-physical refraction
+    Occluded,          ///< Alg. 1: the admissible path is blocked
+    Zero,              ///< Alg. 1: admissible and visible, but the measurement vanishes
+    OtherSolution,     ///< Alg. 2: converged to a different path than the input (lines 5-7)
+    Count
+};
+/// Snake-case name of a WalkEnd (stats JSON keys).
+const char* walk_end_name(WalkEnd e);
+
 extern StatCounter walks_started;            ///< "mnee.walks_started": Alg. 1 walks
 extern StatCounter walks_converged;          ///< converged and admissible (before visibility)
 extern StatCounter walk_iterations_success;  ///< iterations summed over converged walks
@@ -24,5 +41,10 @@ extern StatCounter seeds_culled;           ///< seed culled at x_b (Fig. 3 margi
 extern StatCounter pdf_walks;              ///< Alg. 2 walks (MIS densities of BSDF-sampled paths)
 extern StatCounter pdf_walks_found;        ///< ... that reproduced the input path
 extern StatHistogram iteration_histogram;  ///< iterations of converged walks
+extern StatHistogram walk_end_alg1;        ///< "mnee.walk_end_alg1": Alg. 1 walks by WalkEnd
+extern StatHistogram walk_end_alg2;        ///< "mnee.walk_end_alg2": Alg. 2 walks by WalkEnd
+
+/// Counts one ended walk of Alg. 1 (`alg2` false) or Alg. 2.
+inline void count_walk_end(bool alg2, WalkEnd e) { (alg2 ? walk_end_alg2 : walk_end_alg1).add(uint32_t(e)); }
 
 }  // namespace snell::walk_counters

@@ -1,6 +1,7 @@
 #include "manifold/walk_statistics.h"
 
 #include <cstdio>
+#include <utility>
 
 #include "manifold/walk_counters.h"
 
@@ -28,6 +29,14 @@ nlohmann::json mnee_stats_json(const StatTotals& t) {
     j["seeds"] = {{"occluded", t[wc::seeds_occluded]},
                   {"too_many_vertices", t[wc::seeds_too_many]},
                   {"culled", t[wc::seeds_culled]}};
+    // Every walk by how it ended (each walk in exactly one bin): Alg. 1 and Alg. 2 separately.
+    for (const auto& [key, hist] : {std::pair{"alg1", &wc::walk_end_alg1}, std::pair{"alg2", &wc::walk_end_alg2}}) {
+        const std::vector<uint64_t> ends = t.bins(*hist);
+        nlohmann::json e = nlohmann::json::object();
+        for (uint32_t i = 0; i < uint32_t(wc::WalkEnd::Count) && i < ends.size(); ++i)
+            e[wc::walk_end_name(wc::WalkEnd(i))] = ends[i];
+        j["walk_ends"][key] = e;
+    }
     j["pdf_walks"] = t[wc::pdf_walks];
     j["pdf_walks_found"] = t[wc::pdf_walks_found];
     // Histogram of iterations of successful walks; the last bin collects the rest.

@@ -193,3 +193,21 @@ TEST(ManifoldWalk, MirrorReflectionGivesTheGeometryTermOfTheMirrorImage) {
     const double expected = cos_c / (d * d);
     EXPECT_NEAR(jac.do_b_dx_c, expected, 1e-9 * expected);
 }
+
+// min_step ends a walk that can only be rejected: the solution lies far beyond the edge of a
+// small interface, so once the walk reaches the edge no step lowers the error and the step
+// size halves until it falls below min_step.
+TEST(ManifoldWalk, StalledWalkEndsEarly) {
+    TriangleMesh plane(make_rectangle(Transform::scale({0.5, 0.5, 1})), true, false, "plane");
+    const Vec3 xb(0.0, 0.0, -1.0), xc(40.0, 0.0, 0.2);
+    const auto walk = [&](double min_step) {
+        std::vector<ManifoldVertex> chain = {vertex_on(plane, Vec3(0.1, 0.0, 0.0), 1.33)};
+        WalkSettings s = precise();
+        s.min_step = min_step;
+        return manifold_walk(nullptr, xb, chain, endpoint(xc, Vec3(0, 0, -1)), s);
+    };
+    const WalkResult early = walk(0.1), late = walk(1e-4);
+    EXPECT_EQ(early.outcome, WalkOutcome::Stalled);
+    EXPECT_EQ(late.outcome, WalkOutcome::Stalled);
+    EXPECT_LT(early.iterations + 5, late.iterations);
+}

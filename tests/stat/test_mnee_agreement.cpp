@@ -197,5 +197,12 @@ TEST(MneeAgreement, BubbleWithEtaBelowOneConvergesAndMatchesNee) {
     ASSERT_GT(r.counters[walk_counters::walks_started], 100u);
     EXPECT_GT(double(r.counters[walk_counters::walks_converged]),
               0.2 * double(r.counters[walk_counters::walks_started]));
+    // Every walk ends in exactly one WalkEnd bin, for Alg. 1 and for Alg. 2.
+    uint64_t alg1 = 0, alg2 = 0;
+    for (uint64_t n : r.counters.bins(walk_counters::walk_end_alg1)) alg1 += n;
+    for (uint64_t n : r.counters.bins(walk_counters::walk_end_alg2)) alg2 += n;
+    EXPECT_EQ(alg1, r.counters[walk_counters::walks_started]);
+    EXPECT_EQ(alg2, r.counters[walk_counters::pdf_walks]);
+    EXPECT_GT(alg2, 0u);
     expect_mnee_matches_nee(xml, 256, 64, "bubble");
 }

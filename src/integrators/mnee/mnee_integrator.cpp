@@ -23,6 +23,7 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     s.walk.max_iterations = int(p.get_int("max_iterations", s.walk.max_iterations));
     s.walk.threshold = p.get_float("threshold", s.walk.threshold);
     s.walk.allow_error_increase = p.get_bool("allow_error_increase", s.walk.allow_error_increase);
+    s.walk.min_step = p.get_float("min_step", s.walk.min_step);
     const std::string proj = p.get_string("projection", "closest_point");
     if (proj == "closest_point")
         s.walk.projection = Projection::ClosestPoint;
@@ -35,6 +36,7 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
                       "max_vertices must lie in [1, " + std::to_string(RefractiveSuffix::kMaxVertices) + "]");
     if (s.walk.max_iterations < 1) p.raise_param("max_iterations", "max_iterations must be >= 1");
     if (!(s.walk.threshold > 0)) p.raise_param("threshold", "threshold must be > 0");
+    if (!(s.walk.min_step > 0 && s.walk.min_step <= 1)) p.raise_param("min_step", "min_step must lie in (0, 1]");
     if (!(s.cull_margin >= 0)) p.raise_param("cull_margin", "cull_margin must be >= 0");
     return s;
 }

@@ -1,0 +1,29 @@
+#pragma once
+// When two manifold walks found the same admissible path (Alg. 2 lines 5-7; the de-duplication
+// of several solutions per shading point builds on it).
+#include <vector>
+
+#include "manifold/manifold_vertex.h"
+#include "manifold/manifold_walk.h"
+
+namespace snell {
+
+class Scene;
+
+/// Tolerance of same_solution, relative to the segments next to each vertex.
+inline constexpr double kSameSolutionTolerance = 1e-5;
+
+/// A few Newton steps (threshold 1e-13, at most 6, never increasing the error) on a converged
+/// chain. A walk stops at its threshold and a traced path carries ray offsets, and near caustics
+/// the constraints hardly depend on position; in the quadratic phase a few steps bring two
+/// chains of one solution to agree far below kSameSolutionTolerance.
+void polish_solution(const Scene* scene, const Vec3& xb, std::vector<ManifoldVertex>& chain, const TangentBasis& xc,
+                     const WalkSettings& walk);
+
+/// Whether two (polished) chains between x_b and x_c are the same path: same length, the same
+/// shapes in the same order, and every vertex within kSameSolutionTolerance times the shorter of
+/// its two adjacent segments (x_0 = x_b, x_{k+1} = x_c) of its counterpart. Scale-free.
+bool same_solution(const Vec3& xb, const std::vector<ManifoldVertex>& a, const std::vector<ManifoldVertex>& b,
+                   const Vec3& xc);
+
+}  // namespace snell
