@@ -1,5 +1,10 @@
-// `snell diff a.exr b.exr [--crop x,y,w,h]... [--json]`: error metrics against a reference.
+// `snell diff a.exr b.exr [--crop x,y,w,h]... [--reference-offset x,y] [--json]`: error metrics
+// against a reference. A reference rendered on a crop of the film (a long render of the region
+// that matters) is placed with --reference-offset; the image is cut to that window, and --crop
+// rectangles stay in the image's own coordinates.
 #include <cstdio>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include <nlohmann/json.hpp>
@@ -7,13 +12,35 @@
 #include "commands.h"
 #include "io/image.h"
 #include "report/image_metrics.h"
+#include "report/image_ops.h"
 
 namespace snell {
 
-int cmd_diff(const std::string& a_path, const std::string& b_path, const std::vector<std::string>& crops, bool json) {
-    const Image a = read_exr(a_path), b = read_exr(b_path);
+int cmd_diff(const std::string& a_path, const std::string& b_path, const std::vector<std::string>& crops,
+             const std::string& reference_offset, bool json) {
+    Image a = read_exr(a_path);
+    const Image b = read_exr(b_path);
+    int ox = 0, oy = 0;
+    if (!reference_offset.empty()) {
+        const Crop o = parse_crop(reference_offset + "," + std::to_string(b.width) + "," + std::to_string(b.height));
+        if (o.x + b.width > a.width || o.y + b.height > a.height)
+            throw std::runtime_error("--reference-offset " + reference_offset + ": the reference (" +
+                                     std::to_string(b.width) + "x" + std::to_string(b.height) +
+                                     ") does not fit inside the image (" + std::to_string(a.width) + "x" +
+                                     std::to_string(a.height) + ")");
+        ox = o.x;
+        oy = o.y;
+        a = crop_image(a, o);
+    }
     std::vector<std::pair<std::string, Crop>> regions = {{"image", Crop{}}};
-    for (const std::string& c : crops) regions.push_back({"crop " + c, parse_crop(c)});
+    for (const std::string& c : crops) {
+        Crop r = parse_crop(c);
+        r.x -= ox;
+        r.y -= oy;
+        if (r.x < 0 || r.y < 0 || r.x + r.w > b.width || r.y + r.h > b.height)
+            throw std::runtime_error("--crop " + c + " lies outside the reference's window");
+        regions.push_back({"crop " + c, r});
+    }
     nlohmann::json out = nlohmann::json::array();
     for (const auto& [name, crop] : regions) {
         const ImageMetrics m = compare_images(a, b, crop);

@@ -14,7 +14,8 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
                const std::vector<std::string>& define_items, bool strategies = false);
 
 /// `snell diff a.exr b.exr [--crop x,y,w,h]... [--json]`: metrics of a against the reference b.
-int cmd_diff(const std::string& a_path, const std::string& b_path, const std::vector<std::string>& crops, bool json);
+int cmd_diff(const std::string& a_path, const std::string& b_path, const std::vector<std::string>& crops,
+             const std::string& reference_offset, bool json);
 
 /// Options of `snell compare` (docs/compare.md).
 struct CompareOptions {

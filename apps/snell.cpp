@@ -46,6 +46,10 @@ int main(int argc, char** argv) {
     diff_cmd->add_option("image", diff_a, "image to evaluate")->required();
     diff_cmd->add_option("reference", diff_b, "reference image")->required();
     diff_cmd->add_option("--crop", diff_crops, "also report the rectangle x,y,w,h (repeatable)");
+    std::string diff_offset;
+    diff_cmd->add_option(
+        "--reference-offset", diff_offset,
+        "x,y: the reference covers only the window of its size at (x, y) of the image (a crop render)");
     diff_cmd->add_flag("--json", diff_json, "print JSON instead of text");
 
     CLI::App* cmp_cmd =
@@ -92,7 +96,7 @@ int main(int argc, char** argv) {
         return app.exit(e);
     }
     try {
-        if (diff_cmd->parsed()) return cmd_diff(diff_a, diff_b, diff_crops, diff_json);
+        if (diff_cmd->parsed()) return cmd_diff(diff_a, diff_b, diff_crops, diff_offset, diff_json);
         if (render_cmd->parsed())
             return cmd_render(scene_arg, out, spp, time_limit, threads,
                               seed_opt->count() ? std::optional<uint64_t>(seed) : std::nullopt, exposure, stats_path,

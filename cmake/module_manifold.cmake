@@ -12,10 +12,12 @@ snell_library(snell_manifold
   src/manifold/walk_statistics.cpp
   src/manifold/walk_counters.cpp
   src/manifold/solution_set.cpp
+  src/manifold/half_vectors.cpp
 )
 target_link_libraries(snell_manifold PUBLIC snell_scene snell_geometry snell_bsdf snell_light snell_core
                       nlohmann_json::nlohmann_json)
 
 snell_test(test_manifold
   SOURCES tests/manifold/test_constraints.cpp tests/manifold/test_walk.cpp tests/manifold/test_solution_set.cpp
+          tests/manifold/test_half_vectors.cpp
   LIBS snell_manifold)

@@ -5,6 +5,7 @@
 
 #include "bsdf/microfacet.h"
 #include "manifold/generalized_geometry.h"
+#include "manifold/half_vectors.h"
 #include "manifold/manifold_walk.h"
 #include "manifold/seed_path.h"
 #include "manifold/solution_set.h"
@@ -107,19 +108,6 @@ double vertex_bsdf_density(const ManifoldVertex& v, const Vec3& wi, const Vec3& 
     return J > 0 ? v.bsdf->pdf_delta(ctx, wi_l, wo_l) / J : 0.0;
 }
 
-void sample_half_vectors(std::vector<ManifoldVertex>& chain, Sampler& sampler) {
-    for (ManifoldVertex& v : chain) {
-        if (is_specular(v)) {
-            v.h_target = Vec2(0, 0);
-        } else {
-            // Global distribution D(m) cos(theta_m), not visible normals (Sec. 3.2): the
-            // incoming direction changes while the walk moves the path.
-            const Vec3 m = v.si.to_world(v.bsdf->microfacet()->sample_m(sampler.next_2d()));
-            v.h_target = tangential(v, m);
-        }
-    }
-}
-
 bool mnee_seed_culled(const SurfaceInteraction& xb, const BSDF& bsdf_b, const Vec3& xc, double margin) {
     if (bsdf_b.is_transmissive()) return false;
     const Vec3 n = dot(xb.wo, xb.n) >= 0 ? xb.n : -xb.n;  // the side the path arrived on
@@ -136,7 +124,8 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
         return out;
     }
     // Sec. 3.2 then Sec. 3.4: half vectors, then the walk from the seed.
-    sample_half_vectors(chain, sampler);
+    HalfVectorDraws draws(sampler);
+    set_half_vectors(chain, draws);
     ++wc::walks_started;
     const auto t0 = std::chrono::steady_clock::now();
     const TangentBasis seed_basis = light_basis(lp.p, lp.n, normalize(lp.p - xb.p));

@@ -65,10 +65,6 @@ double vertex_bsdf_density(const ManifoldVertex& v, const Vec3& wi, const Vec3& 
 /// p_dH of a vertex's half vector: D(h) (projected solid angle) for rough, 1 for specular.
 double half_vector_density(const ManifoldVertex& v, const Vec3& h);
 
-/// Paper Sec. 3.2: sets each vertex's target half vector (global microfacet distribution for
-/// rough vertices, the delta for specular ones).
-void sample_half_vectors(std::vector<ManifoldVertex>& chain, Sampler& sampler);
-
 /// Alg. 1 for a light point `lp` (from NEE's light sample, light pmf `pmf`) whose seed segment
 /// from x_b crossed the refractive vertices in `chain` (consumed). `media` is the medium at x_b.
 MneeConnection mnee_connect(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb,

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Issue 10's figures: `nee`, `mnee` and `mnee biased=true` at equal time on caustics, scored
+# against an independent reference (`bdpt`, rendered on the scored crops only).
+#   cases: droplet_a002 (scenes/droplet, alpha 0.02), glass_sphere (smooth glass around a cube)
+#   crops: droplet caustic seen through the droplet; the glass sphere's floor caustic and its cube
+# Usage:
+#   caustic_equal_time.sh reference [seconds per case=2400]   results/caustics/ref_<case>.exr
+#   caustic_equal_time.sh render LABEL [seconds=30]            results/caustics/LABEL/<case>_<integ>.exr
+#   caustic_equal_time.sh score LABEL                          a table per case and crop
+# SNELL=path/to/snell renders with another build (e.g. the one before issue 10); THREADS (2).
+source "$(dirname "$0")/common.sh"
+MODE=${1:?reference, render or score}
+THREADS=${THREADS:-2}
+OUT=results/caustics
+mkdir -p "$OUT"
+
+CASES=(droplet_a002 glass_sphere)
+scene_of() { case $1 in droplet_*) echo scenes/droplet/droplet.xml ;; glass_sphere) echo scenes/glass_sphere/glass_sphere.xml ;; esac; }
+defines_of() { case $1 in droplet_a002) echo "-D alpha=0.02" ;; *) echo "" ;; esac; }
+# The reference covers the union of a case's crops (x,y,w,h on the case's own film).
+ref_crop_of() { case $1 in droplet_*) echo 230,190,190,110 ;; glass_sphere) echo 140,70,260,285 ;; esac; }
+crops_of() { case $1 in droplet_*) echo "caustic:230,190,190,110" ;; glass_sphere) echo "caustic:260,290,140,65 cube:140,70,200,190" ;; esac; }
+
+# with_crop IN OUT X,Y,W,H: the scene with its film cropped.
+with_crop() {
+  IFS=, read -r x y w h <<<"$3"
+  sed "s|<integer name=\"height\" value=\"\$res_y\"/>|&<integer name=\"crop_offset_x\" value=\"$x\"/><integer name=\"crop_offset_y\" value=\"$y\"/><integer name=\"crop_width\" value=\"$w\"/><integer name=\"crop_height\" value=\"$h\"/>|" "$1" >"$2"
+  grep -q crop_offset_x "$2" || { echo "could not crop $1" >&2; exit 1; }
+}
+# biased IN OUT: the scene with <boolean name="biased" value="true"/> in its integrator.
+biased() {
+  sed 's|<integer name="max_depth" value="$max_depth"/>|&<boolean name="biased" value="true"/>|' "$1" >"$2"
+}
+
+case $MODE in
+reference)
+  T=${2:-2400}
+  for c in "${CASES[@]}"; do
+    [ -f "$OUT/ref_$c.exr" ] && continue
+    with_crop "$(scene_of "$c")" "$OUT/ref_$c.xml" "$(ref_crop_of "$c")"
+    # shellcheck disable=SC2046
+    "$SNELL" render "$OUT/ref_$c.xml" $(defines_of "$c") -D integrator=bdpt --time "$T" -t "$THREADS" -q --seed 77 \
+      -o "$OUT/ref_$c.exr"
+  done
+  ;;
+render)
+  LABEL=${2:?label}
+  T=${3:-30}
+  mkdir -p "$OUT/$LABEL"
+  for c in "${CASES[@]}"; do
+    biased "$(scene_of "$c")" "$OUT/$LABEL/${c}_biased.xml"
+    for integ in nee mnee mnee_biased; do
+      scene=$(scene_of "$c"); name=$integ
+      if [ "$integ" = mnee_biased ]; then scene="$OUT/$LABEL/${c}_biased.xml"; name=mnee; fi
+      # shellcheck disable=SC2046
+      "$SNELL" render "$scene" $(defines_of "$c") -D integrator=$name --time "$T" -t "$THREADS" -q --seed 1 \
+        -o "$OUT/$LABEL/${c}_$integ.exr"
+    done
+  done
+  ;;
+score)
+  LABEL=${2:?label}
+  for c in "${CASES[@]}"; do
+    IFS=, read -r rx ry _ _ <<<"$(ref_crop_of "$c")"
+    for integ in nee mnee mnee_biased; do
+      img="$OUT/$LABEL/${c}_$integ.exr"
+      [ -f "$img" ] || continue
+      spp=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['spp_reached'])" "${img%.exr}.json")
+      for crop in $(crops_of "$c"); do
+        "$SNELL" diff "$img" "$OUT/ref_$c.exr" --reference-offset "$rx,$ry" --crop "${crop#*:}" | grep "^crop" \
+          | sed "s|^crop [0-9,]*|$c $integ ${crop%%:*} ($spp spp)|"
+      done
+    done
+  done
+  ;;
+esac
