@@ -71,4 +71,16 @@ check "-D override renders" "[ $rc -eq 0 ] && grep -q '\"width\": 32' $TMP/d.jso
 check "--strategies renders" "[ $rc -eq 0 ]"
 check "--strategies writes per-strategy EXRs" "[ -s $TMP/s_d1_s0_t2.exr ] && [ -s $TMP/s_d2_s2_t1.exr ] && [ \$(ls $TMP/s_d*.exr | wc -l) -eq 4 ]"
 
+# 9. snell diff against a reference rendered on a crop of the film: --reference-offset places it,
+#    and the crop's pixels then match the full render exactly (pixels are a pure function of seed,
+#    pixel and sample index), so the error is zero; a window that does not fit is an error.
+sed 's|<integer name="height" value="48"/>|<integer name="height" value="48"/><integer name="crop_offset_x" value="10"/><integer name="crop_offset_y" value="6"/><integer name="crop_width" value="20"/><integer name="crop_height" value="12"/>|' "$TMP/ok.xml" > "$TMP/crop.xml"
+"$SNELL" render "$TMP/crop.xml" -o "$TMP/crop.exr" --spp 4 -q
+out=$("$SNELL" diff "$TMP/ok.exr" "$TMP/crop.exr" --reference-offset 10,6 --crop 12,8,6,4 2>&1); rc=$?
+check "diff with --reference-offset succeeds" "[ $rc -eq 0 ]"
+check "crop render equals that window of the full render" "echo \"\$out\" | grep -q '^image .*relMSE 0 '"
+check "diff --crop in image coordinates" "echo \"\$out\" | grep -q '^crop 12,8,6,4 .*relMSE 0 '"
+out=$("$SNELL" diff "$TMP/ok.exr" "$TMP/crop.exr" --reference-offset 50,40 2>&1); rc=$?
+check "a reference window outside the image is an error" "[ $rc -ne 0 ] && echo \"\$out\" | grep -q 'does not fit'"
+
 exit $fail
