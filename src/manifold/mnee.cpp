@@ -1,5 +1,6 @@
 #include "manifold/mnee.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -228,7 +229,15 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     wc::count_walk_end(false, wc::WalkEnd::Found);
     out.outcome = MneeOutcome::Success;
     out.value = f_b * throughput * Le * tr * (jac.do_b_dx_c / (pmf * p_point));  // Alg. 1, last line
-    out.pdf_mnee = pmf * p_point * p_dH * jac.dH_dX;                             // Eq. 7 with Eq. 8
+    // The generalised geometry term over the free-space one (dimensionless, scale-free); the
+    // optional clamp of its fold tail.
+    const double cos_c = length_squared(lp.n) > 0 ? std::abs(dot(lp.n, from_light)) : 1.0;
+    out.focusing = jac.do_b_dx_c * length_squared(xc - xb.p) / std::max(cos_c, 1e-12);
+    if (st.max_geometry > 0 && out.focusing > st.max_geometry) {
+        out.value *= st.max_geometry / out.focusing;
+        ++wc::geometry_clamped;
+    }
+    out.pdf_mnee = pmf * p_point * p_dH * jac.dH_dX;  // Eq. 7 with Eq. 8
     // Delta lights cannot be hit by BSDF sampling.
     out.pdf_bsdf = lp.delta ? 0.0 : p_bsdf;
     // NEE from a rough last vertex competes for the same path.

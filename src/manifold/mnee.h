@@ -48,6 +48,9 @@ struct MneeConnection {
     double pdf_mnee = 0;      ///< area density of this technique (Eq. 7 with Eq. 8)
     double pdf_bsdf = 0;      ///< area density of BSDF sampling x_1..x_k, x_c from x_b
     double pdf_nee_last = 0;  ///< area density of NEE from x_k (0 unless x_k is rough)
+    /// Focusing ratio r = |do_b/dx_c| |x_c - x_b|^2 / |cos theta_c| (1 through free space;
+    /// MneeSettings::max_geometry clamps it). `value` is already clamped.
+    double focusing = 0;
 };
 
 /// |do/dh|: solid angle of the light-side direction wo per solid angle of the half vector at

@@ -17,6 +17,12 @@ struct MneeSettings {
     /// chain from the same seed and light point, with its own contribution and density; false:
     /// the hero's solution alone, carrying the others' share (cheaper, colour noisier).
     bool spectral_walks = true;
+    /// (max_geometry) optional clamp on the chain's focusing ratio r = |do_b/dx_c| |x_c - x_b|^2 /
+    /// |cos theta_c|: the generalised geometry term (Sec. 3.5) over the free-space one. r is O(1)
+    /// through a slab and unbounded at a caustic's fold, where its tail makes MNEE's variance
+    /// log-divergent (issue 10). A value t > 0 scales a connection by min(1, t / r): biased,
+    /// energy is only removed. 0 (default): off.
+    double max_geometry = 0;
     WalkSettings walk;  ///< (max_iterations, threshold, allow_error_increase, projection)
 };
 

@@ -3,12 +3,33 @@
 // of several solutions per shading point builds on it).
 #include <vector>
 
+#include "core/sampled_spectrum.h"
 #include "manifold/manifold_vertex.h"
 #include "manifold/manifold_walk.h"
 
 namespace snell {
 
 class Scene;
+
+/// One admissible chain x_1..x_k between x_b and x_c that a light connection found, with what an
+/// integrator needs to weight it against the other techniques.
+struct ManifoldSolution {
+    std::vector<ManifoldVertex> chain;
+    /// f(X) / p(X) of Alg. 1 (light pmf included), before MIS: every wavelength slot, or only
+    /// `slot`'s when the chain disperses and was solved for that wavelength alone.
+    SampledSpectrum value;
+    int slot = -1;            ///< wavelength slot the chain was solved for; -1: all of them
+    bool hero_only = false;   ///< slot 0 solved for all: `value` holds the hero's alone
+    double count = 1;         ///< estimator weight of the solution (1 for the paper's estimator)
+    double density = 0;       ///< this technique's area density (Eq. 7 with Eq. 8)
+    double pdf_bsdf = 0;      ///< BSDF sampling of the same path from x_b
+    double pdf_nee_last = 0;  ///< NEE from x_k (0 unless x_k is rough)
+};
+
+/// What one light connection yields.
+struct SolutionSet {
+    std::vector<ManifoldSolution> solutions;
+};
 
 /// Tolerance of same_solution, relative to the segments next to each vertex.
 inline constexpr double kSameSolutionTolerance = 1e-5;

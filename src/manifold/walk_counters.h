@@ -38,6 +38,7 @@ extern StatTimer walk_time;                ///< "mnee.walk_time_ns": in Alg. 1 a
 extern StatCounter seeds_occluded;         ///< seed segment blocked by an opaque surface
 extern StatCounter seeds_too_many;         ///< seed with more refractive vertices than allowed
 extern StatCounter seeds_culled;           ///< seed culled at x_b (Fig. 3 margin)
+extern StatCounter geometry_clamped;       ///< connections scaled down by max_geometry
 extern StatCounter pdf_walks;              ///< Alg. 2 walks (MIS densities of BSDF-sampled paths)
 extern StatCounter pdf_walks_found;        ///< ... that reproduced the input path
 extern StatHistogram iteration_histogram;  ///< iterations of converged walks

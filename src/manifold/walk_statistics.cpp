@@ -37,6 +37,7 @@ nlohmann::json mnee_stats_json(const StatTotals& t) {
             e[wc::walk_end_name(wc::WalkEnd(i))] = ends[i];
         j["walk_ends"][key] = e;
     }
+    j["geometry_clamped"] = t[wc::geometry_clamped];
     j["pdf_walks"] = t[wc::pdf_walks];
     j["pdf_walks_found"] = t[wc::pdf_walks_found];
     // Histogram of iterations of successful walks; the last bin collects the rest.

@@ -227,3 +227,37 @@ TEST(MneeEstimator, DirectionalLightIsTheLimitOfADistantSphereLight) {
                                std::to_string(E * d * d / (kPi * r * r)) + R"("/></emitter></shape>)";
     expect_light_limit(droplet(directional), droplet(sphere), {0.05, -0.2});
 }
+
+// max_geometry: off by default; a threshold t scales a connection whose focusing ratio r exceeds
+// it by exactly t / r and leaves the others alone. r is the generalised geometry term over the
+// free-space one, so near the droplet's axis (a gentle lens) it stays of order one.
+TEST(MneeEstimator, MaxGeometryOffByDefaultAndClampsAboveThreshold) {
+    const LoadedScene ls = droplet(R"(<emitter type="point"><point name="position" x="-0.6" y="3" z="-0.4"/>
+        <rgb name="intensity" value="4, 4, 4"/></emitter>)");
+    const Scene& scene = *ls.scene;
+    const Light& light = *scene.lights()[0];
+    EXPECT_EQ(MneeSettings().max_geometry, 0.0);
+    for (double x : {0.1, -0.25}) {
+        const SurfaceInteraction xb = receiver(scene, x, 0.05);
+        const auto connect = [&](double max_geometry) {
+            MneeSettings st;
+            st.max_geometry = max_geometry;
+            IndependentSampler smp(3);
+            smp.start_pixel_sample(0, 0, 0);
+            const auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), SampledWavelengths::single(550));
+            EXPECT_TRUE(s.has_value());
+            const LightPoint lp = light_point(scene, light, *s, xb.p);
+            std::vector<ManifoldVertex> chain;
+            EXPECT_EQ(trace_seed_path(scene, xb, lp.p, 550, st, &chain), SeedStatus::Refractive);
+            return mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, 1.0, lp, chain, smp);
+        };
+        const MneeConnection off = connect(0);
+        ASSERT_EQ(off.outcome, MneeOutcome::Success) << "x = " << x;
+        EXPECT_GT(off.focusing, 0.05) << "x = " << x;
+        EXPECT_LT(off.focusing, 20.0) << "x = " << x;
+        const MneeConnection above = connect(2 * off.focusing), clamped = connect(0.5 * off.focusing);
+        EXPECT_EQ(above.value[0], off.value[0]);
+        EXPECT_NEAR(clamped.value[0], 0.5 * off.value[0], 1e-12 * off.value[0]);
+        EXPECT_EQ(clamped.pdf_mnee, off.pdf_mnee);  // densities, hence MIS weights, are untouched
+    }
+}

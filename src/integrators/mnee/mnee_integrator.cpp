@@ -6,6 +6,7 @@
 #include "core/props.h"
 #include "integrators/light_connection.h"
 #include "integrators/mis.h"
+#include "manifold/manifold_technique.h"
 #include "manifold/mnee.h"
 #include "manifold/seed_path.h"
 #include "manifold/walk_counters.h"
@@ -24,6 +25,7 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     s.walk.threshold = p.get_float("threshold", s.walk.threshold);
     s.walk.allow_error_increase = p.get_bool("allow_error_increase", s.walk.allow_error_increase);
     s.walk.min_step = p.get_float("min_step", s.walk.min_step);
+    s.max_geometry = p.get_float("max_geometry", s.max_geometry);
     const std::string proj = p.get_string("projection", "closest_point");
     if (proj == "closest_point")
         s.walk.projection = Projection::ClosestPoint;
@@ -38,6 +40,7 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     if (!(s.walk.threshold > 0)) p.raise_param("threshold", "threshold must be > 0");
     if (!(s.walk.min_step > 0 && s.walk.min_step <= 1)) p.raise_param("min_step", "min_step must lie in (0, 1]");
     if (!(s.cull_margin >= 0)) p.raise_param("cull_margin", "cull_margin must be >= 0");
+    if (!(s.max_geometry >= 0)) p.raise_param("max_geometry", "max_geometry must be >= 0 (0: no clamp)");
     return s;
 }
 
@@ -87,9 +90,10 @@ double MneeIntegrator::emitter_hit_weight(const Scene& scene, const PathState& s
     const double pmf = scene.light_sampler().pmf(&light);
     const size_t last = size_t(s.k - 1);
     const double p_bsdf = s.p_prefix * s.q_last * std::abs(dot(lp.n, d)) / length_squared(lp.p - s.chain[last].p);
-    const double p_mnee = s.transmissions_only ? mnee_pdf(scene, m_mnee, s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light,
-                                                          pmf, lp.p, lp.n, ctx.hero())
-                                               : 0.0;
+    const double p_mnee =
+        s.transmissions_only ? ManifoldTechnique(scene, m_mnee)
+                                   .density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light, pmf, lp.p, lp.n, ctx.hero())
+                             : 0.0;
     const double p_nee =
         s.specular[last] ? 0.0 : s.p_prefix * pmf * light_point_pdf(scene, light, s.chain[last].p, lp.p, lp.n);
     // Sec. 3.5: outlier removal drops transmissive-suffix paths that MNEE cannot find (paths
@@ -118,8 +122,9 @@ SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const S
     const double p_bsdf =
         lp.delta ? 0.0 : s.p_prefix * bsdf.pdf(ctx, wo, wi) * std::abs(dot(lp.n, ls->wi)) / length_squared(lp.p - si.p);
     const bool refracts = dot(si.wo, si.ng) * dot(ls->wi, si.ng) < 0;
-    const double p_mnee = s.transmissions_only && refracts ? mnee_pdf(scene, m_mnee, s.xb, *s.xb.bsdf(), s.chain.data(),
-                                                                      s.k, *light, pmf, lp.p, lp.n, ctx.hero())
+    const double p_mnee = s.transmissions_only && refracts ? ManifoldTechnique(scene, m_mnee)
+                                                                 .density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k,
+                                                                          *light, pmf, lp.p, lp.n, ctx.hero())
                                                            : 0.0;
     if (m_mnee.biased && s.transmissions_only && refracts && !(p_mnee > 0)) return {};
     return nee_estimate(si, bsdf, ctx, state.media, *ls, f, pmf, power_heuristic(p_nee, {p_bsdf, p_mnee}));
@@ -159,40 +164,13 @@ SampledSpectrum MneeIntegrator::connect_to_light(const Scene& scene, const Surfa
     // The connection adds k + 1 segments to the depth + 1 the path has (max_depth, Mitsuba's
     // meaning); BSDF sampling cannot produce longer paths, so neither may MNEE.
     if (m_settings.max_depth >= 0 && state.depth + 2 + int(chain.size()) > m_settings.max_depth) return {};
-    const bool dispersive =
-        std::any_of(chain.begin(), chain.end(), [](const ManifoldVertex& v) { return v.bsdf->dispersive(); });
-    if (dispersive && m_mnee.spectral_walks && ctx.wl.count() > 1 && !state.hero_only)
-        return connect_per_wavelength(scene, si, bsdf, ctx, state, *light, pmf, lp, chain, sampler);
-    // Lines 3-5: half vectors, walk, measurement; then MIS against the other techniques.
-    const MneeConnection c = mnee_connect(scene, m_mnee, si, bsdf, ctx, state.media, *light, pmf, lp, chain, sampler);
-    if (c.outcome != MneeOutcome::Success) return {};
-    // A dispersive chain is the hero's path alone; scale it once unless the throughput already is.
-    const SampledSpectrum value = c.hero_only && !state.hero_only ? ctx.wl.hero_only(c.value) : c.value;
-    return value * power_heuristic(c.pdf_mnee, {c.pdf_bsdf, c.pdf_nee_last});
-}
-
-SampledSpectrum MneeIntegrator::connect_per_wavelength(const Scene& scene, const SurfaceInteraction& si,
-                                                       const BSDF& bsdf, const BSDFContext& ctx, const PathState& state,
-                                                       const Light& light, double pmf, const LightPoint& lp,
-                                                       const std::vector<ManifoldVertex>& seed,
-                                                       Sampler& sampler) const {
-    // Each wavelength walks from the same seed with its own eta (Alg. 1 per wavelength), and its
-    // result is weighted against the other techniques as if it were the hero: BSDF sampling
-    // through a dispersive chain keeps the hero alone and carries the others' share, so for
-    // every path and wavelength the weights of all slots still sum to one. (Starting the other
-    // walks from the hero's solution would be cheaper, but then the set of paths a wavelength
-    // finds would no longer be the one Alg. 2 tests for that wavelength, and the MIS weights
-    // would not sum to one.)
+    // Lines 3-5 (half vectors, walk, measurement) for every solution the technique finds; then
+    // MIS of each against the other techniques that produce the same path.
+    const ManifoldQuery q{&si, &bsdf, ctx, state.media, state.hero_only};
+    const SolutionSet set = ManifoldTechnique(scene, m_mnee).solve(q, *light, pmf, lp, chain, sampler);
     SampledSpectrum out;
-    for (int i = 0; i < ctx.wl.count(); ++i) {
-        std::vector<ManifoldVertex> chain = seed;
-        for (ManifoldVertex& v : chain) v.eta = v.bsdf->eta(ctx.wl[i]);
-        const BSDFContext ctx_i{SampledWavelengths::single(ctx.wl[i], ctx.wl.pdf(i)), ctx.mode};
-        const MneeConnection c =
-            mnee_connect(scene, m_mnee, si, bsdf, ctx_i, state.media, light, pmf, lp, chain, sampler);
-        if (c.outcome == MneeOutcome::Success)
-            out[i] = c.value[0] * power_heuristic(c.pdf_mnee, {c.pdf_bsdf, c.pdf_nee_last});
-    }
+    for (const ManifoldSolution& sol : set.solutions)
+        out += sol.value * (sol.count * power_heuristic(sol.density, {sol.pdf_bsdf, sol.pdf_nee_last}));
     return out;
 }
 

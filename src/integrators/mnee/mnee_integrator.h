@@ -42,12 +42,6 @@ private:
     SampledSpectrum connect_at_interface(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
                                          const BSDFContext& ctx, const PathState& state, Sampler& sampler) const;
 
-    /// MNEE through a dispersive chain with every wavelength alive: one solve per wavelength.
-    SampledSpectrum connect_per_wavelength(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
-                                           const BSDFContext& ctx, const PathState& state, const Light& light,
-                                           double pmf, const LightPoint& lp, const std::vector<ManifoldVertex>& seed,
-                                           Sampler& sampler) const;
-
     MneeSettings m_mnee;
 };
 

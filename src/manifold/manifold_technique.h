@@ -1,0 +1,56 @@
+#pragma once
+// The manifold light-connection technique (paper Alg. 1 and Alg. 2) behind one interface: from
+// a light sample at x_b and its seed path, the admissible paths found (a SolutionSet, each with
+// its value and the densities MIS needs), and the density with which the technique produces a
+// given path. The `mnee` integrator composes with it; it knows nothing of integrators.
+#include <vector>
+
+#include "core/medium_stack.h"
+#include "core/sampler.h"
+#include "manifold/light_point.h"
+#include "manifold/mnee.h"
+#include "manifold/mnee_settings.h"
+#include "manifold/solution_set.h"
+
+namespace snell {
+
+class Scene;
+
+/// The path at x_b as the technique needs it.
+struct ManifoldQuery {
+    const SurfaceInteraction* xb = nullptr;
+    const BSDF* bsdf_b = nullptr;
+    BSDFContext ctx;
+    MediumStack media;       ///< the medium at x_b
+    bool hero_only = false;  ///< the path's throughput already carries the hero wavelength alone
+};
+
+class ManifoldTechnique {
+public:
+    ManifoldTechnique(const Scene& scene, const MneeSettings& settings) : m_scene(&scene), m_settings(&settings) {}
+
+    /// Alg. 1 lines 3-5 from the seed path `seed` (line 2) to the light point `lp` (line 1, light
+    /// `light` chosen with probability `pmf`). Through a dispersive chain with every wavelength
+    /// of the path alive (and `spectral_walks`), the chain is solved once per wavelength from
+    /// the same seed, each solution weighted as if its wavelength were the hero: BSDF sampling
+    /// through such a chain keeps the hero alone, so the slots' weights sum to one per path.
+    /// (Starting the other wavelengths' walks from the hero's solution would be cheaper, but the
+    /// paths a wavelength finds would then differ from the ones Alg. 2 tests for it.)
+    SolutionSet solve(const ManifoldQuery& q, const Light& light, double pmf, const LightPoint& lp,
+                      const std::vector<ManifoldVertex>& seed, Sampler& sampler) const;
+
+    /// The technique's area density for the path x_b, chain[0..k), x_c at wavelength `lambda`
+    /// (Alg. 2): 0 when the seed from x_b does not walk to this path.
+    double density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain, int k,
+                   const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda) const;
+
+private:
+    /// One solve of Alg. 1 at the wavelengths of `ctx`; appends the solution if one was found.
+    void solve_once(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light, double pmf,
+                    const LightPoint& lp, std::vector<ManifoldVertex> chain, Sampler& sampler, SolutionSet& out) const;
+
+    const Scene* m_scene;
+    const MneeSettings* m_settings;
+};
+
+}  // namespace snell
