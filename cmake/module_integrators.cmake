@@ -26,7 +26,7 @@ snell_test(test_integrators
   LIBS ${SNELL_ALL_LIBS})
 snell_test(test_scatter SOURCES tests/unit/test_scatter.cpp LIBS snell_integrators)
 snell_test(test_mnee
-  SOURCES tests/stat/test_mnee_agreement.cpp tests/stat/test_mnee_estimator.cpp
+  SOURCES tests/stat/test_mnee_agreement.cpp tests/stat/test_mnee_estimator.cpp tests/stat/test_mnee_solutions.cpp
   LIBS ${SNELL_ALL_LIBS})
 snell_test(test_path_features SOURCES tests/stat/test_path_features.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_hero_wavelengths SOURCES tests/stat/test_hero_wavelengths.cpp LIBS ${SNELL_ALL_LIBS})

@@ -14,6 +14,7 @@ snell_library(snell_manifold
   src/manifold/solution_set.cpp
   src/manifold/half_vectors.cpp
   src/manifold/manifold_technique.cpp
+  src/manifold/surface_seed.cpp
 )
 target_link_libraries(snell_manifold PUBLIC snell_scene snell_geometry snell_bsdf snell_light snell_core
                       nlohmann_json::nlohmann_json)

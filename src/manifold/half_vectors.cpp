@@ -13,17 +13,15 @@ Vec2 HalfVectorDraws::slot(int i) {
     return m_u[size_t(i)];
 }
 
+Vec2 target_half_vector(const ManifoldVertex& v, int i, HalfVectorDraws& draws) {
+    const MicrofacetDistribution* d = v.bsdf->microfacet();
+    if (!d) return Vec2(0, 0);
+    const Vec3 m = d->sample_m(draws.slot(i));  // (s, t, n) components
+    return Vec2(m.x, m.y);
+}
+
 void set_half_vectors(std::vector<ManifoldVertex>& chain, HalfVectorDraws& draws) {
-    for (size_t i = 0; i < chain.size(); ++i) {
-        ManifoldVertex& v = chain[i];
-        const MicrofacetDistribution* d = v.bsdf->microfacet();
-        if (!d) {
-            v.h_target = Vec2(0, 0);
-            continue;
-        }
-        const Vec3 m = d->sample_m(draws.slot(int(i)));  // (s, t, n) components
-        v.h_target = Vec2(m.x, m.y);
-    }
+    for (size_t i = 0; i < chain.size(); ++i) chain[i].h_target = target_half_vector(chain[i], int(i), draws);
 }
 
 }  // namespace snell

@@ -27,6 +27,9 @@ private:
     int m_drawn = 0;
 };
 
+/// The target of vertex v in slot i: (0, 0) if specular, else the (s, t) part of sample_m(u_i).
+Vec2 target_half_vector(const ManifoldVertex& v, int i, HalfVectorDraws& draws);
+
 /// Sets every vertex's h_target: (0, 0) for specular vertices; for rough ones the tangential part
 /// (m.s, m.t) of m = sample_m(u_i), D(m) cos(theta_m) sampled in the constraint frame. The
 /// global distribution, not visible normals (Sec. 3.2): the incoming direction changes while the

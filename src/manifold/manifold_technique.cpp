@@ -2,10 +2,13 @@
 
 #include <algorithm>
 
+#include "core/rng.h"
+#include "manifold/surface_seed.h"
+
 namespace snell {
 
 SolutionSet ManifoldTechnique::solve(const ManifoldQuery& q, const Light& light, double pmf, const LightPoint& lp,
-                                     const std::vector<ManifoldVertex>& seed, Sampler& sampler) const {
+                                     const std::vector<ManifoldVertex>& seed, Sampler& sampler, int max_k) const {
     SolutionSet out;
     const bool dispersive =
         std::any_of(seed.begin(), seed.end(), [](const ManifoldVertex& v) { return v.bsdf->dispersive(); });
@@ -14,20 +17,52 @@ SolutionSet ManifoldTechnique::solve(const ManifoldQuery& q, const Light& light,
             std::vector<ManifoldVertex> chain = seed;
             for (ManifoldVertex& v : chain) v.eta = v.bsdf->eta(q.ctx.wl[i]);
             const BSDFContext ctx_i{SampledWavelengths::single(q.ctx.wl[i], q.ctx.wl.pdf(i)), q.ctx.mode};
-            solve_once(q, ctx_i, i, light, pmf, lp, std::move(chain), sampler, out);
+            solve_once(q, ctx_i, i, light, pmf, lp, chain, sampler, max_k, out);
         }
         return out;
     }
-    solve_once(q, q.ctx, -1, light, pmf, lp, seed, sampler, out);
+    solve_once(q, q.ctx, -1, light, pmf, lp, seed, sampler, max_k, out);
     return out;
 }
 
 void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light,
-                                   double pmf, const LightPoint& lp, std::vector<ManifoldVertex> chain,
-                                   Sampler& sampler, SolutionSet& out) const {
+                                   double pmf, const LightPoint& lp, const std::vector<ManifoldVertex>& seed,
+                                   Sampler& sampler, int max_k, SolutionSet& out) const {
+    const MneeSettings& st = *m_settings;
+    HalfVectorDraws draws(sampler);
+    if (st.solutions == MneeSolutions::One || st.seeding != MneeSeeding::Surface)
+        add_solution(q, ctx, slot, light, pmf, lp, seed, draws, max_k, out);
+    if (st.solutions == MneeSolutions::One || st.seeding == MneeSeeding::Straight) return;
+    // Surface seeds on every caster, from their own stream (one sampler dimension in all).
+    PCG32 rng(uint64_t(sampler.next_1d() * 0x1p53), 0x5eed);
+    const double lambda = ctx.hero();
+    for (const Shape* caster : manifold_casters(*m_scene, lambda)) {
+        for (int j = 0; j < st.trials; ++j) {
+            const Vec2 u(rng.next_double(), rng.next_double());
+            std::vector<ManifoldVertex> chain;
+            if (trace_surface_seed(*m_scene, *q.xb, *caster, u, lambda, st, draws, &chain) != SurfaceSeedEnd::Ok)
+                continue;
+            add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, out);
+        }
+    }
+}
+
+void ManifoldTechnique::add_solution(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light,
+                                     double pmf, const LightPoint& lp, std::vector<ManifoldVertex> chain,
+                                     HalfVectorDraws& draws, int max_k, SolutionSet& out) const {
+    if (max_k >= 0 && int(chain.size()) > max_k) return;
     const MneeConnection c =
-        mnee_connect(*m_scene, *m_settings, *q.xb, *q.bsdf_b, ctx, q.media, light, pmf, lp, chain, sampler);
+        mnee_connect(*m_scene, *m_settings, *q.xb, *q.bsdf_b, ctx, q.media, light, pmf, lp, chain, draws);
     if (c.outcome != MneeOutcome::Success) return;
+    if (m_settings->solutions == MneeSolutions::All) {
+        // Distinct paths only: compare polished chains (solution_set.h).
+        std::vector<ManifoldVertex> polished = chain;
+        polish_solution(m_scene, q.xb->p, polished, light_point_basis(lp.p, lp.n, normalize(lp.p - q.xb->p)),
+                        m_settings->walk);
+        for (const ManifoldSolution& other : out.solutions)
+            if (other.slot == slot && same_solution(q.xb->p, polished, other.chain, lp.p)) return;
+        chain = std::move(polished);
+    }
     ManifoldSolution s;
     s.chain = std::move(chain);
     s.slot = slot;
@@ -48,6 +83,8 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
 double ManifoldTechnique::density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain,
                                   int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
                                   double lambda) const {
+    if (m_settings->solutions == MneeSolutions::All)
+        return solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
     return mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
 }
 

@@ -36,18 +36,31 @@ public:
     /// through such a chain keeps the hero alone, so the slots' weights sum to one per path.
     /// (Starting the other wavelengths' walks from the hero's solution would be cheaper, but the
     /// paths a wavelength finds would then differ from the ones Alg. 2 tests for it.)
+    ///
+    /// With solutions=all, the straight seed's solution (seeding straight or straight+surface)
+    /// and those of `trials` surface seeds on every caster (surface or straight+surface) are
+    /// solved for the same half vectors, and each distinct admissible path is counted once. The
+    /// surface seeds draw one number from `sampler` and their own stream from it, so the
+    /// sampler's dimensions stay bounded (primary-sample-space samplers).
+    /// `max_k`: the longest chain max_depth allows here (-1: any).
     SolutionSet solve(const ManifoldQuery& q, const Light& light, double pmf, const LightPoint& lp,
-                      const std::vector<ManifoldVertex>& seed, Sampler& sampler) const;
+                      const std::vector<ManifoldVertex>& seed, Sampler& sampler, int max_k = -1) const;
 
-    /// The technique's area density for the path x_b, chain[0..k), x_c at wavelength `lambda`
-    /// (Alg. 2): 0 when the seed from x_b does not walk to this path.
+    /// The technique's area density for the path x_b, chain[0..k), x_c at wavelength `lambda`:
+    /// Alg. 2 for solutions=one (0 when the straight seed does not walk to this path); for
+    /// solutions=all the solution density (solution_density: every solution is the technique's).
     double density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain, int k,
                    const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda) const;
 
 private:
     /// One solve of Alg. 1 at the wavelengths of `ctx`; appends the solution if one was found.
     void solve_once(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light, double pmf,
-                    const LightPoint& lp, std::vector<ManifoldVertex> chain, Sampler& sampler, SolutionSet& out) const;
+                    const LightPoint& lp, const std::vector<ManifoldVertex>& seed, Sampler& sampler, int max_k,
+                    SolutionSet& out) const;
+    /// Walks `chain` (its seed) and adds the admissible, visible path unless `out` holds it.
+    void add_solution(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light, double pmf,
+                      const LightPoint& lp, std::vector<ManifoldVertex> chain, HalfVectorDraws& draws, int max_k,
+                      SolutionSet& out) const;
 
     const Scene* m_scene;
     const MneeSettings* m_settings;

@@ -24,13 +24,6 @@ bool is_specular(const ManifoldVertex& v) { return !v.bsdf->microfacet(); }
 /// IOR of the side of v that direction w points into (1 outside, eta inside).
 double side_ior(const ManifoldVertex& v, const Vec3& w) { return dot(w, v.ng) >= 0 ? 1.0 : v.eta; }
 
-/// Tangent basis at the light point: the light's tangent plane (area measure), or for lights
-/// without area (point, spot) the plane perpendicular to the arriving direction.
-TangentBasis light_basis(const Vec3& p, const Vec3& n, const Vec3& arrival_dir) {
-    const Frame f = Frame::from_normal(length_squared(n) > 0 ? n : arrival_dir);
-    return {p, f.s, f.t};
-}
-
 /// Each vertex refracts, and for rough ones both directions see the microfacet from their
 /// own side (otherwise the converged path is not one the BSDF can scatter).
 bool admissible(const Vec3& xb, const std::vector<ManifoldVertex>& chain, const Vec3& xc) {
@@ -109,6 +102,11 @@ double vertex_bsdf_density(const ManifoldVertex& v, const Vec3& wi, const Vec3& 
     return J > 0 ? v.bsdf->pdf_delta(ctx, wi_l, wo_l) / J : 0.0;
 }
 
+TangentBasis light_point_basis(const Vec3& p, const Vec3& n, const Vec3& arrival_dir) {
+    const Frame f = Frame::from_normal(length_squared(n) > 0 ? n : arrival_dir);
+    return {p, f.s, f.t};
+}
+
 bool mnee_seed_culled(const SurfaceInteraction& xb, const BSDF& bsdf_b, const Vec3& xc, double margin) {
     if (bsdf_b.is_transmissive()) return false;
     const Vec3 n = dot(xb.wo, xb.n) >= 0 ? xb.n : -xb.n;  // the side the path arrived on
@@ -118,6 +116,14 @@ bool mnee_seed_culled(const SurfaceInteraction& xb, const BSDF& bsdf_b, const Ve
 MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb,
                             const BSDF& bsdf_b, const BSDFContext& ctx, const MediumStack& media, const Light& light,
                             double pmf, const LightPoint& lp, std::vector<ManifoldVertex>& chain, Sampler& sampler) {
+    HalfVectorDraws draws(sampler);
+    return mnee_connect(scene, st, xb, bsdf_b, ctx, media, light, pmf, lp, chain, draws);
+}
+
+MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb,
+                            const BSDF& bsdf_b, const BSDFContext& ctx, const MediumStack& media, const Light& light,
+                            double pmf, const LightPoint& lp, std::vector<ManifoldVertex>& chain,
+                            HalfVectorDraws& draws) {
     MneeConnection out;
     if (mnee_seed_culled(xb, bsdf_b, lp.p, st.cull_margin)) {
         ++wc::seeds_culled;
@@ -125,11 +131,10 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
         return out;
     }
     // Sec. 3.2 then Sec. 3.4: half vectors, then the walk from the seed.
-    HalfVectorDraws draws(sampler);
     set_half_vectors(chain, draws);
     ++wc::walks_started;
     const auto t0 = std::chrono::steady_clock::now();
-    const TangentBasis seed_basis = light_basis(lp.p, lp.n, normalize(lp.p - xb.p));
+    const TangentBasis seed_basis = light_point_basis(lp.p, lp.n, normalize(lp.p - xb.p));
     const WalkResult walk = manifold_walk(&scene, xb.p, chain, seed_basis, st.walk);
     wc::walk_time.add_ns(elapsed_ns(t0));
     switch (walk.outcome) {
@@ -190,7 +195,7 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
         out.outcome = MneeOutcome::Zero;
         return out;
     }
-    const ChainJacobians jac = chain_jacobians(xb.p, chain, light_basis(xc, lp.n, -from_light));
+    const ChainJacobians jac = chain_jacobians(xb.p, chain, light_point_basis(xc, lp.n, -from_light));
     if (!jac.valid) {
         ++wc::walk_fail_singular;
         wc::count_walk_end(false, wc::WalkEnd::Singular);
@@ -246,6 +251,33 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     return out;
 }
 
+double solution_density(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb, const BSDF& bsdf_b,
+                        const SurfaceInteraction* path, int k, const Light& light, double pmf, const Vec3& xc,
+                        const Vec3& nc, double lambda) {
+    if (k <= 0 || k > st.max_vertices) return 0;
+    const double p_point = light_point_pdf(scene, light, xb.p, xc, nc);  // Alg. 2 line 1
+    if (!(p_point > 0) || mnee_seed_culled(xb, bsdf_b, xc, st.cull_margin)) return 0;
+    std::vector<ManifoldVertex> input(static_cast<size_t>(k));
+    for (int i = 0; i < k; ++i) {
+        const BSDF* b = path[i].bsdf();
+        if (!is_manifold_interface(b, lambda) || path[i].emitter()) return 0;
+        input[size_t(i)] = ManifoldVertex::from_interaction(path[i], b->eta(lambda));
+    }
+    if (!admissible(xb.p, input, xc)) return 0;
+    // The domain: the straight seed meets a refractive interface before anything else.
+    std::vector<ManifoldVertex> seed;
+    if (trace_seed_path(scene, xb, xc, lambda, st, &seed) != SeedStatus::Refractive) return 0;
+    double p_dH = 1;  // line 3, on the path's own half vectors
+    for (int i = 0; i < k; ++i) {
+        Vec3 wi, wo;
+        vertex_directions(xb.p, input, xc, size_t(i), &wi, &wo);
+        p_dH *= half_vector_density(input[size_t(i)], generalized_half_vector(input[size_t(i)], wi, wo));
+    }
+    if (!(p_dH > 0)) return 0;
+    const ChainJacobians jac = chain_jacobians(xb.p, input, light_point_basis(xc, nc, normalize(xc - xb.p)));
+    return jac.valid ? pmf * p_point * p_dH * jac.dH_dX : 0.0;  // line 8
+}
+
 double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb, const BSDF& bsdf_b,
                 const SurfaceInteraction* path, int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
                 double lambda) {
@@ -281,7 +313,7 @@ double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInterac
 
     // Line 4: walk from the seed with those half vectors.
     ++wc::pdf_walks;
-    const TangentBasis basis = light_basis(xc, nc, normalize(xc - xb.p));
+    const TangentBasis basis = light_point_basis(xc, nc, normalize(xc - xb.p));
     const auto t0 = std::chrono::steady_clock::now();
     const WalkResult walk = manifold_walk(&scene, xb.p, seed, basis, st.walk);
     wc::walk_time.add_ns(elapsed_ns(t0));

@@ -14,6 +14,7 @@
 #include "core/sampler.h"
 #include "geometry/interaction.h"
 #include "light/light.h"
+#include "manifold/half_vectors.h"
 #include "manifold/light_point.h"
 #include "manifold/manifold_vertex.h"
 #include "manifold/mnee_settings.h"
@@ -73,6 +74,25 @@ double half_vector_density(const ManifoldVertex& v, const Vec3& h);
 MneeConnection mnee_connect(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb,
                             const BSDF& bsdf_b, const BSDFContext& ctx, const MediumStack& media, const Light& light,
                             double pmf, const LightPoint& lp, std::vector<ManifoldVertex>& chain, Sampler& sampler);
+
+/// Alg. 1 with the half vectors of `draws` (the same targets for every walk of one light
+/// connection, whatever its seed).
+MneeConnection mnee_connect(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb,
+                            const BSDF& bsdf_b, const BSDFContext& ctx, const MediumStack& media, const Light& light,
+                            double pmf, const LightPoint& lp, std::vector<ManifoldVertex>& chain,
+                            HalfVectorDraws& draws);
+
+/// Tangent basis at the light point: the light's tangent plane (area measure), or for lights
+/// without area (point, spot) the plane perpendicular to the arriving direction.
+TangentBasis light_point_basis(const Vec3& p, const Vec3& n, const Vec3& arrival_dir);
+
+/// The density of the all-solutions technique for the path x_b, chain[0..k), x_c: Alg. 2 lines
+/// 1, 3 and 8 (light point, half vectors, |dH/dX|) without its walk, times the indicator of the
+/// technique's domain (the straight seed from x_b to x_c meets a refractive interface first
+/// and is not culled). Every solution there is the technique's, found or not.
+double solution_density(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb,
+                        const BSDF& bsdf_b, const SurfaceInteraction* chain, int k, const Light& light, double pmf,
+                        const Vec3& xc, const Vec3& nc, double lambda);
 
 /// Alg. 2: area density with which MNEE from x_b produces the path x_b, chain[0..k), x_c, at
 /// the hero wavelength `lambda`.

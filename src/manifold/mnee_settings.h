@@ -5,6 +5,14 @@
 
 namespace snell {
 
+/// (seeding) where the walks of one light connection start: the paper's straight segment x_b ->
+/// x_c (Sec. 3.1), points drawn on the caster shapes (SMS), or both.
+enum class MneeSeeding { Straight, Surface, StraightAndSurface };
+/// (solutions) which solutions a light connection counts: the one the straight seed walks to
+/// (the paper's Alg. 1, MIS by Alg. 2), or every distinct one found by `trials` surface seeds
+/// per caster (consistent; biased low for finite trials by the solutions none of them found).
+enum class MneeSolutions { One, All };
+
 struct MneeSettings {
     int max_vertices = 8;           ///< (max_vertices) refractive vertices collected on a seed path
     bool ignore_occluders = false;  ///< (ignore_occluders) walk through opaque blockers of the seed (Sec. 3.1)
@@ -23,6 +31,9 @@ struct MneeSettings {
     /// log-divergent (issue 10). A value t > 0 scales a connection by min(1, t / r): biased,
     /// energy is only removed. 0 (default): off.
     double max_geometry = 0;
+    MneeSeeding seeding = MneeSeeding::Straight;
+    MneeSolutions solutions = MneeSolutions::One;
+    int trials = 16;    ///< (trials) surface seeds per caster and light connection (solutions=all)
     WalkSettings walk;  ///< (max_iterations, threshold, allow_error_increase, projection)
 };
 

@@ -26,6 +26,30 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     s.walk.allow_error_increase = p.get_bool("allow_error_increase", s.walk.allow_error_increase);
     s.walk.min_step = p.get_float("min_step", s.walk.min_step);
     s.max_geometry = p.get_float("max_geometry", s.max_geometry);
+    const std::string seeding = p.get_string("seeding", "straight");
+    if (seeding == "straight")
+        s.seeding = MneeSeeding::Straight;
+    else if (seeding == "surface")
+        s.seeding = MneeSeeding::Surface;
+    else if (seeding == "straight+surface")
+        s.seeding = MneeSeeding::StraightAndSurface;
+    else
+        p.raise_param("seeding", "seeding must be 'straight', 'surface' or 'straight+surface'");
+    const std::string solutions = p.get_string("solutions", "one");
+    if (solutions == "one")
+        s.solutions = MneeSolutions::One;
+    else if (solutions == "all")
+        s.solutions = MneeSolutions::All;
+    else
+        p.raise_param("solutions", "solutions must be 'one' or 'all'");
+    s.trials = int(p.get_int("trials", s.trials));
+    if (s.trials < 1) p.raise_param("trials", "trials must be >= 1");
+    // The paper's estimator counts the straight seed's solution alone; every other pairing
+    // would silently drop the solutions its seeds do not reach.
+    if (s.solutions == MneeSolutions::One && s.seeding != MneeSeeding::Straight)
+        p.raise_param("seeding", "solutions=one takes the straight seed only; use solutions=all with surface seeds");
+    if (s.solutions == MneeSolutions::All && s.seeding == MneeSeeding::Straight)
+        p.raise_param("solutions", "solutions=all needs surface seeds: seeding=surface or straight+surface");
     const std::string proj = p.get_string("projection", "closest_point");
     if (proj == "closest_point")
         s.walk.projection = Projection::ClosestPoint;
@@ -163,11 +187,12 @@ SampledSpectrum MneeIntegrator::connect_to_light(const Scene& scene, const Surfa
     }
     // The connection adds k + 1 segments to the depth + 1 the path has (max_depth, Mitsuba's
     // meaning); BSDF sampling cannot produce longer paths, so neither may MNEE.
-    if (m_settings.max_depth >= 0 && state.depth + 2 + int(chain.size()) > m_settings.max_depth) return {};
+    const int max_k = m_settings.max_depth >= 0 ? m_settings.max_depth - state.depth - 2 : -1;
+    if (m_mnee.solutions == MneeSolutions::One && max_k >= 0 && int(chain.size()) > max_k) return {};
     // Lines 3-5 (half vectors, walk, measurement) for every solution the technique finds; then
     // MIS of each against the other techniques that produce the same path.
     const ManifoldQuery q{&si, &bsdf, ctx, state.media, state.hero_only};
-    const SolutionSet set = ManifoldTechnique(scene, m_mnee).solve(q, *light, pmf, lp, chain, sampler);
+    const SolutionSet set = ManifoldTechnique(scene, m_mnee).solve(q, *light, pmf, lp, chain, sampler, max_k);
     SampledSpectrum out;
     for (const ManifoldSolution& sol : set.solutions)
         out += sol.value * (sol.count * power_heuristic(sol.density, {sol.pdf_bsdf, sol.pdf_nee_last}));

@@ -1,0 +1,68 @@
+#include "manifold/surface_seed.h"
+
+#include <cmath>
+
+#include "bsdf/bsdf.h"
+#include "geometry/shape.h"
+#include "manifold/seed_path.h"
+#include "scene/scene.h"
+
+namespace snell {
+
+std::vector<const Shape*> manifold_casters(const Scene& scene, double lambda) {
+    std::vector<const Shape*> out;
+    for (const auto& s : scene.shapes())
+        if (!s->emitter() && is_manifold_interface(s->bsdf(), lambda)) out.push_back(s.get());
+    return out;
+}
+
+namespace {
+
+// Refraction of the travel direction d about the unit normal m (either orientation) from IOR n1
+// into n2; false for total internal reflection.
+bool refract_about(const Vec3& d, Vec3 m, double n1, double n2, Vec3* out) {
+    double cos_i = -dot(d, m);
+    if (cos_i < 0) {
+        m = -m;
+        cos_i = -cos_i;
+    }
+    const double e = n1 / n2, sin2_t = e * e * std::max(0.0, 1 - cos_i * cos_i);
+    if (sin2_t >= 1) return false;
+    *out = normalize(d * e + m * (e * cos_i - std::sqrt(1 - sin2_t)));
+    return true;
+}
+
+}  // namespace
+
+SurfaceSeedEnd trace_surface_seed(const Scene& scene, const SurfaceInteraction& xb, const Shape& caster, const Vec2& u,
+                                  double lambda, const MneeSettings& settings, HalfVectorDraws& draws,
+                                  std::vector<ManifoldVertex>* chain) {
+    chain->clear();
+    const auto y = caster.sample_from(xb.p, u);
+    if (!y) return SurfaceSeedEnd::MissedCaster;
+    Ray ray = scene.spawn_ray_to(xb, y->p);
+    ray.tmax = kInfinity;  // beyond y too: the first hit must be the caster, wherever on it
+    for (int i = 0;; ++i) {
+        SurfaceInteraction si;
+        if (!scene.intersect(ray, &si)) break;
+        const BSDF* bsdf = si.bsdf();
+        if (i == 0 && si.shape != &caster) return SurfaceSeedEnd::MissedCaster;
+        if (si.emitter() || !is_manifold_interface(bsdf, lambda)) break;
+        if (i >= settings.max_vertices) return SurfaceSeedEnd::TooMany;
+        ManifoldVertex v = ManifoldVertex::from_interaction(si, bsdf->eta(lambda));
+        // The vertex's target half vector (slot i, as set_half_vectors reads it), in world space
+        // on the side of n.
+        const Vec2 h = target_half_vector(v, i, draws);
+        v.h_target = h;
+        const Vec3 m = v.s * h.x + v.t * h.y + v.n * std::sqrt(std::max(0.0, 1 - h.x * h.x - h.y * h.y));
+        const bool entering = dot(ray.d, v.ng) < 0;
+        Vec3 d;
+        if (!refract_about(ray.d, m, entering ? 1.0 : v.eta, entering ? v.eta : 1.0, &d))
+            return SurfaceSeedEnd::TotalInternalReflection;
+        chain->push_back(v);
+        ray = scene.spawn_ray(si, d);
+    }
+    return chain->empty() ? SurfaceSeedEnd::MissedCaster : SurfaceSeedEnd::Ok;
+}
+
+}  // namespace snell

@@ -1,0 +1,38 @@
+#pragma once
+// Seeds on the caster shapes (Specular Manifold Sampling, Zeltner, Georgiev & Jakob 2020): a
+// point drawn on a refractive shape as seen from x_b, and the ray x_b -> that point refracted
+// through every interface it meets. Unlike the paper's straight seed (Sec. 3.1), every solution
+// of the constraints has a nonzero chance to be the one the walk from such a seed reaches.
+#include <vector>
+
+#include "core/vector.h"
+#include "geometry/interaction.h"
+#include "manifold/half_vectors.h"
+#include "manifold/manifold_vertex.h"
+#include "manifold/mnee_settings.h"
+
+namespace snell {
+
+class Scene;
+class Shape;
+
+enum class SurfaceSeedEnd {
+    Ok,
+    MissedCaster,             ///< the ray towards the drawn point hits something else first
+    TotalInternalReflection,  ///< the seed ray cannot leave an interface
+    TooMany,                  ///< more refractive vertices than max_vertices
+};
+
+/// The shapes a manifold chain can lie on: refractive interfaces (is_manifold_interface) that
+/// are not emitters.
+std::vector<const Shape*> manifold_casters(const Scene& scene, double lambda);
+
+/// Draws y on `caster` as seen from x_b (u), traces x_b -> y, and refracts at every refractive
+/// interface hit about the vertex's target half vector (slot i of `draws`: the shading normal for
+/// smooth vertices), until the ray meets anything else or leaves the scene. Fills `chain` with
+/// the interface vertices (h_target set).
+SurfaceSeedEnd trace_surface_seed(const Scene& scene, const SurfaceInteraction& xb, const Shape& caster, const Vec2& u,
+                                  double lambda, const MneeSettings& settings, HalfVectorDraws& draws,
+                                  std::vector<ManifoldVertex>* chain);
+
+}  // namespace snell

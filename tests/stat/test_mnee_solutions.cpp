@@ -1,0 +1,240 @@
+// Every admissible solution per shading point (issue 10). Under a droplet, a receiver point past
+// the caustic's fold has more than one refracted path to a point light (the paper's Fig. 7): the
+// straight seed walks to one of them; surface seeds on the droplet (solutions=all) find all of
+// them, each where an exhaustive search of Snell's law puts it, and no other.
+//
+// (The issue expected three solutions at some receivers. An exhaustive search over the droplet's
+// footprint, for this light and the bundled scene's, finds at most two paths with one refraction
+// from a point inside the sphere: the third branch needs a receiver outside it, two refractions.)
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+#include "manifold/manifold_technique.h"
+#include "manifold/seed_path.h"
+#include "manifold/sphere_exact.h"
+#include "sampler/independent.h"
+#include "stat/render_stats.h"
+
+using namespace snell;
+using namespace snell::test;
+
+namespace {
+
+const Vec3 kCentre(0, 0.35, 0);
+constexpr double kRadius = 1.0, kEta = 1.33;
+const Vec3 kLight(-1.6, 2.2, 0.0);
+
+const char* kPointLight =
+    R"(<emitter type="point"><point name="position" x="-1.6" y="2.2" z="0"/><rgb name="intensity" value="4, 4, 4"/></emitter>)";
+// A small sphere light around the point light's position.
+const char* kSphereLight = R"(<shape type="sphere"><point name="center" x="-1.6" y="2.2" z="0"/>
+    <float name="radius" value="0.08"/><emitter type="area"><rgb name="radiance" value="50, 50, 50"/></emitter></shape>)";
+
+LoadedScene droplet(const std::string& light = kPointLight) {
+    std::string xml = R"(<scene version="3.0.0"><integrator type="mnee"/>
+  <sensor type="perspective"><transform name="to_world"><lookat origin="0,3,3" target="0,0,0" up="0,1,0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>
+  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><scale value="4"/></transform></shape>
+  <shape type="sphere"><point name="center" x="0" y="0.35" z="0"/><float name="radius" value="1"/>
+    <bsdf type="dielectric"><float name="int_ior" value="1.33"/><float name="ext_ior" value="1"/></bsdf></shape>
+  $light
+</scene>)";
+    xml.replace(xml.find("$light"), 6, light);
+    return load_xml(xml);
+}
+
+MneeSettings all_solutions(int trials) {
+    MneeSettings st;
+    st.solutions = MneeSolutions::All;
+    st.seeding = MneeSeeding::StraightAndSurface;
+    st.trials = trials;
+    return st;
+}
+
+struct Mean {
+    double sum = 0, sq = 0;
+    long n = 0;
+    void add(double v) { sum += v, sq += v * v, ++n; }
+    double mean() const { return sum / double(n); }
+    double stderr_() const { return std::sqrt(std::max(0.0, sq / double(n) - sqr(mean())) / double(n)); }
+};
+
+// The floor point at (x, 0, z), reached by tracing down through the droplet.
+SurfaceInteraction receiver(const Scene& scene, double x, double z) {
+    Ray r{Vec3(x, 3, z), Vec3(0, -1, 0), 0, 100};
+    SurfaceInteraction si;
+    for (int i = 0; i < 4; ++i) {
+        EXPECT_TRUE(scene.intersect(r, &si));
+        if (!si.bsdf()->is_transmissive()) break;
+        r = scene.spawn_ray(si, Vec3(0, -1, 0));
+    }
+    si.wo = Vec3(0, 1, 0);
+    return si;
+}
+
+// One light sample's solutions (an empty set when the straight seed does not refract).
+SolutionSet solve(const Scene& scene, const SurfaceInteraction& xb, const MneeSettings& st, Sampler& smp,
+                  LightPoint* lp_out = nullptr) {
+    const Light& light = *scene.lights()[0];
+    const SampledWavelengths wl = SampledWavelengths::single(550);
+    const auto ls = light.sample_li({xb.p, xb.n}, smp.next_2d(), wl);
+    if (!ls) return {};
+    const LightPoint lp = light_point(scene, light, *ls, xb.p);
+    if (lp_out) *lp_out = lp;
+    std::vector<ManifoldVertex> chain;
+    if (trace_seed_path(scene, xb, lp.p, 550, st, &chain) != SeedStatus::Refractive) return {};
+    const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false};
+    return ManifoldTechnique(scene, st).solve(q, light, 1.0, lp, chain, smp);
+}
+
+SolutionSet solve(const Scene& scene, const SurfaceInteraction& xb, const MneeSettings& st, uint64_t seed) {
+    IndependentSampler smp(seed);
+    smp.start_pixel_sample(0, 0, 0);
+    return solve(scene, xb, st, smp);
+}
+
+// A receiver with the most exact solutions (at least two), each at least 0.02 from the others:
+// past the fold, but not so close to it that two solutions nearly coincide.
+Vec3 multi_solution_receiver(size_t* count) {
+    Vec3 best;
+    *count = 0;
+    for (double x = -0.9; x < 0.91; x += 0.05)
+        for (double z = -0.9; z < 0.91; z += 0.05) {
+            if (x * x + z * z > 0.85) continue;
+            const std::vector<Vec3> roots =
+                sphere_refraction_roots(kCentre, kRadius, kEta, Vec3(x, 0, z), kLight, 20000);
+            if (roots.size() <= *count) continue;
+            double gap = kInfinity;
+            for (size_t i = 0; i < roots.size(); ++i)
+                for (size_t j = i + 1; j < roots.size(); ++j) gap = std::min(gap, length(roots[i] - roots[j]));
+            if (gap > 0.02) {
+                *count = roots.size();
+                best = Vec3(x, 0, z);
+            }
+        }
+    return best;
+}
+
+}  // namespace
+
+TEST(ManifoldSolutions, AllFindsEveryExactSolutionOnASphereOnAPlane) {
+    size_t count = 0;
+    const Vec3 at = multi_solution_receiver(&count);
+    ASSERT_GE(count, 2u) << "no receiver with several well-separated solutions under this droplet";
+    const LoadedScene ls = droplet();
+    const SurfaceInteraction xb = receiver(*ls.scene, at.x, at.z);
+    ASSERT_NEAR(xb.p.y, 0.0, 1e-9);
+    const std::vector<Vec3> exact = sphere_refraction_roots(kCentre, kRadius, kEta, xb.p, kLight);
+    ASSERT_EQ(exact.size(), count) << "at " << at.x << ", " << at.z;
+
+    const SolutionSet set = solve(*ls.scene, xb, all_solutions(2000), 7);
+    ASSERT_EQ(set.solutions.size(), count) << "at " << at.x << ", " << at.z;
+    std::vector<bool> matched(count, false);
+    for (const ManifoldSolution& s : set.solutions) {
+        ASSERT_EQ(s.chain.size(), 1u);
+        size_t best = 0;
+        for (size_t i = 1; i < count; ++i)
+            if (length(exact[i] - s.chain[0].p) < length(exact[best] - s.chain[0].p)) best = i;
+        EXPECT_LT(length(exact[best] - s.chain[0].p), 1e-6) << "a solution no exact root explains";
+        EXPECT_FALSE(matched[best]) << "two solutions at one exact root";
+        matched[best] = true;
+        EXPECT_GT(s.value[0], 0.0);
+        EXPECT_GT(s.density, 0.0);
+    }
+
+    // The paper's straight seed walks to one of them only.
+    MneeSettings paper;
+    const SolutionSet one = solve(*ls.scene, xb, paper, 7);
+    EXPECT_LE(one.solutions.size(), 1u);
+    std::cout << "[solutions] receiver (" << at.x << ", " << at.z << "): exact " << count << ", all finds "
+              << set.solutions.size() << ", the straight seed " << one.solutions.size() << "\n";
+}
+
+// The all-solutions estimator (no MIS) at the two-solution receiver under a small sphere light
+// equals BSDF sampling of every refraction-only path to the light: every branch is counted, each
+// once (a solution counted twice doubles the estimate). Here the second branch carries well under
+// 1 % of the light (printed), so this test does not see it missing; the agreement render tests
+// and AllFindsEveryExactSolution do.
+TEST(ManifoldSolutions, AllEstimatesEveryRefractedPath) {
+    size_t count = 0;
+    const Vec3 at = multi_solution_receiver(&count);
+    ASSERT_GE(count, 2u);
+    const LoadedScene ls = droplet(kSphereLight);
+    const Scene& scene = *ls.scene;
+    const SurfaceInteraction xb = receiver(scene, at.x, at.z);
+    const BSDFContext ctx{SampledWavelengths::single(550), TransportMode::Radiance};
+    IndependentSampler smp(21);
+    smp.start_pixel_sample(0, 0, 0);
+    Mean all, straight, bsdf;
+    const MneeSettings st_all = all_solutions(16), st_one;
+    for (int n = 0; n < 6000; ++n) {
+        double v = 0, v1 = 0;
+        for (const ManifoldSolution& s : solve(scene, xb, st_all, smp).solutions) v += s.count * s.value[0];
+        for (const ManifoldSolution& s : solve(scene, xb, st_one, smp).solutions) v1 += s.value[0];
+        all.add(v);
+        straight.add(v1);
+    }
+    for (int n = 0; n < 2000000; ++n) {
+        // Diffuse sampling at x_b, then refractions only, until the light.
+        double v = 0;
+        auto bs = xb.bsdf()->sample(ctx, xb.to_local(xb.wo), smp.next_1d(), smp.next_2d());
+        if (bs) {
+            double beta = bs->weight[0];
+            Ray ray = scene.spawn_ray(xb, xb.to_world(bs->wi));
+            SurfaceInteraction h;
+            bool refracted = false;
+            for (int d = 0; d < 6 && scene.intersect(ray, &h); ++d) {
+                if (h.emitter()) {
+                    if (refracted) v = beta * h.emitter()->le(h.p, h.n, -ray.d, ctx.wl)[0];
+                    break;
+                }
+                auto b2 = h.bsdf()->sample(ctx, h.to_local(h.wo), smp.next_1d(), smp.next_2d());
+                if (!b2 || !(b2->lobe & kTransmission)) break;
+                refracted = true;
+                beta *= b2->weight[0];
+                ray = scene.spawn_ray(h, h.to_world(b2->wi));
+            }
+        }
+        bsdf.add(v);
+    }
+    const double se = std::sqrt(sqr(all.stderr_()) + sqr(bsdf.stderr_()));
+    std::cout << "[solutions] at (" << at.x << ", " << at.z << "): all " << all.mean() << " +- " << all.stderr_()
+              << ", straight seed " << straight.mean() << ", BSDF sampling " << bsdf.mean() << " +- " << bsdf.stderr_()
+              << "\n";
+    EXPECT_GT(all.mean(), 0.0);
+    EXPECT_NEAR(all.mean(), bsdf.mean(), 4.5 * se);
+    EXPECT_LT(4.5 * se, 0.25 * bsdf.mean());  // tight enough to see a solution counted twice
+}
+
+// The density the technique reports for each solution it found equals its density() of the same
+// path, as a BSDF-sampled copy would query it: with solutions=all every solution is the
+// technique's, not only the one the straight seed walks to (Alg. 2 would give 0 for the other).
+TEST(ManifoldSolutions, DensityOfEveryFoundSolutionMatches) {
+    size_t count = 0;
+    const Vec3 at = multi_solution_receiver(&count);
+    const LoadedScene ls = droplet(kSphereLight);
+    const Scene& scene = *ls.scene;
+    const SurfaceInteraction xb = receiver(scene, at.x, at.z);
+    const MneeSettings st = all_solutions(64);
+    const ManifoldTechnique technique(scene, st);
+    IndependentSampler smp(5);
+    smp.start_pixel_sample(0, 0, 0);
+    int checked = 0, multi = 0;
+    for (int n = 0; n < 200 && checked < 60; ++n) {
+        LightPoint lp;
+        const SolutionSet set = solve(scene, xb, st, smp, &lp);
+        multi += set.solutions.size() > 1;
+        for (const ManifoldSolution& s : set.solutions) {
+            std::vector<SurfaceInteraction> chain;
+            for (const ManifoldVertex& v : s.chain) chain.push_back(v.si);
+            const double d = technique.density(xb, *xb.bsdf(), chain.data(), int(chain.size()), *scene.lights()[0], 1.0,
+                                               lp.p, lp.n, 550);
+            // The stored chain is polished (solution_set.h), the density was taken before: 1e-5.
+            EXPECT_NEAR(d, s.density, 1e-5 * s.density);
+            ++checked;
+        }
+    }
+    EXPECT_GE(checked, 40);
+    EXPECT_GE(multi, 5);  // light samples with both branches
+}
