@@ -4,6 +4,7 @@
 
 #include "core/rng.h"
 #include "manifold/surface_seed.h"
+#include "manifold/walk_counters.h"
 
 namespace snell {
 
@@ -36,31 +37,70 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
     // Surface seeds on every caster, from their own stream (one sampler dimension in all).
     PCG32 rng(uint64_t(sampler.next_1d() * 0x1p53), 0x5eed);
     const double lambda = ctx.hero();
+    const auto next_u = [&rng] { return Vec2(rng.next_double(), rng.next_double()); };
+    const int straight = out.solutions.empty() ? -1 : int(out.solutions.size()) - 1;
     for (const Shape* caster : manifold_casters(*m_scene, lambda)) {
-        for (int j = 0; j < st.trials; ++j) {
-            const Vec2 u(rng.next_double(), rng.next_double());
-            std::vector<ManifoldVertex> chain;
-            if (trace_surface_seed(*m_scene, *q.xb, *caster, u, lambda, st, draws, &chain) != SurfaceSeedEnd::Ok)
-                continue;
-            add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, out);
+        if (st.solutions == MneeSolutions::All) {
+            for (int j = 0; j < st.trials; ++j) {
+                std::vector<ManifoldVertex> chain;
+                if (trace_surface_seed(*m_scene, *q.xb, *caster, next_u(), lambda, st, draws, &chain) ==
+                    SurfaceSeedEnd::Ok)
+                    add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, out);
+            }
+            continue;
         }
+        // solutions=unbiased (SMS): the solution Y of one trial, weighted by the number N of further
+        // independent trials up to and including the first that finds Y again. N is geometric
+        // with parameter p(Y), the probability that a trial finds Y, so E[N] = 1 / p(Y) and every
+        // solution a trial can reach counts once in expectation. The straight seed's solution is
+        // counted as such, so a trial landing on it contributes nothing.
+        std::vector<ManifoldVertex> first;
+        if (!surface_trial(q, ctx, *caster, next_u(), light, pmf, lp, draws, max_k, &first)) continue;
+        if (straight >= 0 && same_solution(q.xb->p, first, out.solutions[size_t(straight)].chain, lp.p)) continue;
+        const int index = add_solution(q, ctx, slot, light, pmf, lp, first, draws, max_k, out);
+        if (index < 0) continue;
+        int n = 1;
+        for (; n <= st.max_trials; ++n) {
+            std::vector<ManifoldVertex> again;
+            if (surface_trial(q, ctx, *caster, next_u(), light, pmf, lp, draws, max_k, &again) &&
+                same_solution(q.xb->p, again, out.solutions[size_t(index)].chain, lp.p))
+                break;
+        }
+        ++walk_counters::bernoulli_loops;
+        walk_counters::bernoulli_trials += uint64_t(std::min(n, st.max_trials));
+        if (n > st.max_trials) ++walk_counters::bernoulli_capped;
+        out.solutions[size_t(index)].count = double(std::min(n, st.max_trials));
     }
 }
 
-void ManifoldTechnique::add_solution(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light,
-                                     double pmf, const LightPoint& lp, std::vector<ManifoldVertex> chain,
-                                     HalfVectorDraws& draws, int max_k, SolutionSet& out) const {
-    if (max_k >= 0 && int(chain.size()) > max_k) return;
+bool ManifoldTechnique::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster,
+                                      const Vec2& u, const Light& light, double pmf, const LightPoint& lp,
+                                      HalfVectorDraws& draws, int max_k, std::vector<ManifoldVertex>* chain) const {
+    if (trace_surface_seed(*m_scene, *q.xb, caster, u, ctx.hero(), *m_settings, draws, chain) != SurfaceSeedEnd::Ok)
+        return false;
+    if (max_k >= 0 && int(chain->size()) > max_k) return false;
+    const MneeConnection c =
+        mnee_connect(*m_scene, *m_settings, *q.xb, *q.bsdf_b, ctx, q.media, light, pmf, lp, *chain, draws);
+    if (c.outcome != MneeOutcome::Success) return false;
+    polish_solution(m_scene, q.xb->p, *chain, light_point_basis(lp.p, lp.n, normalize(lp.p - q.xb->p)),
+                    m_settings->walk);
+    return true;
+}
+
+int ManifoldTechnique::add_solution(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light,
+                                    double pmf, const LightPoint& lp, std::vector<ManifoldVertex> chain,
+                                    HalfVectorDraws& draws, int max_k, SolutionSet& out) const {
+    if (max_k >= 0 && int(chain.size()) > max_k) return -1;
     const MneeConnection c =
         mnee_connect(*m_scene, *m_settings, *q.xb, *q.bsdf_b, ctx, q.media, light, pmf, lp, chain, draws);
-    if (c.outcome != MneeOutcome::Success) return;
-    if (m_settings->solutions == MneeSolutions::All) {
+    if (c.outcome != MneeOutcome::Success) return -1;
+    if (m_settings->solutions != MneeSolutions::One) {
         // Distinct paths only: compare polished chains (solution_set.h).
         std::vector<ManifoldVertex> polished = chain;
         polish_solution(m_scene, q.xb->p, polished, light_point_basis(lp.p, lp.n, normalize(lp.p - q.xb->p)),
                         m_settings->walk);
         for (const ManifoldSolution& other : out.solutions)
-            if (other.slot == slot && same_solution(q.xb->p, polished, other.chain, lp.p)) return;
+            if (other.slot == slot && same_solution(q.xb->p, polished, other.chain, lp.p)) return -1;
         chain = std::move(polished);
     }
     ManifoldSolution s;
@@ -78,12 +118,13 @@ void ManifoldTechnique::add_solution(const ManifoldQuery& q, const BSDFContext& 
     s.pdf_bsdf = c.pdf_bsdf;
     s.pdf_nee_last = c.pdf_nee_last;
     out.solutions.push_back(std::move(s));
+    return int(out.solutions.size()) - 1;
 }
 
 double ManifoldTechnique::density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain,
                                   int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
                                   double lambda) const {
-    if (m_settings->solutions == MneeSolutions::All)
+    if (m_settings->solutions != MneeSolutions::One)
         return solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
     return mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
 }

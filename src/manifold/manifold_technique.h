@@ -15,6 +15,7 @@
 namespace snell {
 
 class Scene;
+class Shape;
 
 /// The path at x_b as the technique needs it.
 struct ManifoldQuery {
@@ -57,10 +58,15 @@ private:
     void solve_once(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light, double pmf,
                     const LightPoint& lp, const std::vector<ManifoldVertex>& seed, Sampler& sampler, int max_k,
                     SolutionSet& out) const;
-    /// Walks `chain` (its seed) and adds the admissible, visible path unless `out` holds it.
-    void add_solution(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light, double pmf,
-                      const LightPoint& lp, std::vector<ManifoldVertex> chain, HalfVectorDraws& draws, int max_k,
-                      SolutionSet& out) const;
+    /// Walks `chain` (its seed) and adds the admissible, visible path unless `out` holds it;
+    /// returns the index of the added solution, or -1.
+    int add_solution(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light, double pmf,
+                     const LightPoint& lp, std::vector<ManifoldVertex> chain, HalfVectorDraws& draws, int max_k,
+                     SolutionSet& out) const;
+    /// One surface seed on `caster` walked to a polished admissible path; false if it fails.
+    bool surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster, const Vec2& u,
+                       const Light& light, double pmf, const LightPoint& lp, HalfVectorDraws& draws, int max_k,
+                       std::vector<ManifoldVertex>* chain) const;
 
     const Scene* m_scene;
     const MneeSettings* m_settings;

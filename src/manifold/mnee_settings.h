@@ -9,9 +9,11 @@ namespace snell {
 /// x_c (Sec. 3.1), points drawn on the caster shapes (SMS), or both.
 enum class MneeSeeding { Straight, Surface, StraightAndSurface };
 /// (solutions) which solutions a light connection counts: the one the straight seed walks to
-/// (the paper's Alg. 1, MIS by Alg. 2), or every distinct one found by `trials` surface seeds
-/// per caster (consistent; biased low for finite trials by the solutions none of them found).
-enum class MneeSolutions { One, All };
+/// (the paper's Alg. 1, MIS by Alg. 2); every distinct one found by `trials` surface seeds per
+/// caster (consistent; biased low for finite trials by the solutions none of them found); or,
+/// unbiased, one surface solution per caster weighted by a geometric estimate of 1 / p (Specular
+/// Manifold Sampling's estimator), plus the straight seed's.
+enum class MneeSolutions { One, All, Unbiased };
 
 struct MneeSettings {
     int max_vertices = 8;           ///< (max_vertices) refractive vertices collected on a seed path
@@ -33,7 +35,10 @@ struct MneeSettings {
     double max_geometry = 0;
     MneeSeeding seeding = MneeSeeding::Straight;
     MneeSolutions solutions = MneeSolutions::One;
-    int trials = 16;    ///< (trials) surface seeds per caster and light connection (solutions=all)
+    int trials = 16;  ///< (trials) surface seeds per caster and light connection (solutions=all)
+    /// (max_trials) cap M on the Bernoulli trials of solutions=unbiased: the estimate of 1 / p is
+    /// min(N, M), whose expectation (1 - (1 - p)^M) / p is short of 1 / p by the factor (1 - p)^M.
+    int max_trials = 256;
     WalkSettings walk;  ///< (max_iterations, threshold, allow_error_increase, projection)
 };
 

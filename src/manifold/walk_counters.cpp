@@ -15,6 +15,9 @@ StatTimer walk_time{"mnee.walk_time_ns", "time in manifold walks (Alg. 1 and Alg
 StatCounter seeds_occluded{"mnee.seeds_occluded", "seed segments blocked by an opaque surface"};
 StatCounter seeds_too_many{"mnee.seeds_too_many", "seeds with more refractive vertices than allowed"};
 StatCounter seeds_culled{"mnee.seeds_culled", "seeds culled at x_b (Fig. 3 margin)"};
+StatCounter bernoulli_loops{"mnee.bernoulli_loops", "geometric 1/p estimates (solutions=unbiased)"};
+StatCounter bernoulli_trials{"mnee.bernoulli_trials", "trial counts N of the 1/p estimates, summed"};
+StatCounter bernoulli_capped{"mnee.bernoulli_capped", "1/p estimates that reached max_trials"};
 StatCounter geometry_clamped{"mnee.geometry_clamped", "connections scaled down by max_geometry"};
 StatCounter pdf_walks{"mnee.pdf_walks", "Alg. 2 walks (MIS densities of BSDF-sampled paths)"};
 StatCounter pdf_walks_found{"mnee.pdf_walks_found", "Alg. 2 walks that reproduced their input path"};

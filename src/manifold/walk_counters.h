@@ -38,6 +38,9 @@ extern StatTimer walk_time;                ///< "mnee.walk_time_ns": in Alg. 1 a
 extern StatCounter seeds_occluded;         ///< seed segment blocked by an opaque surface
 extern StatCounter seeds_too_many;         ///< seed with more refractive vertices than allowed
 extern StatCounter seeds_culled;           ///< seed culled at x_b (Fig. 3 margin)
+extern StatCounter bernoulli_loops;        ///< solutions=unbiased: geometric 1/p estimates made
+extern StatCounter bernoulli_trials;       ///< ... their counts N summed (mean: E[1/p] over found solutions)
+extern StatCounter bernoulli_capped;       ///< ... that reached max_trials
 extern StatCounter geometry_clamped;       ///< connections scaled down by max_geometry
 extern StatCounter pdf_walks;              ///< Alg. 2 walks (MIS densities of BSDF-sampled paths)
 extern StatCounter pdf_walks_found;        ///< ... that reproduced the input path

@@ -38,6 +38,10 @@ nlohmann::json mnee_stats_json(const StatTotals& t) {
         j["walk_ends"][key] = e;
     }
     j["geometry_clamped"] = t[wc::geometry_clamped];
+    // solutions=unbiased: trials per solution (the mean estimates E[1/p] over found solutions).
+    j["trials_per_solution"] = {{"estimates", t[wc::bernoulli_loops]},
+                                {"mean", ratio(t[wc::bernoulli_trials], t[wc::bernoulli_loops])},
+                                {"capped", t[wc::bernoulli_capped]}};
     j["pdf_walks"] = t[wc::pdf_walks];
     j["pdf_walks_found"] = t[wc::pdf_walks_found];
     // Histogram of iterations of successful walks; the last bin collects the rest.

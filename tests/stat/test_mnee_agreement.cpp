@@ -207,15 +207,21 @@ TEST(MneeAgreement, BubbleWithEtaBelowOneConvergesAndMatchesNee) {
     expect_mnee_matches_nee(xml, 256, 64, "bubble");
 }
 
-// Every solution per shading point (solutions=all, surface seeds): the technique's density is
+// Every solution per shading point (solutions=all or unbiased, surface seeds): the density is
 // then the solution density, the same for the paths it finds and for the BSDF-sampled copies of
 // any solution, so MIS stays a partition of unity; smooth and rough droplets agree with nee.
 // (Finite trials can miss a solution, biasing low; 16 trials per caster find both branches here.)
-TEST(MneeAgreement, AllSolutionsAgreeWithNee) {
+TEST(MneeAgreement, EverySolutionEstimatorsAgreeWithNee) {
     const std::string all =
         R"(<string name="solutions" value="all"/><string name="seeding" value="straight+surface"/>)";
     expect_mnee_matches_nee(scene_with(smooth_water(), all), 256, 32, "all solutions, smooth",
                             scene_with(smooth_water()));
     expect_mnee_matches_nee(scene_with(rough_water(0.1), all), 256, 32, "all solutions, rough 0.1",
+                            scene_with(rough_water(0.1)));
+    const std::string unbiased =
+        R"(<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/>)";
+    expect_mnee_matches_nee(scene_with(smooth_water(), unbiased), 256, 32, "unbiased, smooth",
+                            scene_with(smooth_water()));
+    expect_mnee_matches_nee(scene_with(rough_water(0.1), unbiased), 256, 32, "unbiased, rough 0.1",
                             scene_with(rough_water(0.1)));
 }

@@ -238,3 +238,74 @@ TEST(ManifoldSolutions, DensityOfEveryFoundSolutionMatches) {
     EXPECT_GE(checked, 40);
     EXPECT_GE(multi, 5);  // light samples with both branches
 }
+
+namespace {
+
+// Among receivers with several well-separated exact solutions, the one where the weaker
+// solutions carry the largest share of the light (from the all-solutions estimator), so that
+// an estimator that misses them is visibly short. Returns that share.
+double strongest_second_branch(const Scene& scene, SurfaceInteraction* best) {
+    double best_share = 0;
+    const MneeSettings st = all_solutions(256);
+    for (double x = -0.9; x < 0.91; x += 0.05)
+        for (double z = -0.9; z < 0.91; z += 0.05) {
+            if (x * x + z * z > 0.85) continue;
+            if (sphere_refraction_roots(kCentre, kRadius, kEta, Vec3(x, 0, z), kLight, 20000).size() < 2) continue;
+            const SurfaceInteraction xb = receiver(scene, x, z);
+            const SolutionSet set = solve(scene, xb, st, 3);
+            if (set.solutions.size() < 2) continue;
+            double sum = 0, top = 0;
+            for (const ManifoldSolution& s : set.solutions) sum += s.value[0], top = std::max(top, s.value[0]);
+            if (sum > 0 && 1 - top / sum > best_share) {
+                best_share = 1 - top / sum;
+                *best = xb;
+            }
+        }
+    return best_share;
+}
+
+}  // namespace
+
+// The unbiased estimator (SMS's geometric 1/p) at a two-solution receiver under a point light:
+// the straight seed's solution counts once, one surface trial's other solution counts N times,
+// N the trials until it is found again, and the mean over many runs is the sum of every
+// solution's value; the paper's estimator (one) is short by the weaker branch.
+TEST(ManifoldSolutions, UnbiasedMeanIsTheSumOfEverySolution) {
+    const LoadedScene ls = droplet();
+    const Scene& scene = *ls.scene;
+    SurfaceInteraction xb;
+    const double share = strongest_second_branch(scene, &xb);
+    ASSERT_GT(share, 0.05) << "no receiver where a second branch carries 5 % of the light";
+    const SolutionSet every = solve(scene, xb, all_solutions(4000), 11);
+    double exact = 0;
+    for (const ManifoldSolution& s : every.solutions) exact += s.value[0];
+
+    MneeSettings st = all_solutions(1);
+    st.solutions = MneeSolutions::Unbiased;
+    st.max_trials = 100000;
+    // Surface seeds alone: the straight seed's solution too is found by trials and counted N times;
+    // it has a large basin (p near 1), so an estimate of 1/p off by one trial shows there.
+    MneeSettings surface_only = st;
+    surface_only.seeding = MneeSeeding::Surface;
+    const MneeSettings paper;
+    Mean unbiased, surface, one;
+    for (int run = 0; run < 20000; ++run) {
+        IndependentSampler smp(17);
+        smp.start_pixel_sample(run, 0, 0);
+        double v = 0;
+        for (const ManifoldSolution& s : solve(scene, xb, st, smp).solutions) v += s.count * s.value[0];
+        unbiased.add(v);
+        double vs = 0;
+        for (const ManifoldSolution& s : solve(scene, xb, surface_only, smp).solutions) vs += s.count * s.value[0];
+        surface.add(vs);
+        double v1 = 0;
+        for (const ManifoldSolution& s : solve(scene, xb, paper, smp).solutions) v1 += s.value[0];
+        one.add(v1);
+    }
+    std::cout << "[unbiased] at (" << xb.p.x << ", " << xb.p.z << "): every solution " << exact << " (weaker share "
+              << share << "), unbiased mean " << unbiased.mean() << " +- " << unbiased.stderr_() << ", one "
+              << one.mean() << ", surface seeds only " << surface.mean() << " +- " << surface.stderr_() << "\n";
+    EXPECT_NEAR(unbiased.mean(), exact, 4.5 * unbiased.stderr_() + 1e-9 * exact);
+    EXPECT_NEAR(surface.mean(), exact, 4.5 * surface.stderr_() + 1e-9 * exact);
+    EXPECT_LT(one.mean(), exact * (1 - 0.5 * share));
+}

@@ -40,16 +40,21 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
         s.solutions = MneeSolutions::One;
     else if (solutions == "all")
         s.solutions = MneeSolutions::All;
+    else if (solutions == "unbiased")
+        s.solutions = MneeSolutions::Unbiased;
     else
-        p.raise_param("solutions", "solutions must be 'one' or 'all'");
+        p.raise_param("solutions", "solutions must be 'one', 'all' or 'unbiased'");
     s.trials = int(p.get_int("trials", s.trials));
     if (s.trials < 1) p.raise_param("trials", "trials must be >= 1");
+    s.max_trials = int(p.get_int("max_trials", s.max_trials));
+    if (s.max_trials < 1) p.raise_param("max_trials", "max_trials must be >= 1");
     // The paper's estimator counts the straight seed's solution alone; every other pairing
     // would silently drop the solutions its seeds do not reach.
     if (s.solutions == MneeSolutions::One && s.seeding != MneeSeeding::Straight)
         p.raise_param("seeding", "solutions=one takes the straight seed only; use solutions=all with surface seeds");
-    if (s.solutions == MneeSolutions::All && s.seeding == MneeSeeding::Straight)
-        p.raise_param("solutions", "solutions=all needs surface seeds: seeding=surface or straight+surface");
+    if (s.solutions != MneeSolutions::One && s.seeding == MneeSeeding::Straight)
+        p.raise_param("solutions",
+                      "solutions=" + solutions + " needs surface seeds: seeding=surface or straight+surface");
     const std::string proj = p.get_string("projection", "closest_point");
     if (proj == "closest_point")
         s.walk.projection = Projection::ClosestPoint;
