@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Issue 10's figures: `nee`, `mnee` and `mnee biased=true` at equal time on caustics, scored
+# Issue 10's figures: `nee`, `mnee`, `mnee biased=true` (and `mnee solutions=unbiased` with
+# INTEGRATORS="nee mnee mnee_biased mnee_unbiased") at equal time on caustics, scored
 # against an independent reference (`bdpt`, rendered on the scored crops only).
 #   cases: droplet_a002 (scenes/droplet, alpha 0.02), glass_sphere (smooth glass around a cube)
 #   crops: droplet caustic seen through the droplet; the glass sphere's floor caustic and its cube
@@ -27,9 +28,18 @@ with_crop() {
   sed "s|<integer name=\"height\" value=\"\$res_y\"/>|&<integer name=\"crop_offset_x\" value=\"$x\"/><integer name=\"crop_offset_y\" value=\"$y\"/><integer name=\"crop_width\" value=\"$w\"/><integer name=\"crop_height\" value=\"$h\"/>|" "$1" >"$2"
   grep -q crop_offset_x "$2" || { echo "could not crop $1" >&2; exit 1; }
 }
-# biased IN OUT: the scene with <boolean name="biased" value="true"/> in its integrator.
-biased() {
-  sed 's|<integer name="max_depth" value="$max_depth"/>|&<boolean name="biased" value="true"/>|' "$1" >"$2"
+# with_params IN OUT XML: the scene with XML (parameters) added to its integrator.
+with_params() {
+  sed "s|<integer name=\"max_depth\" value=\"\$max_depth\"/>|&$3|" "$1" >"$2"
+}
+# The techniques compared; INTEGRATORS overrides (mnee_unbiased needs a snell with `solutions`).
+INTEGRATORS=${INTEGRATORS:-nee mnee mnee_biased}
+params_of() {
+  case $1 in
+    mnee_biased) echo '<boolean name="biased" value="true"/>' ;;
+    mnee_unbiased) echo '<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/>' ;;
+    *) echo "" ;;
+  esac
 }
 
 case $MODE in
@@ -48,10 +58,12 @@ render)
   T=${3:-30}
   mkdir -p "$OUT/$LABEL"
   for c in "${CASES[@]}"; do
-    biased "$(scene_of "$c")" "$OUT/$LABEL/${c}_biased.xml"
-    for integ in nee mnee mnee_biased; do
-      scene=$(scene_of "$c"); name=$integ
-      if [ "$integ" = mnee_biased ]; then scene="$OUT/$LABEL/${c}_biased.xml"; name=mnee; fi
+    for integ in $INTEGRATORS; do
+      scene=$(scene_of "$c"); name=${integ%%_*}
+      if [ -n "$(params_of "$integ")" ]; then
+        with_params "$scene" "$OUT/$LABEL/${c}_$integ.xml" "$(params_of "$integ")"
+        scene="$OUT/$LABEL/${c}_$integ.xml"
+      fi
       # shellcheck disable=SC2046
       "$SNELL" render "$scene" $(defines_of "$c") -D integrator=$name --time "$T" -t "$THREADS" -q --seed 1 \
         -o "$OUT/$LABEL/${c}_$integ.exr"
@@ -62,7 +74,7 @@ score)
   LABEL=${2:?label}
   for c in "${CASES[@]}"; do
     IFS=, read -r rx ry _ _ <<<"$(ref_crop_of "$c")"
-    for integ in nee mnee mnee_biased; do
+    for integ in nee mnee mnee_biased mnee_unbiased; do
       img="$OUT/$LABEL/${c}_$integ.exr"
       [ -f "$img" ] || continue
       spp=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['spp_reached'])" "${img%.exr}.json")
