@@ -55,14 +55,14 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
         // solution a trial can reach counts once in expectation. The straight seed's solution is
         // counted as such, so a trial landing on it contributes nothing.
         std::vector<ManifoldVertex> first;
-        if (!surface_trial(q, ctx, *caster, next_u(), light, pmf, lp, draws, max_k, &first)) continue;
+        if (!surface_trial(q, ctx, *caster, next_u(), lp, draws, max_k, &first)) continue;
         if (straight >= 0 && same_solution(q.xb->p, first, out.solutions[size_t(straight)].chain, lp.p)) continue;
         const int index = add_solution(q, ctx, slot, light, pmf, lp, first, draws, max_k, out);
         if (index < 0) continue;
         int n = 1;
         for (; n <= st.max_trials; ++n) {
             std::vector<ManifoldVertex> again;
-            if (surface_trial(q, ctx, *caster, next_u(), light, pmf, lp, draws, max_k, &again) &&
+            if (surface_trial(q, ctx, *caster, next_u(), lp, draws, max_k, &again) &&
                 same_solution(q.xb->p, again, out.solutions[size_t(index)].chain, lp.p))
                 break;
         }
@@ -74,14 +74,15 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
 }
 
 bool ManifoldTechnique::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster,
-                                      const Vec2& u, const Light& light, double pmf, const LightPoint& lp,
-                                      HalfVectorDraws& draws, int max_k, std::vector<ManifoldVertex>* chain) const {
+                                      const Vec2& u, const LightPoint& lp, HalfVectorDraws& draws, int max_k,
+                                      std::vector<ManifoldVertex>* chain) const {
     if (trace_surface_seed(*m_scene, *q.xb, caster, u, ctx.hero(), *m_settings, draws, chain) != SurfaceSeedEnd::Ok)
         return false;
     if (max_k >= 0 && int(chain->size()) > max_k) return false;
-    const MneeConnection c =
-        mnee_connect(*m_scene, *m_settings, *q.xb, *q.bsdf_b, ctx, q.media, light, pmf, lp, *chain, draws);
-    if (c.outcome != MneeOutcome::Success) return false;
+    // Which solution the seed walks to is all a trial asks: no visibility rays, no measurement.
+    if (mnee_walk(*m_scene, *m_settings, *q.xb, *q.bsdf_b, lp, *chain, draws, /*trial_only=*/true) !=
+        MneeOutcome::Success)
+        return false;
     polish_solution(m_scene, q.xb->p, *chain, light_point_basis(lp.p, lp.n, normalize(lp.p - q.xb->p)),
                     m_settings->walk);
     return true;

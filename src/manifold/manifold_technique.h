@@ -65,7 +65,7 @@ private:
                      SolutionSet& out) const;
     /// One surface seed on `caster` walked to a polished admissible path; false if it fails.
     bool surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster, const Vec2& u,
-                       const Light& light, double pmf, const LightPoint& lp, HalfVectorDraws& draws, int max_k,
+                       const LightPoint& lp, HalfVectorDraws& draws, int max_k,
                        std::vector<ManifoldVertex>* chain) const;
 
     const Scene* m_scene;

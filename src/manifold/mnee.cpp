@@ -120,15 +120,12 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     return mnee_connect(scene, st, xb, bsdf_b, ctx, media, light, pmf, lp, chain, draws);
 }
 
-MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb,
-                            const BSDF& bsdf_b, const BSDFContext& ctx, const MediumStack& media, const Light& light,
-                            double pmf, const LightPoint& lp, std::vector<ManifoldVertex>& chain,
-                            HalfVectorDraws& draws) {
-    MneeConnection out;
+MneeOutcome mnee_walk(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb, const BSDF& bsdf_b,
+                      const LightPoint& lp, std::vector<ManifoldVertex>& chain, HalfVectorDraws& draws,
+                      bool trial_only) {
     if (mnee_seed_culled(xb, bsdf_b, lp.p, st.cull_margin)) {
         ++wc::seeds_culled;
-        out.outcome = MneeOutcome::SeedCulled;
-        return out;
+        return MneeOutcome::SeedCulled;
     }
     // Sec. 3.2 then Sec. 3.4: half vectors, then the walk from the seed.
     set_half_vectors(chain, draws);
@@ -143,34 +140,40 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
         case WalkOutcome::MaxIterations:
             ++wc::walk_fail_no_convergence;
             wc::count_walk_end(false, wc::WalkEnd::MaxIterations);
-            out.outcome = MneeOutcome::NoConvergence;
-            return out;
+            return MneeOutcome::NoConvergence;
         case WalkOutcome::Stalled:
             ++wc::walk_fail_no_convergence;
             wc::count_walk_end(false, wc::WalkEnd::Stalled);
-            out.outcome = MneeOutcome::Stalled;
-            return out;
+            return MneeOutcome::Stalled;
         case WalkOutcome::SingularMatrix:
             ++wc::walk_fail_singular;
             wc::count_walk_end(false, wc::WalkEnd::Singular);
-            out.outcome = MneeOutcome::Singular;
-            return out;
+            return MneeOutcome::Singular;
         case WalkOutcome::ProjectionFailed:
             ++wc::walk_fail_projection;
             wc::count_walk_end(false, wc::WalkEnd::ProjectionFailed);
-            out.outcome = MneeOutcome::ProjectionFailed;
-            return out;
+            return MneeOutcome::ProjectionFailed;
     }
-    const Vec3 xc = lp.p;
-    if (!admissible(xb.p, chain, xc)) {
+    if (!admissible(xb.p, chain, lp.p)) {
         ++wc::walk_fail_scattering;
         wc::count_walk_end(false, wc::WalkEnd::WrongScattering);
-        out.outcome = MneeOutcome::WrongScattering;
-        return out;
+        return MneeOutcome::WrongScattering;
     }
     ++wc::walks_converged;
     wc::walk_iterations_success += uint64_t(walk.iterations);
     wc::iteration_histogram.add(walk.iterations);
+    if (trial_only) wc::count_walk_end(false, wc::WalkEnd::Found);
+    return MneeOutcome::Success;
+}
+
+MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb,
+                            const BSDF& bsdf_b, const BSDFContext& ctx, const MediumStack& media, const Light& light,
+                            double pmf, const LightPoint& lp, std::vector<ManifoldVertex>& chain,
+                            HalfVectorDraws& draws) {
+    MneeConnection out;
+    out.outcome = mnee_walk(scene, st, xb, bsdf_b, lp, chain, draws);
+    if (out.outcome != MneeOutcome::Success) return out;
+    const Vec3 xc = lp.p;
 
     // Self-occlusion was ignored for the seed; the admissible path must be visible (Sec. 3.1).
     const size_t k = chain.size();

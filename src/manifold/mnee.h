@@ -82,6 +82,14 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& settings, co
                             double pmf, const LightPoint& lp, std::vector<ManifoldVertex>& chain,
                             HalfVectorDraws& draws);
 
+/// Alg. 1 lines 3-4 alone: culling, half vectors, the walk and admissibility, without
+/// visibility or measurement. Success for an admissible chain. `trial_only`: the caller asks only
+/// which solution the seed walks to (a Bernoulli trial of solutions=unbiased); an admissible
+/// chain then ends its walk as found.
+MneeOutcome mnee_walk(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb,
+                      const BSDF& bsdf_b, const LightPoint& lp, std::vector<ManifoldVertex>& chain,
+                      HalfVectorDraws& draws, bool trial_only = false);
+
 /// Tangent basis at the light point: the light's tangent plane (area measure), or for lights
 /// without area (point, spot) the plane perpendicular to the arriving direction.
 TangentBasis light_point_basis(const Vec3& p, const Vec3& n, const Vec3& arrival_dir);
