@@ -309,3 +309,59 @@ TEST(ManifoldSolutions, UnbiasedMeanIsTheSumOfEverySolution) {
     EXPECT_NEAR(surface.mean(), exact, 4.5 * surface.stderr_() + 1e-9 * exact);
     EXPECT_LT(one.mean(), exact * (1 - 0.5 * share));
 }
+
+// The cap of the 1/p estimate: with at most M trials the count is min(N, M), whose mean is
+// (1 - (1 - p)^M) / p, so the surface-only estimator's mean is sum_k v_k (1 - (1 - p_k)^M), with
+// p_k the probability that one trial finds solution k (measured here by single trials).
+TEST(ManifoldSolutions, TrialCapBiasMatchesFormula) {
+    const LoadedScene ls = droplet();
+    const Scene& scene = *ls.scene;
+    SurfaceInteraction xb;
+    ASSERT_GT(strongest_second_branch(scene, &xb), 0.05);
+    const SolutionSet every = solve(scene, xb, all_solutions(4000), 11);
+    ASSERT_GE(every.solutions.size(), 2u);
+    const auto which = [&](const ManifoldSolution& s) {
+        for (size_t k = 0; k < every.solutions.size(); ++k)
+            if (length(every.solutions[k].chain[0].p - s.chain[0].p) < 1e-6) return int(k);
+        return -1;
+    };
+    // p_k: single surface trials.
+    MneeSettings single = all_solutions(1);
+    single.seeding = MneeSeeding::Surface;
+    std::vector<double> hits(every.solutions.size(), 0);
+    const int trials = 40000;
+    for (int run = 0; run < trials; ++run) {
+        IndependentSampler smp(31);
+        smp.start_pixel_sample(run, 1, 0);
+        for (const ManifoldSolution& s : solve(scene, xb, single, smp).solutions) {
+            const int k = which(s);
+            ASSERT_GE(k, 0) << "a trial found a solution the exhaustive set lacks";
+            hits[size_t(k)] += 1;
+        }
+    }
+    const int M = 2;
+    double expected = 0;
+    for (size_t k = 0; k < hits.size(); ++k) {
+        const double p = hits[k] / trials;
+        expected += every.solutions[k].value[0] * (1 - std::pow(1 - p, M));
+    }
+    MneeSettings capped = single;
+    capped.solutions = MneeSolutions::Unbiased;
+    capped.max_trials = M;
+    Mean mean;
+    for (int run = 0; run < 40000; ++run) {
+        IndependentSampler smp(37);
+        smp.start_pixel_sample(run, 2, 0);
+        double v = 0;
+        for (const ManifoldSolution& s : solve(scene, xb, capped, smp).solutions) v += s.count * s.value[0];
+        mean.add(v);
+    }
+    std::cout << "[cap] M = " << M << ": expected " << expected << ", mean " << mean.mean() << " +- " << mean.stderr_()
+              << " (uncapped sum " <<
+        [&] {
+            double sum = 0;
+            for (const ManifoldSolution& s : every.solutions) sum += s.value[0];
+            return sum;
+        }() << ")\n";
+    EXPECT_NEAR(mean.mean(), expected, 4.5 * mean.stderr_() + 0.01 * expected);
+}
