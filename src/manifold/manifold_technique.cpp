@@ -30,6 +30,7 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
                                    double pmf, const LightPoint& lp, const std::vector<ManifoldVertex>& seed,
                                    Sampler& sampler, int max_k, SolutionSet& out) const {
     const MneeSettings& st = *m_settings;
+    const size_t before = out.solutions.size();
     HalfVectorDraws draws(sampler);
     if (st.solutions == MneeSolutions::One || st.seeding != MneeSeeding::Surface)
         add_solution(q, ctx, slot, light, pmf, lp, seed, draws, max_k, out);
@@ -38,7 +39,8 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
     PCG32 rng(uint64_t(sampler.next_1d() * 0x1p53), 0x5eed);
     const double lambda = ctx.hero();
     const auto next_u = [&rng] { return Vec2(rng.next_double(), rng.next_double()); };
-    const int straight = out.solutions.empty() ? -1 : int(out.solutions.size()) - 1;
+    // This solve's straight solution (out may hold other wavelengths' solutions before it).
+    const int straight = out.solutions.size() > before ? int(out.solutions.size()) - 1 : -1;
     for (const Shape* caster : manifold_casters(*m_scene, lambda)) {
         if (st.solutions == MneeSolutions::All) {
             for (int j = 0; j < st.trials; ++j) {
@@ -71,6 +73,7 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
         if (n > st.max_trials) ++walk_counters::bernoulli_capped;
         out.solutions[size_t(index)].count = double(std::min(n, st.max_trials));
     }
+    walk_counters::solutions_per_connection.add(uint32_t(out.solutions.size() - size_t(before)));
 }
 
 bool ManifoldTechnique::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster,

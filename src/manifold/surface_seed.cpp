@@ -5,6 +5,7 @@
 #include "bsdf/bsdf.h"
 #include "geometry/shape.h"
 #include "manifold/seed_path.h"
+#include "manifold/walk_counters.h"
 #include "scene/scene.h"
 
 namespace snell {
@@ -32,11 +33,9 @@ bool refract_about(const Vec3& d, Vec3 m, double n1, double n2, Vec3* out) {
     return true;
 }
 
-}  // namespace
-
-SurfaceSeedEnd trace_surface_seed(const Scene& scene, const SurfaceInteraction& xb, const Shape& caster, const Vec2& u,
-                                  double lambda, const MneeSettings& settings, HalfVectorDraws& draws,
-                                  std::vector<ManifoldVertex>* chain) {
+SurfaceSeedEnd trace(const Scene& scene, const SurfaceInteraction& xb, const Shape& caster, const Vec2& u,
+                     double lambda, const MneeSettings& settings, HalfVectorDraws& draws,
+                     std::vector<ManifoldVertex>* chain) {
     chain->clear();
     const auto y = caster.sample_from(xb.p, u);
     if (!y) return SurfaceSeedEnd::MissedCaster;
@@ -63,6 +62,16 @@ SurfaceSeedEnd trace_surface_seed(const Scene& scene, const SurfaceInteraction& 
         ray = scene.spawn_ray(si, d);
     }
     return chain->empty() ? SurfaceSeedEnd::MissedCaster : SurfaceSeedEnd::Ok;
+}
+
+}  // namespace
+
+SurfaceSeedEnd trace_surface_seed(const Scene& scene, const SurfaceInteraction& xb, const Shape& caster, const Vec2& u,
+                                  double lambda, const MneeSettings& settings, HalfVectorDraws& draws,
+                                  std::vector<ManifoldVertex>* chain) {
+    const SurfaceSeedEnd end = trace(scene, xb, caster, u, lambda, settings, draws, chain);
+    walk_counters::surface_seed_end.add(uint32_t(end));
+    return end;
 }
 
 }  // namespace snell

@@ -15,6 +15,11 @@ StatTimer walk_time{"mnee.walk_time_ns", "time in manifold walks (Alg. 1 and Alg
 StatCounter seeds_occluded{"mnee.seeds_occluded", "seed segments blocked by an opaque surface"};
 StatCounter seeds_too_many{"mnee.seeds_too_many", "seeds with more refractive vertices than allowed"};
 StatCounter seeds_culled{"mnee.seeds_culled", "seeds culled at x_b (Fig. 3 margin)"};
+StatHistogram surface_seed_end{
+    "mnee.surface_seed_end", "surface seeds by how they ended (ok, missed caster, total internal reflection, too many)",
+    4};
+StatHistogram solutions_per_connection{"mnee.solutions_per_connection",
+                                       "distinct solutions per light connection (solutions=all or unbiased)", 8};
 StatCounter bernoulli_loops{"mnee.bernoulli_loops", "geometric 1/p estimates (solutions=unbiased)"};
 StatCounter bernoulli_trials{"mnee.bernoulli_trials", "trial counts N of the 1/p estimates, summed"};
 StatCounter bernoulli_capped{"mnee.bernoulli_capped", "1/p estimates that reached max_trials"};

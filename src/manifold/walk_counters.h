@@ -32,12 +32,16 @@ extern StatCounter walk_iterations_success;  ///< iterations summed over converg
 extern StatCounter walk_fail_no_convergence;
 extern StatCounter walk_fail_singular;
 extern StatCounter walk_fail_projection;
-extern StatCounter walk_fail_scattering;   ///< converged to a reflection or a non-physical refraction
-extern StatCounter walk_fail_occluded;     ///< admissible path blocked
-extern StatTimer walk_time;                ///< "mnee.walk_time_ns": in Alg. 1 and Alg. 2 walks
-extern StatCounter seeds_occluded;         ///< seed segment blocked by an opaque surface
-extern StatCounter seeds_too_many;         ///< seed with more refractive vertices than allowed
-extern StatCounter seeds_culled;           ///< seed culled at x_b (Fig. 3 margin)
+extern StatCounter walk_fail_scattering;  ///< converged to a reflection or a non-physical refraction
+extern StatCounter walk_fail_occluded;    ///< admissible path blocked
+extern StatTimer walk_time;               ///< "mnee.walk_time_ns": in Alg. 1 and Alg. 2 walks
+extern StatCounter seeds_occluded;        ///< seed segment blocked by an opaque surface
+extern StatCounter seeds_too_many;        ///< seed with more refractive vertices than allowed
+extern StatCounter seeds_culled;          ///< seed culled at x_b (Fig. 3 margin)
+extern StatHistogram surface_seed_end;    ///< "mnee.surface_seed_end": surface seeds by SurfaceSeedEnd
+/// "mnee.solutions_per_connection": distinct solutions per light connection and wavelength
+/// solve (bins 0..7, the last collects more), with solutions=all or unbiased.
+extern StatHistogram solutions_per_connection;
 extern StatCounter bernoulli_loops;        ///< solutions=unbiased: geometric 1/p estimates made
 extern StatCounter bernoulli_trials;       ///< ... their counts N summed (mean: E[1/p] over found solutions)
 extern StatCounter bernoulli_capped;       ///< ... that reached max_trials

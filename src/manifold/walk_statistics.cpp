@@ -38,6 +38,11 @@ nlohmann::json mnee_stats_json(const StatTotals& t) {
         j["walk_ends"][key] = e;
     }
     j["geometry_clamped"] = t[wc::geometry_clamped];
+    // solutions=all or unbiased: how surface seeds ended, and the distinct solutions per solve.
+    const std::vector<uint64_t> seed_ends = t.bins(wc::surface_seed_end);
+    const char* seed_end_names[] = {"ok", "missed_caster", "total_internal_reflection", "too_many"};
+    for (size_t i = 0; i < 4 && i < seed_ends.size(); ++i) j["surface_seeds"][seed_end_names[i]] = seed_ends[i];
+    j["solutions_per_connection"] = t.bins(wc::solutions_per_connection);
     // solutions=unbiased: trials per solution (the mean estimates E[1/p] over found solutions).
     j["trials_per_solution"] = {{"estimates", t[wc::bernoulli_loops]},
                                 {"mean", ratio(t[wc::bernoulli_trials], t[wc::bernoulli_loops])},
