@@ -5,7 +5,7 @@
 //
 // (The issue expected three solutions at some receivers. An exhaustive search over the droplet's
 // footprint, for this light and the bundled scene's, finds at most two paths with one refraction
-// from a point inside the sphere: the third branch needs a receiver outside it, two refractions.)
+// from a point inside the sphere; where a third branch arises is still to be found.)
 #include <algorithm>
 #include <cmath>
 #include <iostream>
