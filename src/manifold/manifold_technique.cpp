@@ -115,8 +115,7 @@ int ManifoldTechnique::add_solution(const ManifoldQuery& q, const BSDFContext& c
     } else {
         // A dispersive chain solved for the hero alone (no per-wavelength walks): scale the hero
         // once, unless the path's throughput already did.
-        s.hero_only = c.hero_only && !q.hero_only;
-        s.value = s.hero_only ? q.ctx.wl.hero_only(c.value) : c.value;
+        s.value = c.hero_only && !q.hero_only ? q.ctx.wl.hero_only(c.value) : c.value;
     }
     s.density = c.pdf_mnee;
     s.pdf_bsdf = c.pdf_bsdf;

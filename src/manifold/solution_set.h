@@ -19,7 +19,6 @@ struct ManifoldSolution {
     /// `slot`'s when the chain disperses and was solved for that wavelength alone.
     SampledSpectrum value;
     int slot = -1;            ///< wavelength slot the chain was solved for; -1: all of them
-    bool hero_only = false;   ///< slot 0 solved for all: `value` holds the hero's alone
     double count = 1;         ///< estimator weight of the solution (1 for the paper's estimator)
     double density = 0;       ///< this technique's area density (Eq. 7 with Eq. 8)
     double pdf_bsdf = 0;      ///< BSDF sampling of the same path from x_b

@@ -8,6 +8,7 @@
 #include "manifold/mnee.h"
 #include "manifold/seed_path.h"
 #include "sampler/independent.h"
+#include "stat/droplet_points.h"
 #include "stat/render_stats.h"
 
 using namespace snell;
@@ -34,27 +35,6 @@ LoadedScene droplet(const std::string& light) {
     return load_xml(s);
 }
 
-// The point on the plane below (x, z), found by tracing down through the droplet.
-SurfaceInteraction receiver(const Scene& scene, double x, double z) {
-    Ray r{Vec3(x, 2, z), Vec3(0, -1, 0), 0, 100};
-    SurfaceInteraction si;
-    for (int i = 0; i < 4; ++i) {
-        EXPECT_TRUE(scene.intersect(r, &si));
-        if (!si.bsdf()->is_transmissive()) break;
-        r = scene.spawn_ray(si, Vec3(0, -1, 0));
-    }
-    si.wo = Vec3(0, 1, 0);
-    return si;
-}
-
-struct Mean {
-    double sum = 0, sq = 0;
-    long n = 0;
-    void add(double v) { sum += v, sq += v * v, ++n; }
-    double mean() const { return sum / double(n); }
-    double stderr_() const { return std::sqrt(std::max(0.0, sq / double(n) - sqr(mean())) / double(n)); }
-};
-
 const BSDFContext kCtx{SampledWavelengths::single(550), TransportMode::Radiance};
 
 // MNEE's value at receivers under the droplet for light `a` (a single sample: the light has no
@@ -68,7 +48,7 @@ void expect_light_limit(const LoadedScene& a, const LoadedScene& b, std::initial
         for (int which = 0; which < 2; ++which) {
             const Scene& scene = which ? *b.scene : *a.scene;
             const Light& light = *scene.lights()[0];
-            const SurfaceInteraction xb = receiver(scene, x, 0.05);
+            const SurfaceInteraction xb = droplet_receiver(scene, x, 0.05, 2);
             IndependentSampler smp(11);
             smp.start_pixel_sample(which, 0, 0);
             for (int n = 0; n < (which ? 4000 : 1); ++n) {
@@ -103,7 +83,7 @@ TEST(MneeEstimator, MatchesBsdfSamplingOfTheSamePaths) {
     const Light& light = *scene.lights()[0];
     const MneeSettings st;
     for (double x : {0.1, -0.3, 0.45}) {
-        const SurfaceInteraction xb = receiver(scene, x, 0.05);
+        const SurfaceInteraction xb = droplet_receiver(scene, x, 0.05, 2);
         IndependentSampler smp(7);
         smp.start_pixel_sample(int(x * 100), 0, 0);
         Mean mnee, bsdf;
@@ -160,7 +140,7 @@ TEST(MneeMis, WeightsOfAllTechniquesSumToOne) {
     const Scene& scene = *ls.scene;
     const Light& light = *scene.lights()[0];
     const MneeSettings st;
-    const SurfaceInteraction xb = receiver(scene, -0.2, 0.1);
+    const SurfaceInteraction xb = droplet_receiver(scene, -0.2, 0.1, 2);
     IndependentSampler smp(3);
     smp.start_pixel_sample(0, 0, 0);
     int checked = 0;
@@ -238,7 +218,7 @@ TEST(MneeEstimator, MaxGeometryOffByDefaultAndClampsAboveThreshold) {
     const Light& light = *scene.lights()[0];
     EXPECT_EQ(MneeSettings().max_geometry, 0.0);
     for (double x : {0.1, -0.25}) {
-        const SurfaceInteraction xb = receiver(scene, x, 0.05);
+        const SurfaceInteraction xb = droplet_receiver(scene, x, 0.05, 2);
         const auto connect = [&](double max_geometry) {
             MneeSettings st;
             st.max_geometry = max_geometry;

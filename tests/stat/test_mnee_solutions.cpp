@@ -14,6 +14,7 @@
 #include "manifold/seed_path.h"
 #include "manifold/sphere_exact.h"
 #include "sampler/independent.h"
+#include "stat/droplet_points.h"
 #include "stat/render_stats.h"
 
 using namespace snell;
@@ -50,27 +51,6 @@ MneeSettings all_solutions(int trials) {
     st.seeding = MneeSeeding::StraightAndSurface;
     st.trials = trials;
     return st;
-}
-
-struct Mean {
-    double sum = 0, sq = 0;
-    long n = 0;
-    void add(double v) { sum += v, sq += v * v, ++n; }
-    double mean() const { return sum / double(n); }
-    double stderr_() const { return std::sqrt(std::max(0.0, sq / double(n) - sqr(mean())) / double(n)); }
-};
-
-// The floor point at (x, 0, z), reached by tracing down through the droplet.
-SurfaceInteraction receiver(const Scene& scene, double x, double z) {
-    Ray r{Vec3(x, 3, z), Vec3(0, -1, 0), 0, 100};
-    SurfaceInteraction si;
-    for (int i = 0; i < 4; ++i) {
-        EXPECT_TRUE(scene.intersect(r, &si));
-        if (!si.bsdf()->is_transmissive()) break;
-        r = scene.spawn_ray(si, Vec3(0, -1, 0));
-    }
-    si.wo = Vec3(0, 1, 0);
-    return si;
 }
 
 // One light sample's solutions (an empty set when the straight seed does not refract).
@@ -123,7 +103,7 @@ TEST(ManifoldSolutions, AllFindsEveryExactSolutionOnASphereOnAPlane) {
     const Vec3 at = multi_solution_receiver(&count);
     ASSERT_GE(count, 2u) << "no receiver with several well-separated solutions under this droplet";
     const LoadedScene ls = droplet();
-    const SurfaceInteraction xb = receiver(*ls.scene, at.x, at.z);
+    const SurfaceInteraction xb = droplet_receiver(*ls.scene, at.x, at.z);
     ASSERT_NEAR(xb.p.y, 0.0, 1e-9);
     const std::vector<Vec3> exact = sphere_refraction_roots(kCentre, kRadius, kEta, xb.p, kLight);
     ASSERT_EQ(exact.size(), count) << "at " << at.x << ", " << at.z;
@@ -162,7 +142,7 @@ TEST(ManifoldSolutions, AllEstimatesEveryRefractedPath) {
     ASSERT_GE(count, 2u);
     const LoadedScene ls = droplet(kSphereLight);
     const Scene& scene = *ls.scene;
-    const SurfaceInteraction xb = receiver(scene, at.x, at.z);
+    const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z);
     const BSDFContext ctx{SampledWavelengths::single(550), TransportMode::Radiance};
     IndependentSampler smp(21);
     smp.start_pixel_sample(0, 0, 0);
@@ -215,7 +195,7 @@ TEST(ManifoldSolutions, DensityOfEveryFoundSolutionMatches) {
     const Vec3 at = multi_solution_receiver(&count);
     const LoadedScene ls = droplet(kSphereLight);
     const Scene& scene = *ls.scene;
-    const SurfaceInteraction xb = receiver(scene, at.x, at.z);
+    const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z);
     const MneeSettings st = all_solutions(64);
     const ManifoldTechnique technique(scene, st);
     IndependentSampler smp(5);
@@ -251,7 +231,7 @@ double strongest_second_branch(const Scene& scene, SurfaceInteraction* best) {
         for (double z = -0.9; z < 0.91; z += 0.05) {
             if (x * x + z * z > 0.85) continue;
             if (sphere_refraction_roots(kCentre, kRadius, kEta, Vec3(x, 0, z), kLight, 20000).size() < 2) continue;
-            const SurfaceInteraction xb = receiver(scene, x, z);
+            const SurfaceInteraction xb = droplet_receiver(scene, x, z);
             const SolutionSet set = solve(scene, xb, st, 3);
             if (set.solutions.size() < 2) continue;
             double sum = 0, top = 0;

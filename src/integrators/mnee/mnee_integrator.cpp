@@ -14,6 +14,24 @@
 
 namespace snell {
 
+namespace {
+
+// A string parameter naming one of `names` (the first is listed first in the error); `def` if
+// absent.
+template <typename E>
+E choice(const Props& p, const std::string& name, E def, std::initializer_list<std::pair<const char*, E>> names) {
+    if (!p.has(name)) return def;
+    const std::string v = p.get_string(name);
+    std::string list;
+    for (const auto& [n, e] : names) {
+        if (v == n) return e;
+        list += (list.empty() ? "'" : ", '") + std::string(n) + "'";
+    }
+    p.raise_param(name, name + " must be one of " + list);
+}
+
+}  // namespace
+
 MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     MneeSettings s;
     s.max_vertices = int(p.get_int("max_vertices", s.max_vertices));
@@ -26,24 +44,13 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     s.walk.allow_error_increase = p.get_bool("allow_error_increase", s.walk.allow_error_increase);
     s.walk.min_step = p.get_float("min_step", s.walk.min_step);
     s.max_geometry = p.get_float("max_geometry", s.max_geometry);
-    const std::string seeding = p.get_string("seeding", "straight");
-    if (seeding == "straight")
-        s.seeding = MneeSeeding::Straight;
-    else if (seeding == "surface")
-        s.seeding = MneeSeeding::Surface;
-    else if (seeding == "straight+surface")
-        s.seeding = MneeSeeding::StraightAndSurface;
-    else
-        p.raise_param("seeding", "seeding must be 'straight', 'surface' or 'straight+surface'");
-    const std::string solutions = p.get_string("solutions", "one");
-    if (solutions == "one")
-        s.solutions = MneeSolutions::One;
-    else if (solutions == "all")
-        s.solutions = MneeSolutions::All;
-    else if (solutions == "unbiased")
-        s.solutions = MneeSolutions::Unbiased;
-    else
-        p.raise_param("solutions", "solutions must be 'one', 'all' or 'unbiased'");
+    s.seeding = choice(p, "seeding", s.seeding,
+                       {{"straight", MneeSeeding::Straight},
+                        {"surface", MneeSeeding::Surface},
+                        {"straight+surface", MneeSeeding::StraightAndSurface}});
+    s.solutions =
+        choice(p, "solutions", s.solutions,
+               {{"one", MneeSolutions::One}, {"all", MneeSolutions::All}, {"unbiased", MneeSolutions::Unbiased}});
     s.trials = int(p.get_int("trials", s.trials));
     if (s.trials < 1) p.raise_param("trials", "trials must be >= 1");
     s.max_trials = int(p.get_int("max_trials", s.max_trials));
@@ -53,15 +60,10 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     if (s.solutions == MneeSolutions::One && s.seeding != MneeSeeding::Straight)
         p.raise_param("seeding", "solutions=one takes the straight seed only; use solutions=all with surface seeds");
     if (s.solutions != MneeSolutions::One && s.seeding == MneeSeeding::Straight)
-        p.raise_param("solutions",
-                      "solutions=" + solutions + " needs surface seeds: seeding=surface or straight+surface");
-    const std::string proj = p.get_string("projection", "closest_point");
-    if (proj == "closest_point")
-        s.walk.projection = Projection::ClosestPoint;
-    else if (proj == "raycast")
-        s.walk.projection = Projection::RayCast;
-    else
-        p.raise_param("projection", "projection must be 'closest_point' or 'raycast'");
+        p.raise_param("solutions", "solutions=" + p.get_string("solutions") +
+                                       " needs surface seeds: seeding=surface or straight+surface");
+    s.walk.projection = choice(p, "projection", s.walk.projection,
+                               {{"closest_point", Projection::ClosestPoint}, {"raycast", Projection::RayCast}});
     if (s.max_vertices < 1 || s.max_vertices > RefractiveSuffix::kMaxVertices)
         p.raise_param("max_vertices",
                       "max_vertices must lie in [1, " + std::to_string(RefractiveSuffix::kMaxVertices) + "]");
