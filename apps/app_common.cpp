@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "builtin_scenes.h"
+#include "manifold/walk_statistics.h"
 
 namespace fs = std::filesystem;
 
@@ -56,6 +57,29 @@ Defines parse_defines(const std::vector<std::string>& items) {
         d[it.substr(0, eq)] = it.substr(eq + 1);
     }
     return d;
+}
+
+RenderReport make_report(const std::string& scene, const std::string& integrator, int width, int height,
+                         const RenderResult& r, uint64_t spp_requested, double time_limit, int threads, uint64_t seed) {
+    RenderReport rep;
+    rep.scene = scene;
+    rep.integrator = integrator;
+    rep.width = width;
+    rep.height = height;
+    rep.spp_requested = spp_requested;
+    rep.spp_reached = r.spp_completed;
+    rep.spp_mean = r.spp_mean;
+    rep.seconds = r.seconds;
+    rep.time_limit = time_limit;
+    rep.threads = threads;
+    rep.seed = seed;
+    rep.interrupted = r.interrupted;
+    rep.pixels = r.dominance.pixels;
+    rep.pixels_dominated = r.dominance.dominated;
+    rep.max_sample_share = r.dominance.max_share;
+    rep.set_counters(r.counters);
+    if (has_mnee_stats(r.counters)) rep.extra["mnee"] = mnee_stats_json(r.counters);
+    return rep;
 }
 
 Image film_to_image(const Film& film, int layer) {

@@ -7,8 +7,10 @@
 
 #include "camera/film.h"
 #include "io/image.h"
+#include "io/stats_json.h"
 #include "loader/scene_loader.h"
 #include "loader/xml_scene.h"
+#include "render/renderer.h"
 
 namespace snell {
 
@@ -23,6 +25,10 @@ LoadedScene load_scene_arg(const std::string& scene_arg, const Defines& defines)
 std::shared_ptr<XmlObject> parse_scene_arg(const std::string& scene_arg, const Defines& defines);
 /// Parses -D items "name=value"; throws CLI::ValidationError on a malformed item.
 Defines parse_defines(const std::vector<std::string>& items);
+/// The stats report of render `r` of `scene` by `integrator` on a film of width x height
+/// (counters, MNEE statistics, pixel dominance).
+RenderReport make_report(const std::string& scene, const std::string& integrator, int width, int height,
+                         const RenderResult& r, uint64_t spp_requested, double time_limit, int threads, uint64_t seed);
 /// The film's linear sRGB pixels as an Image.
 Image film_to_image(const Film& film, int layer = 0);
 

@@ -125,26 +125,6 @@ RenderResult run(const Prepared& p, double time_limit, int spp, int threads, uin
     return render(*p.ls.scene, *p.integrator, p.ls.film, o, &g_cancel);
 }
 
-RenderReport make_report(const std::string& scene, const std::string& name, const Prepared& p, const RenderResult& r,
-                         uint64_t spp_requested, double time_limit, int threads, uint64_t seed) {
-    RenderReport rep;
-    rep.scene = scene;
-    rep.integrator = name;
-    rep.width = p.ls.film.out_width();
-    rep.height = p.ls.film.out_height();
-    rep.spp_requested = spp_requested;
-    rep.spp_reached = r.spp_completed;
-    rep.spp_mean = r.spp_mean;
-    rep.seconds = r.seconds;
-    rep.time_limit = time_limit;
-    rep.threads = threads;
-    rep.seed = seed;
-    rep.interrupted = r.interrupted;
-    rep.set_counters(r.counters);
-    if (has_mnee_stats(r.counters)) rep.extra["mnee"] = mnee_stats_json(r.counters);
-    return rep;
-}
-
 std::string crop_text(const Crop& c) {
     return std::to_string(c.x) + "," + std::to_string(c.y) + "," + std::to_string(c.w) + "," + std::to_string(c.h);
 }
@@ -228,7 +208,8 @@ int cmd_compare(const CompareOptions& opt) {
                 stderr, "snell compare: reference %s, %s\n", ri.integrator.c_str(),
                 ri.spp ? (std::to_string(ri.spp) + " spp").c_str() : (std::to_string(ri.time_limit) + " s").c_str());
         const RenderResult r = run(p, ri.time_limit, int(ri.spp), rep.threads, ref_seed);
-        ri.stats = make_report(opt.scene, ri.integrator, p, r, ri.spp, ri.time_limit, rep.threads, ref_seed);
+        ri.stats = make_report(opt.scene, ri.integrator, p.ls.film.out_width(), p.ls.film.out_height(), r, ri.spp,
+                               ri.time_limit, rep.threads, ref_seed);
         ref = film_to_image(r.film);
     }
     if (ref.width != rep.width || ref.height != rep.height)
@@ -258,7 +239,8 @@ int cmd_compare(const CompareOptions& opt) {
         if (!opt.quiet) std::fprintf(stderr, "snell compare: %s, %g s\n", t.name.c_str(), opt.time);
         const RenderResult r = run(p, opt.time, 0, rep.threads, seed);
         const Image img = film_to_image(r.film);
-        res.stats = make_report(opt.scene, t.name, p, r, 0, opt.time, rep.threads, seed);
+        res.stats = make_report(opt.scene, t.name, p.ls.film.out_width(), p.ls.film.out_height(), r, 0, opt.time,
+                                rep.threads, seed);
         res.regions.push_back({"image", Crop{}, compare_images(img, ref)});
         for (const Crop& c : rep.crops) res.regions.push_back({"crop " + crop_text(c), c, compare_images(img, ref, c)});
         res.convergence.push_back({opt.time, r.seconds, r.spp_mean, res.regions[0].metrics});

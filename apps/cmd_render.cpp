@@ -79,24 +79,9 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
                          (out_path.parent_path() / out_path.stem()).c_str());
     }
 
-    RenderReport rep;
-    rep.scene = ls.path;
-    rep.integrator = integ->name();
-    rep.width = ls.film.out_width();
-    rep.height = ls.film.out_height();
-    rep.spp_requested = time_limit > 0 ? 0 : opt.spp;
-    rep.spp_reached = r.spp_completed;
-    rep.spp_mean = r.spp_mean;
-    rep.seconds = r.seconds;
-    rep.time_limit = time_limit;
-    rep.threads = nthreads;
-    rep.seed = seed;
-    rep.interrupted = r.interrupted;
-    rep.set_counters(r.counters);
-    if (has_mnee_stats(r.counters)) {
-        rep.extra["mnee"] = mnee_stats_json(r.counters);
-        if (!quiet) std::fprintf(stderr, "%s", mnee_stats_text(r.counters).c_str());
-    }
+    const RenderReport rep = make_report(ls.path, integ->name(), ls.film.out_width(), ls.film.out_height(), r,
+                                         time_limit > 0 ? 0 : uint64_t(opt.spp), time_limit, nthreads, seed);
+    if (!quiet && rep.extra.contains("mnee")) std::fprintf(stderr, "%s", mnee_stats_text(r.counters).c_str());
     write_stats_json(stats_path, rep);
 
     const double s = std::max(r.seconds, 1e-9);

@@ -20,4 +20,17 @@ std::vector<float> Film::to_linear_srgb(int layer) const {
     return rgb;
 }
 
+PixelDominance pixel_dominance(const Film& film) {
+    PixelDominance d;
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x) {
+            const double share = film.largest_sample_share(x, y);
+            if (!(share > 0)) continue;
+            ++d.pixels;
+            if (share > PixelDominance::kThreshold) ++d.dominated;
+            d.max_share = std::max(d.max_share, share);
+        }
+    return d;
+}
+
 }  // namespace snell

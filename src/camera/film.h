@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -16,21 +17,35 @@ namespace snell {
 class Film {
 public:
     Film(int width, int height)
-        : m_w(width), m_h(height), m_xyz(size_t(width) * height), m_n(size_t(width) * height, 0) {}
+        : m_w(width),
+          m_h(height),
+          m_xyz(size_t(width) * height),
+          m_n(size_t(width) * height, 0),
+          m_max_y(size_t(width) * height, 0.0) {}
     int width() const { return m_w; }
     int height() const { return m_h; }
     void add(int x, int y, const Vec3& xyz) {
         const size_t i = size_t(y) * m_w + x;
         m_xyz[i] += xyz;
         m_n[i] += 1;
+        m_max_y[i] = std::max(m_max_y[i], xyz.y);
     }
-    /// Adds `count` samples at once (whole-pixel sums from a tile).
-    void add_sum(int x, int y, const Vec3& xyz_sum, uint64_t count) {
+    /// Adds `count` samples at once (whole-pixel sums from a tile); `max_y` is the largest
+    /// luminance (Y) one of them carried.
+    void add_sum(int x, int y, const Vec3& xyz_sum, uint64_t count, double max_y = 0) {
         const size_t i = size_t(y) * m_w + x;
         m_xyz[i] += xyz_sum;
         m_n[i] += count;
+        m_max_y[i] = std::max(m_max_y[i], max_y);
     }
     uint64_t samples(int x, int y) const { return m_n[size_t(y) * m_w + x]; }
+    /// The share of the pixel's summed luminance that its largest single sample carries (0 when
+    /// the sum is not positive): near 1 / samples in a converging pixel, near 1 when one
+    /// sample (a firefly) makes the pixel. Splats are not samples of a pixel and are left out.
+    double largest_sample_share(int x, int y) const {
+        const size_t i = size_t(y) * m_w + x;
+        return m_xyz[i].y > 0 ? std::min(1.0, m_max_y[i] / m_xyz[i].y) : 0.0;
+    }
     /// Adds a splat to `layer` (0: the image, k > 0: debug layer k).
     void add_splat(int x, int y, const Vec3& xyz, int layer = 0) {
         if (size_t(layer) >= m_splats.size()) m_splats.resize(size_t(layer) + 1);
@@ -58,8 +73,20 @@ private:
     int m_w, m_h;
     std::vector<Vec3> m_xyz;
     std::vector<uint64_t> m_n;
+    std::vector<double> m_max_y;              // largest single-sample luminance per pixel
     std::vector<std::vector<Vec3>> m_splats;  // per layer; empty until first splat
     double m_splat_scale = 0;
 };
+
+/// How far single samples dominate pixels (issue 10: "no single sample may dominate a pixel").
+struct PixelDominance {
+    /// A pixel is dominated when one sample carries more than this share of its luminance.
+    static constexpr double kThreshold = 0.5;
+    uint64_t pixels = 0;     ///< pixels with a positive luminance sum
+    uint64_t dominated = 0;  ///< of those, pixels whose largest sample carries > kThreshold
+    double max_share = 0;    ///< the largest share of any pixel
+};
+/// Film::largest_sample_share over the film's pixels.
+PixelDominance pixel_dominance(const Film& film);
 
 }  // namespace snell

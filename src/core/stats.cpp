@@ -101,14 +101,48 @@ std::vector<uint64_t> StatTotals::bins(const StatHistogram& h) const {
 uint64_t StatTotals::get(std::string_view name) const {
     const std::optional<StatInfo> s = find_stat(name);
     if (!s) return 0;
+    if (s->kind == StatKind::Moments) return slot(s->offset);  // the count
     uint64_t sum = 0;
     for (uint32_t i = 0; i < s->size; ++i) sum += slot(s->offset + i);
     return sum;
 }
 
+Moments StatTotals::moments_at(uint32_t offset) const {
+    Moments m;
+    m.count = slot(offset);
+    m.sum = StatMoments::from_bits(slot(offset + 1));
+    m.sum_sq = StatMoments::from_bits(slot(offset + 2));
+    m.max = StatMoments::from_bits(slot(offset + 3));
+    return m;
+}
+
+namespace {
+
+// Adds the slots of `from` into `into`: counts add as integers; the doubles of a StatMoments
+// (sum, sum of squares) add as doubles and its maximum is the larger one.
+void accumulate(const std::vector<StatInfo>& stats, uint64_t* into, const uint64_t* from, uint32_t used) {
+    std::vector<bool> moments(used, false);
+    for (const StatInfo& s : stats)
+        if (s.kind == StatKind::Moments && s.offset + 4 <= used) {
+            const uint32_t o = s.offset;
+            into[o] += from[o];
+            into[o + 1] =
+                StatMoments::to_bits(StatMoments::from_bits(into[o + 1]) + StatMoments::from_bits(from[o + 1]));
+            into[o + 2] =
+                StatMoments::to_bits(StatMoments::from_bits(into[o + 2]) + StatMoments::from_bits(from[o + 2]));
+            into[o + 3] = StatMoments::to_bits(
+                std::max(StatMoments::from_bits(into[o + 3]), StatMoments::from_bits(from[o + 3])));
+            for (uint32_t i = o; i < o + 4; ++i) moments[i] = true;
+        }
+    for (uint32_t i = 1; i < used; ++i)
+        if (!moments[i]) into[i] += from[i];
+}
+
+}  // namespace
+
 StatTotals& StatTotals::operator+=(const StatTotals& o) {
     if (m_slots.size() < o.m_slots.size()) m_slots.resize(o.m_slots.size(), 0);
-    for (size_t i = 0; i < o.m_slots.size(); ++i) m_slots[i] += o.m_slots[i];
+    accumulate(registered_stats(), m_slots.data(), o.m_slots.data(), uint32_t(o.m_slots.size()));
     return *this;
 }
 
@@ -117,8 +151,7 @@ StatTotals stat_totals() {
     std::lock_guard lock(r.mutex);
     StatTotals t;
     t.m_slots.assign(r.used, 0);
-    for (const auto& b : r.blocks)
-        for (uint32_t i = 1; i < r.used; ++i) t.m_slots[i] += b->slots[i];
+    for (const auto& b : r.blocks) accumulate(r.stats, t.m_slots.data(), b->slots.data(), r.used);
     return t;
 }
 

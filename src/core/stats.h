@@ -14,7 +14,9 @@
 // size share their slots. A statistic registers when its translation unit's static initialisers
 // run, i.e. before main() for every object file the program links; an object file of a static
 // library is linked when something references it, which the code that counts always does.
+#include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -26,6 +28,7 @@ enum class StatKind : uint8_t {
     Count,        ///< events (StatCounter)
     Nanoseconds,  ///< accumulated time (StatTimer)
     Histogram,    ///< counts per bin (StatHistogram)
+    Moments,      ///< count, sum, sum of squares and maximum of values (StatMoments)
 };
 
 /// A registered statistic: where its values live in every thread's block of slots.
@@ -104,6 +107,53 @@ private:
     uint32_t m_bins;
 };
 
+/// The first moments of a stream of values (e.g. the per-sample contributions of one light
+/// transport technique): count, sum, sum of squares and maximum. Four slots hold the count
+/// and the three doubles' bits; the totals add them as doubles (and take the maximum).
+class StatMoments {
+public:
+    StatMoments(const char* name, const char* description)
+        : m_slot(detail::register_stat(name, description, StatKind::Moments, 4)) {}
+    StatMoments(const StatMoments&) = delete;
+    StatMoments& operator=(const StatMoments&) = delete;
+    void add(double x) {
+        uint64_t* s = detail::thread_stat_slots() + m_slot;
+        s[0]++;
+        add_bits(s[1], x);
+        add_bits(s[2], x * x);
+        if (x > from_bits(s[3])) s[3] = to_bits(x);
+    }
+    uint32_t slot() const { return m_slot; }
+
+    static double from_bits(uint64_t b) {
+        double d;
+        std::memcpy(&d, &b, sizeof d);
+        return d;
+    }
+    static uint64_t to_bits(double d) {
+        uint64_t b;
+        std::memcpy(&b, &d, sizeof b);
+        return b;
+    }
+
+private:
+    static void add_bits(uint64_t& slot, double x) { slot = to_bits(from_bits(slot) + x); }
+    uint32_t m_slot;
+};
+
+/// What a StatMoments holds, summed over threads.
+struct Moments {
+    uint64_t count = 0;
+    double sum = 0, sum_sq = 0, max = 0;
+    double mean() const { return count ? sum / double(count) : 0.0; }
+    /// Variance of one value over the squared mean (the relative variance of a one-sample
+    /// estimator); 0 when the mean is 0.
+    double relative_variance() const {
+        const double m = mean();
+        return m != 0 ? std::max(0.0, sum_sq / double(count) - m * m) / (m * m) : 0.0;
+    }
+};
+
 /// Every statistic registered so far, in registration order.
 std::vector<StatInfo> registered_stats();
 /// The statistic of that name, if one is registered.
@@ -118,8 +168,11 @@ public:
     double seconds(const StatTimer& t) const { return double(slot(t.slot())) * 1e-9; }
     /// One value per bin.
     std::vector<uint64_t> bins(const StatHistogram& h) const;
-    /// The value of the statistic of that name (a histogram's: the sum of its bins); 0 when no
-    /// statistic has that name.
+    Moments moments(const StatMoments& m) const { return moments_at(m.slot()); }
+    /// The moments of a StatMoments registered as `info`.
+    Moments moments(const StatInfo& info) const { return moments_at(info.offset); }
+    /// The value of the statistic of that name (a histogram's: the sum of its bins; moments':
+    /// the count); 0 when no statistic has that name.
     uint64_t get(std::string_view name) const;
     /// The slots of a statistic (one, or a histogram's bins), zeros past the snapshot.
     std::vector<uint64_t> values(const StatInfo& info) const;
@@ -132,6 +185,7 @@ public:
 private:
     friend StatTotals stat_totals();
     uint64_t slot(uint32_t i) const { return i < m_slots.size() ? m_slots[i] : 0; }
+    Moments moments_at(uint32_t offset) const;
     std::vector<uint64_t> m_slots;
 };
 

@@ -16,6 +16,12 @@ void RenderReport::set_counters(const StatTotals& t) {
     discarded_negative = t.get("render.discarded_negative");
     counters = nlohmann::json::object();
     for (const StatInfo& s : registered_stats()) {
+        if (s.kind == StatKind::Moments) {
+            const Moments m = t.moments(s);
+            counters[s.name] = {
+                {"count", m.count}, {"mean", m.mean()}, {"relative_variance", m.relative_variance()}, {"max", m.max}};
+            continue;
+        }
         std::vector<uint64_t> v = t.values(s);
         if (s.kind != StatKind::Histogram) {
             counters[s.name] = v[0];
@@ -50,6 +56,7 @@ void to_json(nlohmann::json& j, const RenderReport& r) {
         {"paths_per_second", r.paths_per_second()},
         {"rays_per_second", r.rays_per_second()},
         {"discarded", {{"nan", r.discarded_nan}, {"inf", r.discarded_inf}, {"negative", r.discarded_negative}}},
+        {"dominance", {{"pixels", r.pixels}, {"dominated", r.pixels_dominated}, {"max_share", r.max_sample_share}}},
         {"extra", r.extra},
         {"counters", r.counters},
     };
@@ -78,6 +85,11 @@ void from_json(const nlohmann::json& j, RenderReport& r) {
         if (auto it = d->find("nan"); it != d->end()) it->get_to(r.discarded_nan);
         if (auto it = d->find("inf"); it != d->end()) it->get_to(r.discarded_inf);
         if (auto it = d->find("negative"); it != d->end()) it->get_to(r.discarded_negative);
+    }
+    if (auto d = j.find("dominance"); d != j.end()) {
+        if (auto it = d->find("pixels"); it != d->end()) it->get_to(r.pixels);
+        if (auto it = d->find("dominated"); it != d->end()) it->get_to(r.pixels_dominated);
+        if (auto it = d->find("max_share"); it != d->end()) it->get_to(r.max_sample_share);
     }
     if (auto it = j.find("extra"); it != j.end()) r.extra = *it;
     if (auto it = j.find("counters"); it != j.end()) r.counters = *it;

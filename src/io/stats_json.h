@@ -29,10 +29,16 @@ struct RenderReport {
     uint64_t discarded_nan = 0;       ///< samples dropped as NaN
     uint64_t discarded_inf = 0;       ///< samples dropped as infinite
     uint64_t discarded_negative = 0;  ///< samples dropped as negative
+    /// Pixel dominance (render/renderer.h PixelDominance), written under "dominance": pixels
+    /// with a positive sum, those where one sample carries more than half of it, and the
+    /// largest such share.
+    uint64_t pixels = 0, pixels_dominated = 0;
+    double max_sample_share = 0;
     /// Free-form technique statistics (e.g. MNEE walk outcomes); written under "extra".
     nlohmann::json extra = nlohmann::json::object();
-    /// Every registered statistic by name (core/stats.h): a count, nanoseconds, or a
-    /// histogram's bins as an array (trailing empty bins left out); written under "counters".
+    /// Every registered statistic by name (core/stats.h): a count, nanoseconds, a histogram's
+    /// bins as an array (trailing empty bins left out), or moments as {count, mean,
+    /// relative_variance, max}; written under "counters".
     nlohmann::json counters = nlohmann::json::object();
 
     /// Copies the ray/path/discard counts ("render.paths", "scene.rays", ...) and every

@@ -8,6 +8,18 @@
 
 namespace snell {
 
+namespace {
+
+// Whether `set` holds, from index `from` on and for wavelength slot `slot`, the solution `chain`.
+bool holds_solution(const SolutionSet& set, size_t from, int slot, const Vec3& xb,
+                    const std::vector<ManifoldVertex>& chain, const Vec3& xc) {
+    for (size_t i = from; i < set.solutions.size(); ++i)
+        if (set.solutions[i].slot == slot && same_solution(xb, chain, set.solutions[i].chain, xc)) return true;
+    return false;
+}
+
+}  // namespace
+
 SolutionSet ManifoldTechnique::solve(const ManifoldQuery& q, const Light& light, double pmf, const LightPoint& lp,
                                      const std::vector<ManifoldVertex>& seed, Sampler& sampler, int max_k) const {
     SolutionSet out;
@@ -32,46 +44,56 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
     const MneeSettings& st = *m_settings;
     const size_t before = out.solutions.size();
     HalfVectorDraws draws(sampler);
-    if (st.solutions == MneeSolutions::One || st.seeding != MneeSeeding::Surface)
-        add_solution(q, ctx, slot, light, pmf, lp, seed, draws, max_k, out);
+    if (q.straight_seed && (st.solutions == MneeSolutions::One || st.seeding != MneeSeeding::Surface))
+        add_solution(q, ctx, slot, light, pmf, lp, seed, draws, max_k, false, out);
     if (st.solutions == MneeSolutions::One || st.seeding == MneeSeeding::Straight) return;
     // Surface seeds on every caster, from their own stream (one sampler dimension in all).
     PCG32 rng(uint64_t(sampler.next_1d() * 0x1p53), 0x5eed);
     const double lambda = ctx.hero();
     const auto next_u = [&rng] { return Vec2(rng.next_double(), rng.next_double()); };
-    // This solve's straight solution (out may hold other wavelengths' solutions before it).
-    const int straight = out.solutions.size() > before ? int(out.solutions.size()) - 1 : -1;
     for (const Shape* caster : manifold_casters(*m_scene, lambda)) {
         if (st.solutions == MneeSolutions::All) {
+            // Walk each seed to its solution first (no visibility, no measurement) and evaluate
+            // only the new ones.
             for (int j = 0; j < st.trials; ++j) {
                 std::vector<ManifoldVertex> chain;
-                if (trace_surface_seed(*m_scene, *q.xb, *caster, next_u(), lambda, st, draws, &chain) ==
-                    SurfaceSeedEnd::Ok)
-                    add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, out);
+                if (surface_trial(q, ctx, *caster, next_u(), lp, draws, max_k, &chain) &&
+                    !holds_solution(out, before, slot, q.xb->p, chain, lp.p))
+                    add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, true, out);
             }
             continue;
         }
-        // solutions=unbiased (SMS): the solution Y of one trial, weighted by the number N of further
-        // independent trials up to and including the first that finds Y again. N is geometric
-        // with parameter p(Y), the probability that a trial finds Y, so E[N] = 1 / p(Y) and every
-        // solution a trial can reach counts once in expectation. The straight seed's solution is
-        // counted as such, so a trial landing on it contributes nothing.
-        std::vector<ManifoldVertex> first;
-        if (!surface_trial(q, ctx, *caster, next_u(), lp, draws, max_k, &first)) continue;
-        if (straight >= 0 && same_solution(q.xb->p, first, out.solutions[size_t(straight)].chain, lp.p)) continue;
-        const int index = add_solution(q, ctx, slot, light, pmf, lp, first, draws, max_k, out);
-        if (index < 0) continue;
-        int n = 1;
-        for (; n <= st.max_trials; ++n) {
-            std::vector<ManifoldVertex> again;
-            if (surface_trial(q, ctx, *caster, next_u(), lp, draws, max_k, &again) &&
-                same_solution(q.xb->p, again, out.solutions[size_t(index)].chain, lp.p))
-                break;
+        // solutions=unbiased: SMS's estimator with M = `trials` first trials. Every distinct
+        // solution Y the M trials find (other than the straight seed's, counted as such) is
+        // weighted by R = ceil(N / M), N the number of further independent trials up to and
+        // including the first that finds Y again. A round of M trials finds Y with probability
+        // q = 1 - (1 - p(Y))^M, and R counts rounds up to the first that finds Y, so R is
+        // geometric with E[R] = 1 / q: every reachable solution counts once in expectation.
+        // M = 1 is SMS's 1 / p estimate; a larger M finds solutions with small p(Y) in the first
+        // round more often, and once M p(Y) >> 1, R = 1 almost surely (the `all` estimator,
+        // without its bias).
+        std::vector<int> found;
+        for (int j = 0; j < st.trials; ++j) {
+            std::vector<ManifoldVertex> chain;
+            if (!surface_trial(q, ctx, *caster, next_u(), lp, draws, max_k, &chain)) continue;
+            if (holds_solution(out, before, slot, q.xb->p, chain, lp.p)) continue;
+            const int index = add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, true, out);
+            if (index >= 0) found.push_back(index);
         }
-        ++walk_counters::bernoulli_loops;
-        walk_counters::bernoulli_trials += uint64_t(std::min(n, st.max_trials));
-        if (n > st.max_trials) ++walk_counters::bernoulli_capped;
-        out.solutions[size_t(index)].count = double(std::min(n, st.max_trials));
+        for (const int index : found) {
+            int n = 1;
+            for (; n <= st.max_trials; ++n) {
+                std::vector<ManifoldVertex> again;
+                if (surface_trial(q, ctx, *caster, next_u(), lp, draws, max_k, &again) &&
+                    same_solution(q.xb->p, again, out.solutions[size_t(index)].chain, lp.p))
+                    break;
+            }
+            ++walk_counters::bernoulli_loops;
+            walk_counters::bernoulli_trials += uint64_t(std::min(n, st.max_trials));
+            if (n > st.max_trials) ++walk_counters::bernoulli_capped;
+            const int trials = std::min(n, st.max_trials);
+            out.solutions[size_t(index)].count = double((trials + st.trials - 1) / st.trials);
+        }
     }
     walk_counters::solutions_per_connection.add(uint32_t(out.solutions.size() - size_t(before)));
 }
@@ -93,7 +115,7 @@ bool ManifoldTechnique::surface_trial(const ManifoldQuery& q, const BSDFContext&
 
 int ManifoldTechnique::add_solution(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light,
                                     double pmf, const LightPoint& lp, std::vector<ManifoldVertex> chain,
-                                    HalfVectorDraws& draws, int max_k, SolutionSet& out) const {
+                                    HalfVectorDraws& draws, int max_k, bool from_surface, SolutionSet& out) const {
     if (max_k >= 0 && int(chain.size()) > max_k) return -1;
     const MneeConnection c =
         mnee_connect(*m_scene, *m_settings, *q.xb, *q.bsdf_b, ctx, q.media, light, pmf, lp, chain, draws);
@@ -120,6 +142,7 @@ int ManifoldTechnique::add_solution(const ManifoldQuery& q, const BSDFContext& c
     s.density = c.pdf_mnee;
     s.pdf_bsdf = c.pdf_bsdf;
     s.pdf_nee_last = c.pdf_nee_last;
+    s.from_surface = from_surface;
     out.solutions.push_back(std::move(s));
     return int(out.solutions.size()) - 1;
 }

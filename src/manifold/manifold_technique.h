@@ -24,6 +24,9 @@ struct ManifoldQuery {
     BSDFContext ctx;
     MediumStack media;       ///< the medium at x_b
     bool hero_only = false;  ///< the path's throughput already carries the hero wavelength alone
+    /// The straight seed may be walked (false: an opaque surface blocks the segment x_b -> x_c,
+    /// SeedStatus::BlockedRefractive; only surface seeds are tried).
+    bool straight_seed = true;
 };
 
 class ManifoldTechnique {
@@ -62,7 +65,7 @@ private:
     /// returns the index of the added solution, or -1.
     int add_solution(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light, double pmf,
                      const LightPoint& lp, std::vector<ManifoldVertex> chain, HalfVectorDraws& draws, int max_k,
-                     SolutionSet& out) const;
+                     bool from_surface, SolutionSet& out) const;
     /// One surface seed on `caster` walked to a polished admissible path; false if it fails.
     bool surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster, const Vec2& u,
                        const LightPoint& lp, HalfVectorDraws& draws, int max_k,

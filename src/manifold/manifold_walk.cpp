@@ -1,5 +1,6 @@
 #include "manifold/manifold_walk.h"
 
+#include <array>
 #include <cmath>
 
 #include "geometry/shape.h"
@@ -76,11 +77,23 @@ WalkResult manifold_walk(const Scene* scene, const Vec3& x_b, std::vector<Manifo
     double err = constraint_error(x_b, chain, x_c.p);
     double beta = 1.0;  // step size
     const double beta_max = st.allow_error_increase ? 2.0 : 1.0;
+    // The error before each iteration, for the progress test (a ring of stall_window entries).
+    std::array<double, kMaxStallWindow> history{};
+    const int window = std::min(st.stall_window, kMaxStallWindow);
     for (res.iterations = 0; res.iterations < st.max_iterations; ++res.iterations) {
         if (err < st.threshold) {
             res.outcome = WalkOutcome::Converged;
             res.error = err;
             return res;
+        }
+        if (window > 0) {
+            double& then = history[size_t(res.iterations % window)];
+            if (res.iterations >= window && !(err < st.stall_ratio * then)) {
+                res.outcome = WalkOutcome::Stalled;
+                res.error = err;
+                return res;
+            }
+            then = err;
         }
         // Predictor: first-order offsets that would zero the constraints.
         if (!build_constraints(x_b, chain, x_c, &m, &c) || !solve_matrix_h_to_x(m, c, &dx)) {

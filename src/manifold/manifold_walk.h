@@ -20,6 +20,9 @@ enum class Projection {
     RayCast,       ///< ray from the previous vertex through the displaced point, same shape only
 };
 
+/// The longest window of WalkSettings' progress test.
+inline constexpr int kMaxStallWindow = 16;
+
 struct WalkSettings {
     int max_iterations = 15;            ///< paper Sec. 3.4: 15 works well in practice
     double threshold = 1e-6;            ///< convergence: max over vertices of |c_i| (dimensionless)
@@ -31,6 +34,16 @@ struct WalkSettings {
     /// time in a caustic (issue 10): 0.1 gives up on them early. The default keeps the paper's
     /// walks (1e-4 was the floor before the parameter existed).
     double min_step = 1e-4;
+    /// Progress test: a walk whose error has not fallen below `stall_ratio` times its value
+    /// `stall_window` iterations earlier (rejected steps count) ends as Stalled. Where no
+    /// solution exists (most of a glass sphere's shadow outside its caustic) the error settles
+    /// on a plateau and the walk would run to max_iterations; walks that converge fall by large
+    /// factors per iteration. On the glass sphere's floor caustic, 4 and 0.7 save 41 % of the
+    /// iterations and give up 1.9 % of the walks that would have converged (docs/mnee.md). Any
+    /// such rule keeps MNEE unbiased: Alg. 2 walks by the same rule, and the multi-solution
+    /// estimators count what their trials reach. stall_window 0 turns the test off.
+    int stall_window = 0;
+    double stall_ratio = 0.7;
 };
 
 enum class WalkOutcome : uint8_t {
@@ -38,7 +51,7 @@ enum class WalkOutcome : uint8_t {
     MaxIterations,     ///< did not reach the threshold within max_iterations
     SingularMatrix,    ///< a pivot of the constraint matrix vanished
     ProjectionFailed,  ///< a vertex could not be brought back onto its shape
-    Stalled,           ///< rejected steps shrank beta below WalkSettings::min_step
+    Stalled,           ///< beta fell below min_step, or the error stopped falling (progress test)
 };
 
 struct WalkResult {

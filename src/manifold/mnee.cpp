@@ -267,9 +267,11 @@ double solution_density(const Scene& scene, const MneeSettings& st, const Surfac
         input[size_t(i)] = ManifoldVertex::from_interaction(path[i], b->eta(lambda));
     }
     if (!admissible(xb.p, input, xc)) return 0;
-    // The domain: the straight seed meets a refractive interface before anything else.
+    // The domain: refractive interfaces lie on the straight segment x_b -> x_c, blocked by an
+    // opaque surface or not (the integrator runs the surface seeds for both).
     std::vector<ManifoldVertex> seed;
-    if (trace_seed_path(scene, xb, xc, lambda, st, &seed) != SeedStatus::Refractive) return 0;
+    const SeedStatus status = trace_seed_path(scene, xb, xc, lambda, st, &seed);
+    if (status != SeedStatus::Refractive && status != SeedStatus::BlockedRefractive) return 0;
     double p_dH = 1;  // line 3, on the path's own half vectors
     for (int i = 0; i < k; ++i) {
         Vec3 wi, wo;

@@ -96,8 +96,9 @@ TangentBasis light_point_basis(const Vec3& p, const Vec3& n, const Vec3& arrival
 
 /// The density of the all-solutions technique for the path x_b, chain[0..k), x_c: Alg. 2 lines
 /// 1, 3 and 8 (light point, half vectors, |dH/dX|) without its walk, times the indicator of the
-/// technique's domain (the straight seed from x_b to x_c meets a refractive interface first
-/// and is not culled). Every solution there is the technique's, found or not.
+/// technique's domain (a refractive interface lies on the straight segment from x_b to x_c,
+/// whether an opaque surface blocks it or not, and the seed is not culled). Every solution
+/// there is the technique's, found or not.
 double solution_density(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb,
                         const BSDF& bsdf_b, const SurfaceInteraction* chain, int k, const Light& light, double pmf,
                         const Vec3& xc, const Vec3& nc, double lambda);

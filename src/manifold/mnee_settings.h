@@ -35,7 +35,9 @@ struct MneeSettings {
     double max_geometry = 0;
     MneeSeeding seeding = MneeSeeding::Straight;
     MneeSolutions solutions = MneeSolutions::One;
-    int trials = 16;  ///< (trials) surface seeds per caster and light connection (solutions=all)
+    /// (trials) surface seeds per caster and light connection: every one walked (solutions=all),
+    /// or the first round M of solutions=unbiased (the scene parameter defaults to 1 there)
+    int trials = 16;
     /// (max_trials) cap M on the Bernoulli trials of solutions=unbiased: the estimate of 1 / p is
     /// min(N, M), whose expectation (1 - (1 - p)^M) / p is short of 1 / p by the factor (1 - p)^M.
     int max_trials = 256;

@@ -13,6 +13,7 @@ SeedStatus trace_seed_path(const Scene& scene, const SurfaceInteraction& xb, con
                            const MneeSettings& settings, std::vector<ManifoldVertex>* chain) {
     chain->clear();
     Ray ray = scene.spawn_ray_to(xb, xc);
+    bool blocked = false;
     for (;;) {
         SurfaceInteraction si;
         if (!scene.intersect(ray, &si)) break;
@@ -21,10 +22,11 @@ SeedStatus trace_seed_path(const Scene& scene, const SurfaceInteraction& xb, con
             if (int(chain->size()) >= settings.max_vertices) return SeedStatus::TooMany;
             chain->push_back(ManifoldVertex::from_interaction(si, bsdf->eta(lambda)));
         } else if (!settings.ignore_occluders) {
-            return SeedStatus::Occluded;
+            blocked = true;
         }
         ray = scene.spawn_ray_to(si, xc);
     }
+    if (blocked) return chain->empty() ? SeedStatus::Occluded : SeedStatus::BlockedRefractive;
     return chain->empty() ? SeedStatus::Clear : SeedStatus::Refractive;
 }
 

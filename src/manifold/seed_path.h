@@ -16,8 +16,13 @@ class BSDF;
 enum class SeedStatus {
     Clear,       ///< nothing in between: MNEE is plain NEE for this sample
     Refractive,  ///< one or more refractive vertices (the chain to walk)
-    Occluded,    ///< an opaque surface blocks the segment
-    TooMany,     ///< more refractive vertices than max_vertices
+    Occluded,    ///< an opaque surface blocks the segment, and no refractive vertex lies on it
+    /// An opaque surface blocks the segment, and refractive vertices lie on it too (an object
+    /// inside glass). The straight seed is blocked (the paper's MNEE stops here), but the
+    /// refracted paths may pass the blocker: surface seeds still look for them. The chain holds
+    /// the refractive vertices, the blockers passed through.
+    BlockedRefractive,
+    TooMany,  ///< more refractive vertices than max_vertices
 };
 
 /// Whether a BSDF is a refractive interface that MNEE treats as a chain vertex: a dielectric,
@@ -25,7 +30,8 @@ enum class SeedStatus {
 bool is_manifold_interface(const BSDF* bsdf, double lambda);
 
 /// Traces the straight segment from `xb` to `xc` and collects the refractive vertices
-/// (h_target zero; the half-vector sampler sets it).
+/// (h_target zero; the half-vector sampler sets it). With settings.ignore_occluders, opaque
+/// surfaces on the segment are not reported (Refractive or Clear).
 SeedStatus trace_seed_path(const Scene& scene, const SurfaceInteraction& xb, const Vec3& xc, double lambda,
                            const MneeSettings& settings, std::vector<ManifoldVertex>* chain);
 

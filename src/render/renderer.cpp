@@ -128,6 +128,7 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
                         for (int x = t.x0; x < t.x1; ++x) {
                             const int fx = x + spec.crop_x, fy = y + spec.crop_y;  // full-film pixel
                             Vec3 sum;
+                            double max_y = 0;
                             for (uint64_t s = s0; s < s1; ++s) {
                                 sampler->start_pixel_sample(fx, fy, s);
                                 // Filter importance sampling: the film position around the
@@ -136,12 +137,14 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
                                 const Vec2 centre(fx + 0.5, fy + 0.5);
                                 const Vec2 raster = centre + fs.offset;
                                 const Vec2 u_lambda = sampler->next_2d();
-                                sum += trace_camera_sample(scene, *camera, tracer, spectral_samples, centre, raster,
-                                                           u_lambda, *sampler, splats)
-                                           .xyz *
-                                       fs.weight;
+                                const Vec3 xyz = trace_camera_sample(scene, *camera, tracer, spectral_samples, centre,
+                                                                     raster, u_lambda, *sampler, splats)
+                                                     .xyz *
+                                                 fs.weight;
+                                sum += xyz;
+                                max_y = std::max(max_y, xyz.y);
                             }
-                            result.film.add_sum(x, y, sum, s1 - s0);
+                            result.film.add_sum(x, y, sum, s1 - s0, max_y);
                         }
                     }
                     if (bar) bar->add(timed ? 0 : (s1 - s0) * uint64_t(t.x1 - t.x0) * uint64_t(t.y1 - t.y0));
@@ -169,6 +172,7 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
     // Splat estimators divide by the camera samples each pixel received (total / pixels).
     result.film.set_splat_scale(total > 0 ? double(w) * double(h) / double(total) : 0.0);
     result.interrupted = cancel && cancel->load() && (timed || done_spp < uint64_t(opt.spp));
+    result.dominance = pixel_dominance(result.film);
     result.counters = stat_totals();
     result.layer_names = tracer.layer_names();
     return result;

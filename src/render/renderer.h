@@ -32,6 +32,7 @@ struct RenderResult {
     /// Every registered statistic (core/stats.h), summed over the threads of the render.
     StatTotals counters;
     std::vector<std::string> layer_names;  ///< names of the film's debug layers 1, 2, ...
+    PixelDominance dominance;              ///< camera samples only (splats are not a pixel's samples)
 };
 
 /// The shared render loop of per-pixel-sample estimators: progressive passes over tiles with

@@ -211,3 +211,28 @@ TEST(ManifoldWalk, StalledWalkEndsEarly) {
     EXPECT_EQ(late.outcome, WalkOutcome::Stalled);
     EXPECT_LT(early.iterations + 5, late.iterations);
 }
+
+// The progress test: where no solution exists the error settles on a plateau; with a window of 3
+// iterations and ratio 0.7 the walk ends as Stalled long before max_iterations, while a walk to
+// an existing solution (whose error falls by large factors) converges as without the test.
+TEST(ManifoldWalk, ProgressTestEndsWalksOnAPlateau) {
+    TriangleMesh plane(make_rectangle(Transform::scale({0.5, 0.5, 1})), true, false, "plane");
+    const Vec3 xb(0.0, 0.0, -1.0);
+    const auto walk = [&](const Vec3& xc, int window) {
+        std::vector<ManifoldVertex> chain = {vertex_on(plane, Vec3(0.1, 0.0, 0.0), 1.33)};
+        WalkSettings s = precise();
+        s.max_iterations = 60;
+        s.stall_window = window;
+        s.stall_ratio = 0.7;
+        return manifold_walk(nullptr, xb, chain, endpoint(xc, Vec3(0, 0, -1)), s);
+    };
+    const Vec3 unreachable(40.0, 0.0, 0.2), reachable(0.3, 0.2, 1.5);
+    const WalkResult tested = walk(unreachable, 3), untested = walk(unreachable, 0);
+    EXPECT_NE(tested.outcome, WalkOutcome::Converged);
+    EXPECT_NE(untested.outcome, WalkOutcome::Converged);
+    EXPECT_EQ(tested.outcome, WalkOutcome::Stalled);
+    EXPECT_LT(tested.iterations, untested.iterations);
+    const WalkResult ok = walk(reachable, 3), ok_untested = walk(reachable, 0);
+    EXPECT_EQ(ok.outcome, WalkOutcome::Converged);
+    EXPECT_EQ(ok.iterations, ok_untested.iterations);
+}

@@ -63,8 +63,15 @@ SolutionSet solve(const Scene& scene, const SurfaceInteraction& xb, const MneeSe
     const LightPoint lp = light_point(scene, light, *ls, xb.p);
     if (lp_out) *lp_out = lp;
     std::vector<ManifoldVertex> chain;
-    if (trace_seed_path(scene, xb, lp.p, 550, st, &chain) != SeedStatus::Refractive) return {};
-    const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false};
+    const SeedStatus status = trace_seed_path(scene, xb, lp.p, 550, st, &chain);
+    if (status != SeedStatus::Refractive && status != SeedStatus::BlockedRefractive) return {};
+    if (status == SeedStatus::BlockedRefractive && st.solutions == MneeSolutions::One) return {};
+    const ManifoldQuery q{&xb,
+                          xb.bsdf(),
+                          BSDFContext{wl, TransportMode::Radiance},
+                          MediumStack(),
+                          false,
+                          /*straight_seed=*/status == SeedStatus::Refractive};
     return ManifoldTechnique(scene, st).solve(q, light, 1.0, lp, chain, smp);
 }
 
@@ -129,6 +136,57 @@ TEST(ManifoldSolutions, AllFindsEveryExactSolutionOnASphereOnAPlane) {
     EXPECT_LE(one.solutions.size(), 1u);
     std::cout << "[solutions] receiver (" << at.x << ", " << at.z << "): exact " << count << ", all finds "
               << set.solutions.size() << ", the straight seed " << one.solutions.size() << "\n";
+}
+
+// An opaque ball inside the droplet blocks the straight segment from a receiver to the light
+// (SeedStatus::BlockedRefractive): the paper's MNEE gives up, but the surface seeds find every
+// exact solution whose path passes beside the ball, and none that the ball blocks.
+TEST(ManifoldSolutions, SurfaceSeedsFindThePathsBesideABlockedStraightSeed) {
+    // A receiver with two well-separated paths: a ball near the straight segment can block one.
+    size_t count = 0;
+    const Vec3 receiver = multi_solution_receiver(&count);
+    ASSERT_GE(count, 2u);
+    constexpr double kBall = 0.06;
+    // A ball on the straight segment, inside the droplet, placed where it blocks the segment but
+    // not every exact path: the exact one-refraction paths (roots) it does not block.
+    const auto visible_roots = [&](const Vec3& ball, const Vec3& at) {
+        std::vector<Vec3> out;
+        for (const Vec3& r : sphere_refraction_roots(kCentre, kRadius, kEta, at, kLight)) {
+            const Vec3 d = r - at;
+            const double t = std::clamp(dot(ball - at, d) / dot(d, d), 0.0, 1.0);
+            if (length(at + d * t - ball) >= kBall) out.push_back(r);
+        }
+        return out;
+    };
+    Vec3 ball;
+    std::vector<Vec3> visible;
+    for (double t = 0.1; t < 0.5 && visible.empty(); t += 0.05) {
+        ball = receiver + (kLight - receiver) * t;
+        if (length(ball - kCentre) + kBall < kRadius) visible = visible_roots(ball, receiver);
+    }
+    ASSERT_GE(visible.size(), 1u) << "no ball position leaves a path free: the test would be vacuous";
+    std::string light = kPointLight;
+    light += R"(<shape type="sphere"><point name="center" x=")" + std::to_string(ball.x) + R"(" y=")" +
+             std::to_string(ball.y) + R"(" z=")" + std::to_string(ball.z) + R"("/><float name="radius" value=")" +
+             std::to_string(kBall) + R"("/><bsdf type="diffuse"/></shape>)";
+    const LoadedScene ls = droplet(light);
+    const SurfaceInteraction xb = droplet_receiver(*ls.scene, receiver.x, receiver.z);
+    ASSERT_LT(length(xb.p - receiver), 1e-3);
+    visible = visible_roots(ball, xb.p);
+    ASSERT_GE(visible.size(), 1u);
+    std::vector<ManifoldVertex> seed;
+    ASSERT_EQ(trace_seed_path(*ls.scene, xb, kLight, 550, MneeSettings(), &seed), SeedStatus::BlockedRefractive);
+
+    EXPECT_TRUE(solve(*ls.scene, xb, MneeSettings(), 7).solutions.empty()) << "the paper's seed is blocked";
+    const SolutionSet set = solve(*ls.scene, xb, all_solutions(2000), 7);
+    ASSERT_EQ(set.solutions.size(), visible.size());
+    for (const ManifoldSolution& s : set.solutions) {
+        double nearest = kInfinity;
+        for (const Vec3& r : visible) nearest = std::min(nearest, length(r - s.chain[0].p));
+        EXPECT_LT(nearest, 1e-6) << "a solution no visible exact root explains";
+        EXPECT_TRUE(s.from_surface);
+        EXPECT_GT(s.value[0], 0.0);
+    }
 }
 
 // The all-solutions estimator (no MIS) at the two-solution receiver under a small sphere light
@@ -288,6 +346,39 @@ TEST(ManifoldSolutions, UnbiasedMeanIsTheSumOfEverySolution) {
     EXPECT_NEAR(unbiased.mean(), exact, 4.5 * unbiased.stderr_() + 1e-9 * exact);
     EXPECT_NEAR(surface.mean(), exact, 4.5 * surface.stderr_() + 1e-9 * exact);
     EXPECT_LT(one.mean(), exact * (1 - 0.5 * share));
+}
+
+// With a first round of M = 3 trials, each distinct solution found counts ceil(N / 3) times (the
+// rounds up to the first that finds it again): the mean is again the sum of every solution. The
+// straight solution has p near 1 with surface seeds alone, so counting N / 3 instead of rounds
+// (or rounds off by one) shows there.
+TEST(ManifoldSolutions, UnbiasedWithAFirstRoundOfTrialsIsUnbiased) {
+    const LoadedScene ls = droplet();
+    const Scene& scene = *ls.scene;
+    SurfaceInteraction xb;
+    ASSERT_GT(strongest_second_branch(scene, &xb), 0.05);
+    double exact = 0;
+    for (const ManifoldSolution& s : solve(scene, xb, all_solutions(4000), 11).solutions) exact += s.value[0];
+    MneeSettings st = all_solutions(3);
+    st.solutions = MneeSolutions::Unbiased;
+    st.seeding = MneeSeeding::Surface;
+    st.max_trials = 100000;
+    Mean mean;
+    double counted = 0;
+    for (int run = 0; run < 10000; ++run) {
+        IndependentSampler smp(23);
+        smp.start_pixel_sample(run, 3, 0);
+        double v = 0;
+        for (const ManifoldSolution& s : solve(scene, xb, st, smp).solutions) {
+            v += s.count * s.value[0];
+            counted += s.count > 1 ? 1 : 0;
+        }
+        mean.add(v);
+    }
+    std::cout << "[unbiased M=3] every solution " << exact << ", mean " << mean.mean() << " +- " << mean.stderr_()
+              << "; solutions counted more than once: " << counted << "\n";
+    EXPECT_NEAR(mean.mean(), exact, 4.5 * mean.stderr_() + 1e-9 * exact);
+    EXPECT_GT(counted, 0) << "the rounds never exceeded one: the test cannot see the rounding";
 }
 
 // The cap of the 1/p estimate: with at most M trials the count is min(N, M), whose mean is

@@ -143,3 +143,41 @@ TEST(Stats, LateRegistration) {
     EXPECT_EQ(sum[late], 500u);
     EXPECT_EQ(sum[g_events], before[g_events] + t[g_events]);
 }
+
+namespace {
+StatMoments g_moments{"test.moments", "values whose moments the tests check"};
+}  // namespace
+
+// Moments add as doubles over threads (not as the integers other statistics are): count, mean,
+// relative variance and maximum of values drawn on several threads equal those computed in one.
+TEST(Stats, MomentsOfValuesFromSeveralThreads) {
+    reset_stats();
+    constexpr int n = 100000;
+    tbb::parallel_for(tbb::blocked_range<int>(0, n, n / 64), [&](const tbb::blocked_range<int>& r) {
+        for (int i = r.begin(); i < r.end(); ++i) g_moments.add(i % 10 == 0 ? 10.0 + 0.001 * i : 0.5);
+    });
+    double sum = 0, sum_sq = 0, max = 0;
+    for (int i = 0; i < n; ++i) {
+        const double x = i % 10 == 0 ? 10.0 + 0.001 * i : 0.5;
+        sum += x;
+        sum_sq += x * x;
+        max = std::max(max, x);
+    }
+    const StatTotals t = stat_totals();
+    const Moments m = t.moments(g_moments);
+    EXPECT_EQ(m.count, uint64_t(n));
+    EXPECT_NEAR(m.mean(), sum / n, 1e-12 * sum / n);
+    const double mean = sum / n, relvar = (sum_sq / n - mean * mean) / (mean * mean);
+    EXPECT_NEAR(m.relative_variance(), relvar, 1e-9 * relvar);
+    EXPECT_EQ(m.max, max);
+    EXPECT_EQ(t.get("test.moments"), uint64_t(n)) << "by name: the count";
+
+    // Two snapshots add as moments too.
+    StatTotals twice = t;
+    twice += t;
+    const Moments m2 = twice.moments(g_moments);
+    EXPECT_EQ(m2.count, uint64_t(2 * n));
+    EXPECT_NEAR(m2.mean(), m.mean(), 1e-12 * m.mean());
+    EXPECT_EQ(m2.max, max);
+    EXPECT_EQ(Moments().relative_variance(), 0.0);
+}

@@ -43,6 +43,8 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     s.walk.threshold = p.get_float("threshold", s.walk.threshold);
     s.walk.allow_error_increase = p.get_bool("allow_error_increase", s.walk.allow_error_increase);
     s.walk.min_step = p.get_float("min_step", s.walk.min_step);
+    s.walk.stall_window = int(p.get_int("stall_window", s.walk.stall_window));
+    s.walk.stall_ratio = p.get_float("stall_ratio", s.walk.stall_ratio);
     s.max_geometry = p.get_float("max_geometry", s.max_geometry);
     s.seeding = choice(p, "seeding", s.seeding,
                        {{"straight", MneeSeeding::Straight},
@@ -51,7 +53,10 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     s.solutions =
         choice(p, "solutions", s.solutions,
                {{"one", MneeSolutions::One}, {"all", MneeSolutions::All}, {"unbiased", MneeSolutions::Unbiased}});
-    s.trials = int(p.get_int("trials", s.trials));
+    // trials: surface seeds per caster for `all`; the first round M of `unbiased` (SMS's 1 / p
+    // estimate is M = 1, its default: larger rounds lower the variance per sample about as much as
+    // they raise its cost, on the glass sphere's caustic; docs/mnee.md).
+    s.trials = int(p.get_int("trials", s.solutions == MneeSolutions::Unbiased ? 1 : s.trials));
     if (s.trials < 1) p.raise_param("trials", "trials must be >= 1");
     s.max_trials = int(p.get_int("max_trials", s.max_trials));
     if (s.max_trials < 1) p.raise_param("max_trials", "max_trials must be >= 1");
@@ -70,6 +75,10 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     if (s.walk.max_iterations < 1) p.raise_param("max_iterations", "max_iterations must be >= 1");
     if (!(s.walk.threshold > 0)) p.raise_param("threshold", "threshold must be > 0");
     if (!(s.walk.min_step > 0 && s.walk.min_step <= 1)) p.raise_param("min_step", "min_step must lie in (0, 1]");
+    if (s.walk.stall_window < 0 || s.walk.stall_window > kMaxStallWindow)
+        p.raise_param("stall_window", "stall_window must lie in [0, " + std::to_string(kMaxStallWindow) + "]");
+    if (!(s.walk.stall_ratio > 0 && s.walk.stall_ratio <= 1))
+        p.raise_param("stall_ratio", "stall_ratio must lie in (0, 1]");
     if (!(s.cull_margin >= 0)) p.raise_param("cull_margin", "cull_margin must be >= 0");
     if (!(s.max_geometry >= 0)) p.raise_param("max_geometry", "max_geometry must be >= 0 (0: no clamp)");
     return s;
@@ -161,49 +170,70 @@ SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const S
     return nee_estimate(si, bsdf, ctx, state.media, *ls, f, pmf, power_heuristic(p_nee, {p_bsdf, p_mnee}));
 }
 
-SampledSpectrum MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
-                                                 const BSDFContext& ctx, const PathState& state,
-                                                 Sampler& sampler) const {
-    if (is_manifold_interface(&bsdf, ctx.hero())) return connect_at_interface(scene, si, bsdf, ctx, state, sampler);
+Technique MneeIntegrator::emitter_hit_technique(const PathState& state) const {
+    const RefractiveSuffix& s = static_cast<const MneePathState&>(state).suffix;
+    return s.has_xb && s.k > 0 && s.transmissions_only ? Technique::BsdfRefracted : Technique::BsdfHit;
+}
+
+void MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
+                                      const BSDFContext& ctx, const PathState& state, Sampler& sampler,
+                                      LightConnection& out) const {
+    if (is_manifold_interface(&bsdf, ctx.hero())) {
+        out.add(Technique::Nee, connect_at_interface(scene, si, bsdf, ctx, state, sampler));
+        return;
+    }
 
     // Alg. 1, line 1: the light point, drawn exactly as NEE draws it.
     const Light* light = nullptr;
     double pmf = 0;
     const auto ls = sample_light(scene, si, ctx.wl, sampler, &light, &pmf, /*keep_dark=*/true);
-    if (!ls) return {};
+    if (!ls) return;
     const LightPoint lp = light_point(scene, *light, *ls, si.p);
 
     // Line 2: the seed path (Sec. 3.1).
     std::vector<ManifoldVertex> chain;
-    switch (trace_seed_path(scene, si, lp.p, ctx.hero(), m_mnee, &chain)) {
+    const SeedStatus status = trace_seed_path(scene, si, lp.p, ctx.hero(), m_mnee, &chain);
+    switch (status) {
         case SeedStatus::Clear:
             // Nothing refracts in between: MNEE is NEE (same sample, same weight).
             {
                 const SampledSpectrum f = bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls->wi));
-                if (f.is_zero()) return {};
-                return nee_estimate(si, bsdf, ctx, state.media, *ls, f, pmf, nee_weight(si, bsdf, ctx, *ls, pmf));
+                if (f.is_nonzero())
+                    out.add(Technique::Nee,
+                            nee_estimate(si, bsdf, ctx, state.media, *ls, f, pmf, nee_weight(si, bsdf, ctx, *ls, pmf)));
+                return;
             }
         case SeedStatus::Occluded:
             ++walk_counters::seeds_occluded;
-            return {};
+            return;
+        case SeedStatus::BlockedRefractive:
+            // The paper's seed is blocked; the multi-solution estimators' surface seeds may
+            // still find refracted paths around the blocker (an object inside glass).
+            ++walk_counters::seeds_occluded;
+            if (m_mnee.solutions == MneeSolutions::One) return;
+            break;
         case SeedStatus::TooMany:
             ++walk_counters::seeds_too_many;
-            return {};
+            return;
         case SeedStatus::Refractive:
             break;
     }
     // The connection adds k + 1 segments to the depth + 1 the path has (max_depth, Mitsuba's
     // meaning); BSDF sampling cannot produce longer paths, so neither may MNEE.
     const int max_k = m_settings.max_depth >= 0 ? m_settings.max_depth - state.depth - 2 : -1;
-    if (m_mnee.solutions == MneeSolutions::One && max_k >= 0 && int(chain.size()) > max_k) return {};
+    if (m_mnee.solutions == MneeSolutions::One && max_k >= 0 && int(chain.size()) > max_k) return;
     // Lines 3-5 (half vectors, walk, measurement) for every solution the technique finds; then
     // MIS of each against the other techniques that produce the same path.
-    const ManifoldQuery q{&si, &bsdf, ctx, state.media, state.hero_only};
+    const ManifoldQuery q{&si,
+                          &bsdf,
+                          ctx,
+                          state.media,
+                          state.hero_only,
+                          /*straight_seed=*/status == SeedStatus::Refractive};
     const SolutionSet set = ManifoldTechnique(scene, m_mnee).solve(q, *light, pmf, lp, chain, sampler, max_k);
-    SampledSpectrum out;
     for (const ManifoldSolution& sol : set.solutions)
-        out += sol.value * (sol.count * power_heuristic(sol.density, {sol.pdf_bsdf, sol.pdf_nee_last}));
-    return out;
+        out.add(sol.from_surface ? Technique::MneeSurface : Technique::MneeStraight,
+                sol.value * (sol.count * power_heuristic(sol.density, {sol.pdf_bsdf, sol.pdf_nee_last})));
 }
 
 }  // namespace snell

@@ -27,8 +27,9 @@ public:
     static MneeSettings settings_from_props(const Props& props);
 
 protected:
-    SampledSpectrum connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
-                                     const BSDFContext& ctx, const PathState& state, Sampler& sampler) const override;
+    void connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
+                          const PathState& state, Sampler& sampler, LightConnection& out) const override;
+    Technique emitter_hit_technique(const PathState& state) const override;
     double emitter_hit_weight(const Scene& scene, const PathState& state, const Light& light, const Vec3& p,
                               const Vec3& n, const Vec3& d, const BSDFContext& ctx) const override;
     void on_arrival(PathState& state, const SurfaceInteraction& si, const Ray& ray,

@@ -26,12 +26,13 @@ std::unique_ptr<SampleTracer> PathTracer::prepare(const Scene&, const FilmSpec&,
     return std::make_unique<RadianceTracer>(*this);
 }
 
-SampledSpectrum PathTracer::connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
-                                             const BSDFContext& ctx, const PathState& state, Sampler& sampler) const {
+void PathTracer::connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
+                                  const BSDFContext& ctx, const PathState& state, Sampler& sampler,
+                                  LightConnection& out) const {
     const Light* light = nullptr;
     double pmf = 0;
     const auto ls = sample_light(scene, si, ctx.wl, sampler, &light, &pmf);
-    return ls ? nee_connect(scene, si, bsdf, ctx, state.media, *ls, pmf) : SampledSpectrum();
+    if (ls) out.add(Technique::Nee, nee_connect(scene, si, bsdf, ctx, state.media, *ls, pmf));
 }
 
 double PathTracer::emitter_hit_weight(const Scene& scene, const PathState& state, const Light& light, const Vec3& p,
@@ -55,6 +56,11 @@ SampledSpectrum PathTracer::trace(const Ray& camera_ray, const Scene& scene, Sam
     const BSDFContext ctx{wl, TransportMode::Radiance};
 
     SampledSpectrum L;
+    TechniqueLog log;  // the same radiance by technique, for the statistics
+    const auto add = [&](Technique t, const SampledSpectrum& v) {
+        L += v;
+        log.add(t, v, wl);
+    };
     Throughput tp;
     Ray ray = camera_ray;
     state.prev = {ray.o, Vec3()};
@@ -68,7 +74,8 @@ SampledSpectrum PathTracer::trace(const Ray& camera_ray, const Scene& scene, Sam
                 for (const Light* light : scene.infinite_lights()) {
                     const SampledSpectrum le = light->le_escaped(ray.d, wl);
                     if (le.is_nonzero())
-                        L += tp.beta * le * emitter_hit_weight(scene, state, *light, Vec3(), Vec3(), ray.d, ctx);
+                        add(depth == 0 ? Technique::Emitted : emitter_hit_technique(state),
+                            tp.beta * le * emitter_hit_weight(scene, state, *light, Vec3(), Vec3(), ray.d, ctx));
                 }
             }
             break;
@@ -79,14 +86,21 @@ SampledSpectrum PathTracer::trace(const Ray& camera_ray, const Scene& scene, Sam
         // it is computed before the vertex is recorded.
         if (const Light* em = si.emitter(); em && emitters_visible) {
             const SampledSpectrum le = em->le(si.p, si.n, -ray.d, wl);
-            if (le.is_nonzero()) L += tp.beta * le * emitter_hit_weight(scene, state, *em, si.p, si.n, ray.d, ctx);
+            if (le.is_nonzero())
+                add(depth == 0 ? Technique::Emitted : emitter_hit_technique(state),
+                    tp.beta * le * emitter_hit_weight(scene, state, *em, si.p, si.n, ray.d, ctx));
         }
         on_arrival(state, si, ray, ctx);
         if (m_settings.max_depth >= 0 && depth + 1 >= m_settings.max_depth) break;
         const BSDF* bsdf = si.bsdf();
         if (!bsdf) break;
 
-        if (m_nee && bsdf->is_smooth_sampled()) L += tp.beta * connect_to_light(scene, si, *bsdf, ctx, state, sampler);
+        if (m_nee && bsdf->is_smooth_sampled()) {
+            LightConnection c;
+            connect_to_light(scene, si, *bsdf, ctx, state, sampler, c);
+            for (int t = 0; t < kTechniqueCount; ++t)
+                if (c.by[size_t(t)].is_nonzero()) add(Technique(t), tp.beta * c.by[size_t(t)]);
+        }
 
         const Vec3 wo = si.to_local(si.wo);
         const auto bs = bsdf->sample(ctx, wo, sampler.next_1d(), sampler.next_2d());
@@ -99,6 +113,7 @@ SampledSpectrum PathTracer::trace(const Ray& camera_ray, const Scene& scene, Sam
         ray = scene.spawn_ray(si, bs_world.wi);
         if (depth + 1 >= m_settings.rr_depth && !tp.survives_roulette(sampler.next_1d())) break;
     }
+    log.record();
     return L;
 }
 

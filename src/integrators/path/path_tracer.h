@@ -3,6 +3,7 @@
 
 #include "integrators/integrator.h"
 #include "integrators/path/path_state.h"
+#include "integrators/path/technique_stats.h"
 
 namespace snell {
 
@@ -47,14 +48,17 @@ protected:
     /// so li() of a derived class only chooses the state type.
     SampledSpectrum trace(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl,
                           PathState& state) const;
-    /// Light connection from a vertex with a non-delta BSDF. Returns the contribution (to be
-    /// multiplied by the path throughput). Default: NEE with MIS.
-    virtual SampledSpectrum connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
-                                             const BSDFContext& ctx, const PathState& state, Sampler& sampler) const;
+    /// Light connection from a vertex with a non-delta BSDF: adds its contributions (to be
+    /// multiplied by the path throughput) to `out` by technique. Default: NEE with MIS.
+    virtual void connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
+                                  const BSDFContext& ctx, const PathState& state, Sampler& sampler,
+                                  LightConnection& out) const;
     /// MIS weight of an emitter found by BSDF sampling at point p (normal n; zero for lights at
     /// infinity) along unit direction d from the previous vertex.
     virtual double emitter_hit_weight(const Scene& scene, const PathState& state, const Light& light, const Vec3& p,
                                       const Vec3& n, const Vec3& d, const BSDFContext& ctx) const;
+    /// The technique credited with an emitter that BSDF sampling reached (statistics only).
+    virtual Technique emitter_hit_technique(const PathState& /*state*/) const { return Technique::BsdfHit; }
     /// Called when the path arrives at `si` along `ray` (before connecting or scattering).
     virtual void on_arrival(PathState& /*state*/, const SurfaceInteraction& /*si*/, const Ray& /*ray*/,
                             const BSDFContext& /*ctx*/) const {}

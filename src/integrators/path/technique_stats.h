@@ -1,0 +1,47 @@
+#pragma once
+// Which technique of the path-tracing family produced each part of a sample's radiance, and the
+// per-sample statistics of each (issue 10: "each technique's mean and relative variance of
+// contributions"). A few fireflies of one technique dominate an image's error; these moments
+// say which technique they come from before anyone tunes anything.
+#include <array>
+#include <cstdint>
+
+#include "core/sampled_spectrum.h"
+
+namespace snell {
+
+enum class Technique : uint8_t {
+    Emitted,        ///< an emitter seen directly by the camera (or escaped to the environment)
+    BsdfHit,        ///< an emitter reached by BSDF sampling after a non-refractive vertex
+    BsdfRefracted,  ///< an emitter reached by BSDF sampling through refractive interfaces after x_b
+    Nee,            ///< next event estimation (a shadow ray)
+    MneeStraight,   ///< MNEE: the solution walked from the straight seed (paper Alg. 1)
+    MneeSurface,    ///< MNEE: solutions walked from seeds sampled on the caster shapes (SMS)
+};
+inline constexpr int kTechniqueCount = 6;
+
+/// The short names used in the statistics ("path.technique.<name>").
+const char* technique_name(Technique t);
+
+/// What one light connection contributes, by technique (to be multiplied by the path's
+/// throughput).
+struct LightConnection {
+    std::array<SampledSpectrum, kTechniqueCount> by{};
+    void add(Technique t, const SampledSpectrum& v) { by[size_t(t)] += v; }
+};
+
+/// One camera sample's luminance (CIE Y, divided by the wavelengths' density) per technique.
+class TechniqueLog {
+public:
+    void add(Technique t, const SampledSpectrum& v, const SampledWavelengths& wl) {
+        if (v.is_nonzero()) y[size_t(t)] += wl.to_xyz(v).y;
+    }
+    /// Adds this sample's value of every technique (zeros included) to the render's
+    /// statistics ("path.technique.<name>", StatMoments).
+    void record() const;
+
+private:
+    std::array<double, kTechniqueCount> y{};
+};
+
+}  // namespace snell
