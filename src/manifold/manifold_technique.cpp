@@ -101,8 +101,18 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
 bool ManifoldTechnique::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster,
                                       const Vec2& u, const LightPoint& lp, HalfVectorDraws& draws, int max_k,
                                       std::vector<ManifoldVertex>* chain) const {
-    if (trace_surface_seed(*m_scene, *q.xb, caster, u, ctx.hero(), *m_settings, draws, chain) != SurfaceSeedEnd::Ok)
-        return false;
+    // The side the seed starts from; with both, u.x picks it and is stretched back to [0, 1).
+    SurfaceSide side = m_settings->surface_side;
+    Vec2 v = u;
+    if (side == SurfaceSide::Both) {
+        side = u.x < 0.5 ? SurfaceSide::Receiver : SurfaceSide::Light;
+        v.x = u.x < 0.5 ? 2 * u.x : 2 * u.x - 1;
+    }
+    const SurfaceSeedEnd end =
+        side == SurfaceSide::Receiver
+            ? trace_surface_seed(*m_scene, *q.xb, caster, v, ctx.hero(), *m_settings, draws, chain)
+            : trace_light_seed(*m_scene, lp.p, caster, v, ctx.hero(), *m_settings, draws, chain);
+    if (end != SurfaceSeedEnd::Ok) return false;
     if (max_k >= 0 && int(chain->size()) > max_k) return false;
     // Which solution the seed walks to is all a trial asks: no visibility rays, no measurement.
     if (mnee_walk(*m_scene, *m_settings, *q.xb, *q.bsdf_b, lp, *chain, draws, /*trial_only=*/true) !=

@@ -14,6 +14,9 @@ enum class MneeSeeding { Straight, Surface, StraightAndSurface };
 /// unbiased, one surface solution per caster weighted by a geometric estimate of 1 / p (Specular
 /// Manifold Sampling's estimator), plus the straight seed's.
 enum class MneeSolutions { One, All, Unbiased };
+/// (surface_side) where a surface seed starts: at x_b (SMS's seeds), at the light point (traced
+/// through the glass from the light), or either with probability 1/2.
+enum class SurfaceSide { Receiver, Light, Both };
 
 struct MneeSettings {
     int max_vertices = 8;           ///< (max_vertices) refractive vertices collected on a seed path
@@ -38,9 +41,10 @@ struct MneeSettings {
     /// (trials) surface seeds per caster and light connection: every one walked (solutions=all),
     /// or the first round M of solutions=unbiased (the scene parameter defaults to 1 there)
     int trials = 16;
-    /// (max_trials) cap M on the Bernoulli trials of solutions=unbiased: the estimate of 1 / p is
-    /// min(N, M), whose expectation (1 - (1 - p)^M) / p is short of 1 / p by the factor (1 - p)^M.
+    /// (max_trials) cap C on the Bernoulli trials of solutions=unbiased: its estimate of 1 / p is
+    /// short by the factor (1 - p)^C (docs/mnee.md).
     int max_trials = 256;
+    SurfaceSide surface_side = SurfaceSide::Receiver;
     WalkSettings walk;  ///< (max_iterations, threshold, allow_error_increase, projection)
 };
 

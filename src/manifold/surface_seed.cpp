@@ -1,5 +1,6 @@
 #include "manifold/surface_seed.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "bsdf/bsdf.h"
@@ -33,14 +34,13 @@ bool refract_about(const Vec3& d, Vec3 m, double n1, double n2, Vec3* out) {
     return true;
 }
 
-SurfaceSeedEnd trace(const Scene& scene, const SurfaceInteraction& xb, const Shape& caster, const Vec2& u,
-                     double lambda, const MneeSettings& settings, HalfVectorDraws& draws,
-                     std::vector<ManifoldVertex>* chain) {
+// Follows `ray` (aimed at a point of `caster`) through every refractive interface it meets,
+// refracting about each vertex's target half vector (`draws` slot i, in hit order) or, without
+// `draws`, about the shading normal, until it meets anything else or leaves the scene.
+SurfaceSeedEnd trace_through(const Scene& scene, Ray ray, const Shape& caster, double lambda,
+                             const MneeSettings& settings, HalfVectorDraws* draws, std::vector<ManifoldVertex>* chain) {
     chain->clear();
-    const auto y = caster.sample_from(xb.p, u);
-    if (!y) return SurfaceSeedEnd::MissedCaster;
-    Ray ray = scene.spawn_ray_to(xb, y->p);
-    ray.tmax = kInfinity;  // beyond y too: the first hit must be the caster, wherever on it
+    ray.tmax = kInfinity;  // beyond the drawn point too: the first hit must be the caster, wherever on it
     for (int i = 0;; ++i) {
         SurfaceInteraction si;
         if (!scene.intersect(ray, &si)) break;
@@ -51,7 +51,7 @@ SurfaceSeedEnd trace(const Scene& scene, const SurfaceInteraction& xb, const Sha
         ManifoldVertex v = ManifoldVertex::from_interaction(si, bsdf->eta(lambda));
         // The vertex's target half vector (slot i, as set_half_vectors reads it), in world space
         // on the side of n.
-        const Vec2 h = target_half_vector(v, i, draws);
+        const Vec2 h = draws ? target_half_vector(v, i, *draws) : Vec2(0, 0);
         v.h_target = h;
         const Vec3 m = v.s * h.x + v.t * h.y + v.n * std::sqrt(std::max(0.0, 1 - h.x * h.x - h.y * h.y));
         const bool entering = dot(ray.d, v.ng) < 0;
@@ -69,7 +69,30 @@ SurfaceSeedEnd trace(const Scene& scene, const SurfaceInteraction& xb, const Sha
 SurfaceSeedEnd trace_surface_seed(const Scene& scene, const SurfaceInteraction& xb, const Shape& caster, const Vec2& u,
                                   double lambda, const MneeSettings& settings, HalfVectorDraws& draws,
                                   std::vector<ManifoldVertex>* chain) {
-    const SurfaceSeedEnd end = trace(scene, xb, caster, u, lambda, settings, draws, chain);
+    const auto y = caster.sample_from(xb.p, u);
+    const SurfaceSeedEnd end =
+        y ? trace_through(scene, scene.spawn_ray_to(xb, y->p), caster, lambda, settings, &draws, chain)
+          : SurfaceSeedEnd::MissedCaster;
+    walk_counters::surface_seed_end.add(uint32_t(end));
+    return end;
+}
+
+SurfaceSeedEnd trace_light_seed(const Scene& scene, const Vec3& xc, const Shape& caster, const Vec2& u, double lambda,
+                                const MneeSettings& settings, HalfVectorDraws& draws,
+                                std::vector<ManifoldVertex>* chain) {
+    SurfaceSeedEnd end = SurfaceSeedEnd::MissedCaster;
+    if (const auto y = caster.sample_from(xc, u)) {
+        Ray ray{xc, normalize(y->p - xc), 0.0, kInfinity};
+        ray.tmin = scene.ray_epsilon();
+        end = trace_through(scene, ray, caster, lambda, settings, nullptr, chain);
+    }
+    if (end == SurfaceSeedEnd::Ok) {
+        // Traced from the light: the chain runs x_c -> x_b. Reverse it and give each vertex the
+        // target of its slot counted from x_b.
+        std::reverse(chain->begin(), chain->end());
+        for (size_t i = 0; i < chain->size(); ++i)
+            (*chain)[i].h_target = target_half_vector((*chain)[i], int(i), draws);
+    }
     walk_counters::surface_seed_end.add(uint32_t(end));
     return end;
 }

@@ -35,4 +35,14 @@ SurfaceSeedEnd trace_surface_seed(const Scene& scene, const SurfaceInteraction& 
                                   double lambda, const MneeSettings& settings, HalfVectorDraws& draws,
                                   std::vector<ManifoldVertex>* chain);
 
+/// The same from the light's side: draws y on `caster` as seen from the light point `xc`, traces
+/// xc -> y and refracts about the shading normals until the ray meets anything else; the chain
+/// is then ordered from x_b and each vertex gets its slot's target half vector. The walk then
+/// moves its last segment's end onto x_b. Where the glass focuses light onto x_b, many directions
+/// from the light land near it: such seeds find the bright solutions near a caustic's fold (whose
+/// basins, seen from x_b, are small) with a high probability.
+SurfaceSeedEnd trace_light_seed(const Scene& scene, const Vec3& xc, const Shape& caster, const Vec2& u, double lambda,
+                                const MneeSettings& settings, HalfVectorDraws& draws,
+                                std::vector<ManifoldVertex>* chain);
+
 }  // namespace snell

@@ -9,10 +9,12 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <map>
 
 #include "manifold/manifold_technique.h"
 #include "manifold/seed_path.h"
 #include "manifold/sphere_exact.h"
+#include "manifold/surface_seed.h"
 #include "sampler/independent.h"
 #include "stat/droplet_points.h"
 #include "stat/render_stats.h"
@@ -435,4 +437,171 @@ TEST(ManifoldSolutions, TrialCapBiasMatchesFormula) {
             return sum;
         }() << ")\n";
     EXPECT_NEAR(mean.mean(), expected, 4.5 * mean.stderr_() + 0.01 * expected);
+}
+
+namespace {
+
+// The glass sphere scene without its cube: glass (IOR 1.5) resting on the floor, a point light
+// where the scene's sphere light is. A floor point in its shadow sees the light through two
+// refractions.
+const Vec3 kGlassCentre(0, 1, 0);
+constexpr double kGlassEta = 1.5;
+const Vec3 kGlassLight(-3, 6, -2);
+
+LoadedScene glass_sphere() {
+    return load_xml(R"(<scene version="3.0.0"><integrator type="mnee"/>
+  <sensor type="perspective"><transform name="to_world"><lookat origin="0,3,5" target="0,0,0" up="0,1,0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>
+  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><scale value="10"/></transform></shape>
+  <shape type="sphere"><point name="center" x="0" y="1" z="0"/><float name="radius" value="1"/>
+    <bsdf type="dielectric"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/></bsdf></shape>
+  <emitter type="point"><point name="position" x="-3" y="6" z="-2"/><rgb name="intensity" value="40, 40, 40"/></emitter>
+</scene>)");
+}
+
+// The floor point (on a 0.05 grid) with the most exact paths through the glass, at least 0.02
+// apart; `histogram` counts the grid's points by their number of paths.
+Vec3 glass_receiver_with_most_paths(size_t* count, std::map<size_t, int>* histogram = nullptr) {
+    Vec3 at;
+    *count = 0;
+    for (double x = -0.5; x < 2.01; x += 0.05)
+        for (double z = -0.5; z < 2.01; z += 0.05) {
+            const auto roots =
+                sphere_two_refraction_roots(kGlassCentre, 1.0, kGlassEta, Vec3(x, 0, z), kGlassLight, 4000);
+            if (histogram) (*histogram)[roots.size()]++;
+            double gap = kInfinity;
+            for (size_t i = 0; i < roots.size(); ++i)
+                for (size_t j = i + 1; j < roots.size(); ++j) gap = std::min(gap, length(roots[i].v1 - roots[j].v1));
+            if (roots.size() > *count && gap > 0.02) {
+                *count = roots.size();
+                at = Vec3(x, 0, z);
+            }
+        }
+    return at;
+}
+
+}  // namespace
+
+// Through two interfaces (a receiver outside the glass): an exhaustive search in the meridian
+// plane finds up to three paths from floor points near the sphere's caustic (the paraxial one
+// and, past the fold, two more). The `all` estimator finds every one of them, each where the
+// search puts both its vertices, and the paper's straight seed at most one.
+TEST(ManifoldSolutions, AllMatchesBruteForceThroughTwoInterfaces) {
+    size_t count = 0;
+    std::map<size_t, int> receivers_by_count;
+    const Vec3 at = glass_receiver_with_most_paths(&count, &receivers_by_count);
+    std::cout << "[two interfaces] receivers by number of exact paths:";
+    for (const auto& [n, k] : receivers_by_count) std::cout << " " << n << ": " << k;
+    std::cout << "; most at (" << at.x << ", " << at.z << "): " << count << "\n";
+    ASSERT_GE(count, 2u);
+
+    const LoadedScene ls = glass_sphere();
+    const SurfaceInteraction xb = droplet_receiver(*ls.scene, at.x, at.z, 0.5);
+    ASSERT_NEAR(xb.p.y, 0.0, 1e-6);
+    const auto exact = sphere_two_refraction_roots(kGlassCentre, 1.0, kGlassEta, xb.p, kGlassLight);
+    ASSERT_EQ(exact.size(), count);
+    const Light& light = *ls.scene->lights()[0];
+    const SampledWavelengths wl = SampledWavelengths::single(550);
+    IndependentSampler smp(5);
+    smp.start_pixel_sample(0, 0, 0);
+    const auto ls_ = light.sample_li({xb.p, xb.n}, smp.next_2d(), wl);
+    ASSERT_TRUE(ls_);
+    const LightPoint lp = light_point(*ls.scene, light, *ls_, xb.p);
+    std::vector<ManifoldVertex> chain;
+    const SeedStatus status = trace_seed_path(*ls.scene, xb, lp.p, 550, MneeSettings(), &chain);
+    ASSERT_EQ(status, SeedStatus::Refractive) << "the receiver is not in the sphere's shadow";
+    const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false};
+    const SolutionSet set = ManifoldTechnique(*ls.scene, all_solutions(2000)).solve(q, light, 1.0, lp, chain, smp);
+    ASSERT_EQ(set.solutions.size(), count);
+    std::vector<bool> matched(count, false);
+    for (const ManifoldSolution& s : set.solutions) {
+        ASSERT_EQ(s.chain.size(), 2u);
+        size_t best = 0;
+        const auto dist = [&](size_t i) {
+            return std::max(length(exact[i].v1 - s.chain[0].p), length(exact[i].v2 - s.chain[1].p));
+        };
+        for (size_t i = 1; i < count; ++i)
+            if (dist(i) < dist(best)) best = i;
+        EXPECT_LT(dist(best), 1e-6) << "a solution the exhaustive search does not have";
+        EXPECT_FALSE(matched[best]) << "two solutions at one exact path";
+        matched[best] = true;
+    }
+    std::vector<ManifoldVertex> seed;
+    trace_seed_path(*ls.scene, xb, lp.p, 550, MneeSettings(), &seed);
+    const ManifoldQuery q1{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false};
+    EXPECT_LE(ManifoldTechnique(*ls.scene, MneeSettings()).solve(q1, light, 1.0, lp, seed, smp).solutions.size(), 1u);
+}
+
+// The 1/p estimate against basins measured by brute force. At the three-path receiver behind the
+// glass, a dense grid over the surface seed's two numbers, each seed walked as a trial walks,
+// measures p_k, the share of seeds that reach path k. The unbiased estimator with surface seeds
+// alone (M = 1) finds path k with probability p_k and counts it N times; the mean N per path is
+// 1 / p_k within its confidence interval.
+TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
+    size_t count = 0;
+    const Vec3 at = glass_receiver_with_most_paths(&count);
+    ASSERT_EQ(count, 3u);
+    const LoadedScene ls = glass_sphere();
+    const Scene& scene = *ls.scene;
+    const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z, 0.5);
+    const auto exact = sphere_two_refraction_roots(kGlassCentre, 1.0, kGlassEta, xb.p, kGlassLight);
+    ASSERT_EQ(exact.size(), 3u);
+    const auto which = [&](const std::vector<ManifoldVertex>& chain) {
+        for (size_t k = 0; k < exact.size(); ++k)
+            if (chain.size() == 2 && length(exact[k].v1 - chain[0].p) < 1e-6 && length(exact[k].v2 - chain[1].p) < 1e-6)
+                return int(k);
+        return -1;
+    };
+    const Light& light = *scene.lights()[0];
+    const SampledWavelengths wl = SampledWavelengths::single(550);
+    IndependentSampler smp(3);
+    smp.start_pixel_sample(0, 0, 0);
+    const LightPoint lp = light_point(scene, light, *light.sample_li({xb.p, xb.n}, smp.next_2d(), wl), xb.p);
+    const Shape* glass = manifold_casters(scene, 550).at(0);
+
+    // Basins: a 300 x 300 grid of seeds (cell centres), each walked to its solution.
+    MneeSettings st = all_solutions(1);
+    st.solutions = MneeSolutions::Unbiased;
+    st.seeding = MneeSeeding::Surface;
+    st.max_trials = 1000000;
+    const int n = 300;
+    std::vector<double> p(exact.size(), 0.0);
+    HalfVectorDraws draws(smp);
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            std::vector<ManifoldVertex> chain;
+            if (trace_surface_seed(scene, xb, *glass, Vec2((i + 0.5) / n, (j + 0.5) / n), 550, st, draws, &chain) !=
+                SurfaceSeedEnd::Ok)
+                continue;
+            if (mnee_walk(scene, st, xb, *xb.bsdf(), lp, chain, draws, /*trial_only=*/true) != MneeOutcome::Success)
+                continue;
+            polish_solution(&scene, xb.p, chain, light_point_basis(lp.p, lp.n, normalize(lp.p - xb.p)), st.walk);
+            const int k = which(chain);
+            if (k >= 0) p[size_t(k)] += 1.0 / (n * n);
+        }
+
+    // The estimator: which path one trial finds, and N for it.
+    std::vector<Mean> counts(exact.size());
+    const int runs = 20000;
+    for (int run = 0; run < runs; ++run) {
+        IndependentSampler s(41);
+        s.start_pixel_sample(run, 0, 0);
+        std::vector<ManifoldVertex> none;
+        const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false, false};
+        for (const ManifoldSolution& sol : ManifoldTechnique(scene, st).solve(q, light, 1.0, lp, none, s).solutions) {
+            const int k = which(sol.chain);
+            ASSERT_GE(k, 0) << "a solution the exhaustive search does not have";
+            counts[size_t(k)].add(sol.count);
+        }
+    }
+    for (size_t k = 0; k < exact.size(); ++k) {
+        std::cout << "[basins] path " << k << ": p " << p[k] << " (found in " << double(counts[k].n) / runs
+                  << " of trials), 1/p " << 1 / p[k] << ", mean N " << counts[k].mean() << " +- " << counts[k].stderr_()
+                  << "\n";
+        ASSERT_GT(p[k], 0.001) << "path " << k << " has no measurable basin";
+        // The grid's own error: a cell is 1 / 90000 of the seed square; allow a few hundred cells.
+        const double grid_tolerance = 300.0 / (n * n) / p[k];
+        EXPECT_NEAR(counts[k].mean() * p[k], 1.0, 4.5 * counts[k].stderr_() * p[k] + grid_tolerance) << "path " << k;
+        EXPECT_NEAR(double(counts[k].n) / runs, p[k], 4.5 * std::sqrt(p[k] / runs) + 300.0 / (n * n)) << "path " << k;
+    }
 }

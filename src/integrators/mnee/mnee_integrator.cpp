@@ -67,6 +67,9 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     if (s.solutions != MneeSolutions::One && s.seeding == MneeSeeding::Straight)
         p.raise_param("solutions", "solutions=" + p.get_string("solutions") +
                                        " needs surface seeds: seeding=surface or straight+surface");
+    s.surface_side =
+        choice(p, "surface_side", s.surface_side,
+               {{"receiver", SurfaceSide::Receiver}, {"light", SurfaceSide::Light}, {"both", SurfaceSide::Both}});
     s.walk.projection = choice(p, "projection", s.walk.projection,
                                {{"closest_point", Projection::ClosestPoint}, {"raycast", Projection::RayCast}});
     if (s.max_vertices < 1 || s.max_vertices > RefractiveSuffix::kMaxVertices)
