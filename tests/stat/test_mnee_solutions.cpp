@@ -323,8 +323,9 @@ TEST(ManifoldSolutions, UnbiasedMeanIsTheSumOfEverySolution) {
     MneeSettings st = all_solutions(1);
     st.solutions = MneeSolutions::Unbiased;
     st.max_trials = 100000;
-    // Surface seeds alone: the straight seed's solution too is found by trials and counted N times;
-    // it has a large basin (p near 1), so an estimate of 1/p off by one trial shows there.
+    // Surface seeds alone: the straight seed's solution too is found by trials and counted N times.
+    // (Its basin is small here, p of a few per cent, so N off by one trial hides in the noise;
+    // InverseProbabilityMatchesBruteForceBasins sees that.)
     MneeSettings surface_only = st;
     surface_only.seeding = MneeSeeding::Surface;
     const MneeSettings paper;
@@ -348,39 +349,6 @@ TEST(ManifoldSolutions, UnbiasedMeanIsTheSumOfEverySolution) {
     EXPECT_NEAR(unbiased.mean(), exact, 4.5 * unbiased.stderr_() + 1e-9 * exact);
     EXPECT_NEAR(surface.mean(), exact, 4.5 * surface.stderr_() + 1e-9 * exact);
     EXPECT_LT(one.mean(), exact * (1 - 0.5 * share));
-}
-
-// With a first round of M = 3 trials, each distinct solution found counts ceil(N / 3) times (the
-// rounds up to the first that finds it again): the mean is again the sum of every solution. The
-// straight solution has p near 1 with surface seeds alone, so counting N / 3 instead of rounds
-// (or rounds off by one) shows there.
-TEST(ManifoldSolutions, UnbiasedWithAFirstRoundOfTrialsIsUnbiased) {
-    const LoadedScene ls = droplet();
-    const Scene& scene = *ls.scene;
-    SurfaceInteraction xb;
-    ASSERT_GT(strongest_second_branch(scene, &xb), 0.05);
-    double exact = 0;
-    for (const ManifoldSolution& s : solve(scene, xb, all_solutions(4000), 11).solutions) exact += s.value[0];
-    MneeSettings st = all_solutions(3);
-    st.solutions = MneeSolutions::Unbiased;
-    st.seeding = MneeSeeding::Surface;
-    st.max_trials = 100000;
-    Mean mean;
-    double counted = 0;
-    for (int run = 0; run < 10000; ++run) {
-        IndependentSampler smp(23);
-        smp.start_pixel_sample(run, 3, 0);
-        double v = 0;
-        for (const ManifoldSolution& s : solve(scene, xb, st, smp).solutions) {
-            v += s.count * s.value[0];
-            counted += s.count > 1 ? 1 : 0;
-        }
-        mean.add(v);
-    }
-    std::cout << "[unbiased M=3] every solution " << exact << ", mean " << mean.mean() << " +- " << mean.stderr_()
-              << "; solutions counted more than once: " << counted << "\n";
-    EXPECT_NEAR(mean.mean(), exact, 4.5 * mean.stderr_() + 1e-9 * exact);
-    EXPECT_GT(counted, 0) << "the rounds never exceeded one: the test cannot see the rounding";
 }
 
 // The cap of the 1/p estimate: with at most M trials the count is min(N, M), whose mean is
@@ -532,8 +500,8 @@ TEST(ManifoldSolutions, AllMatchesBruteForceThroughTwoInterfaces) {
     EXPECT_LE(ManifoldTechnique(*ls.scene, MneeSettings()).solve(q1, light, 1.0, lp, seed, smp).solutions.size(), 1u);
 }
 
-// The 1/p estimate against basins measured by brute force. At the three-path receiver behind the
-// glass, a dense grid over the surface seed's two numbers, each seed walked as a trial walks,
+// The 1/p estimate against basins measured by brute force (M = 1, SMS's), and rounds of M = 3. At the three-path
+// receiver behind the glass, a dense grid over the surface seed's two numbers, each seed walked as a trial walks,
 // measures p_k, the share of seeds that reach path k. The unbiased estimator with surface seeds
 // alone (M = 1) finds path k with probability p_k and counts it N times; the mean N per path is
 // 1 / p_k within its confidence interval.
@@ -594,6 +562,32 @@ TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
             counts[size_t(k)].add(sol.count);
         }
     }
+    // Rounds of M = 3 first trials: path k is found in the first round with probability
+    // q_k = 1 - (1 - p_k)^3 and then counts ceil(N / 3), of mean 1 / q_k; so its count (0 when
+    // not found) has mean 1. Counting N / 3 instead would give (1 / (3 p_k)) q_k: 0.85, 0.82 and
+    // 0.93 here.
+    MneeSettings rounds = st;
+    rounds.trials = 3;
+    std::vector<Mean> per_path(exact.size());
+    for (int run = 0; run < runs; ++run) {
+        IndependentSampler s(43);
+        s.start_pixel_sample(run, 0, 0);
+        std::vector<ManifoldVertex> none;
+        const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false, false};
+        std::vector<double> c(exact.size(), 0.0);
+        for (const ManifoldSolution& sol :
+             ManifoldTechnique(scene, rounds).solve(q, light, 1.0, lp, none, s).solutions) {
+            const int k = which(sol.chain);
+            ASSERT_GE(k, 0);
+            c[size_t(k)] += sol.count;
+        }
+        for (size_t k = 0; k < exact.size(); ++k) per_path[k].add(c[k]);
+    }
+    for (size_t k = 0; k < exact.size(); ++k) {
+        std::cout << "[basins] M = 3, path " << k << ": mean count " << per_path[k].mean() << " +- "
+                  << per_path[k].stderr_() << "\n";
+        EXPECT_NEAR(per_path[k].mean(), 1.0, 4.5 * per_path[k].stderr_()) << "path " << k;
+    }
     for (size_t k = 0; k < exact.size(); ++k) {
         std::cout << "[basins] path " << k << ": p " << p[k] << " (found in " << double(counts[k].n) / runs
                   << " of trials), 1/p " << 1 / p[k] << ", mean N " << counts[k].mean() << " +- " << counts[k].stderr_()
@@ -604,4 +598,44 @@ TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
         EXPECT_NEAR(counts[k].mean() * p[k], 1.0, 4.5 * counts[k].stderr_() * p[k] + grid_tolerance) << "path " << k;
         EXPECT_NEAR(double(counts[k].n) / runs, p[k], 4.5 * std::sqrt(p[k] / runs) + 300.0 / (n * n)) << "path " << k;
     }
+}
+
+// Alg. 2 (lines 5-7) credits MNEE with a path only if the straight seed walks to that very path.
+// At the three-path receiver behind the glass, the straight seed reaches one of them; Alg. 2's
+// density is positive for that one and zero for the other two (which only BSDF sampling and the
+// multi-solution estimators produce). An Alg. 2 that accepted any converged walk would give the
+// other two a density, and MIS would then take light from them that MNEE never delivers.
+TEST(ManifoldSolutions, Alg2CreditsOnlyTheSolutionTheStraightSeedReaches) {
+    size_t count = 0;
+    const Vec3 at = glass_receiver_with_most_paths(&count);
+    ASSERT_EQ(count, 3u);
+    const LoadedScene ls = glass_sphere();
+    const Scene& scene = *ls.scene;
+    const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z, 0.5);
+    const Light& light = *scene.lights()[0];
+    const SampledWavelengths wl = SampledWavelengths::single(550);
+    IndependentSampler smp(9);
+    smp.start_pixel_sample(0, 0, 0);
+    const LightPoint lp = light_point(scene, light, *light.sample_li({xb.p, xb.n}, smp.next_2d(), wl), xb.p);
+    std::vector<ManifoldVertex> seed;
+    ASSERT_EQ(trace_seed_path(scene, xb, lp.p, 550, MneeSettings(), &seed), SeedStatus::Refractive);
+    const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false};
+    const MneeSettings paper;
+    const SolutionSet straight = ManifoldTechnique(scene, paper).solve(q, light, 1.0, lp, seed, smp);
+    ASSERT_EQ(straight.solutions.size(), 1u);
+    const SolutionSet every = ManifoldTechnique(scene, all_solutions(2000)).solve(q, light, 1.0, lp, seed, smp);
+    ASSERT_EQ(every.solutions.size(), 3u);
+    int credited = 0;
+    for (const ManifoldSolution& s : every.solutions) {
+        const SurfaceInteraction path[2] = {s.chain[0].si, s.chain[1].si};
+        const double p = mnee_pdf(scene, paper, xb, *xb.bsdf(), path, 2, light, 1.0, lp.p, lp.n, 550);
+        const bool is_straight = same_solution(xb.p, s.chain, straight.solutions[0].chain, lp.p);
+        if (is_straight) {
+            EXPECT_GT(p, 0.0) << "Alg. 2 rejects the path its own seed walks to";
+            ++credited;
+        } else {
+            EXPECT_EQ(p, 0.0) << "Alg. 2 credits MNEE with a path its seed does not reach";
+        }
+    }
+    EXPECT_EQ(credited, 1);
 }
