@@ -139,9 +139,11 @@ double MneeIntegrator::emitter_hit_weight(const Scene& scene, const PathState& s
                              : 0.0;
     const double p_nee =
         s.specular[last] ? 0.0 : s.p_prefix * pmf * light_point_pdf(scene, light, s.chain[last].p, lp.p, lp.n);
-    // Sec. 3.5: outlier removal drops transmissive-suffix paths that MNEE cannot find (paths
-    // with an internal reflection are not MNEE's class and keep their weight).
-    if (m_mnee.biased && s.transmissions_only && !(p_mnee > 0)) return 0.0;
+    // Sec. 3.5: outlier removal drops the light that BSDF sampling finds through interfaces after
+    // x_b but MNEE cannot: transmissive suffixes its walks do not reach, and suffixes with an
+    // internal reflection (rare, bright hits through the glass: fireflies that no sample count
+    // averages away).
+    if (m_mnee.biased && !(p_mnee > 0)) return 0.0;
     return power_heuristic(p_bsdf, {p_mnee, p_nee});
 }
 
@@ -175,7 +177,8 @@ SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const S
 
 Technique MneeIntegrator::emitter_hit_technique(const PathState& state) const {
     const RefractiveSuffix& s = static_cast<const MneePathState&>(state).suffix;
-    return s.has_xb && s.k > 0 && s.transmissions_only ? Technique::BsdfRefracted : Technique::BsdfHit;
+    if (!s.has_xb || s.k == 0) return Technique::BsdfHit;
+    return s.transmissions_only ? Technique::BsdfRefracted : Technique::BsdfReflected;
 }
 
 void MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,

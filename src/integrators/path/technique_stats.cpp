@@ -1,5 +1,7 @@
 #include "integrators/path/technique_stats.h"
 
+#include <iterator>
+
 #include "core/stats.h"
 
 namespace snell {
@@ -9,17 +11,23 @@ StatMoments emitted{"path.technique.emitted", "per-sample luminance seen directl
 StatMoments bsdf_hit{"path.technique.bsdf_hit", "per-sample luminance of emitters hit by BSDF sampling"};
 StatMoments bsdf_refracted{"path.technique.bsdf_refracted",
                            "per-sample luminance of emitters hit by BSDF sampling through refractive interfaces"};
+StatMoments bsdf_reflected{
+    "path.technique.bsdf_reflected",
+    "per-sample luminance of emitters hit by BSDF sampling through interfaces with a reflection"};
 StatMoments nee{"path.technique.nee", "per-sample luminance of next event estimation"};
 StatMoments mnee_straight{"path.technique.mnee_straight", "per-sample luminance of MNEE's straight-seed solutions"};
 StatMoments mnee_surface{"path.technique.mnee_surface", "per-sample luminance of MNEE's surface-seed solutions"};
 StatMoments total{"path.sample", "per-sample luminance of camera paths (every technique)"};
-const std::array<StatMoments*, kTechniqueCount> kStats = {&emitted, &bsdf_hit,      &bsdf_refracted,
-                                                          &nee,     &mnee_straight, &mnee_surface};
+// In Technique's order; the size check keeps a new technique from reading a missing entry.
+StatMoments* const kStats[] = {&emitted, &bsdf_hit,      &bsdf_refracted, &bsdf_reflected,
+                               &nee,     &mnee_straight, &mnee_surface};
+static_assert(std::size(kStats) == size_t(kTechniqueCount));
 }  // namespace
 
 const char* technique_name(Technique t) {
-    static const char* const names[kTechniqueCount] = {"emitted", "bsdf_hit",      "bsdf_refracted",
-                                                       "nee",     "mnee_straight", "mnee_surface"};
+    static const char* const names[] = {"emitted", "bsdf_hit",      "bsdf_refracted", "bsdf_reflected",
+                                        "nee",     "mnee_straight", "mnee_surface"};
+    static_assert(std::size(names) == size_t(kTechniqueCount));
     return names[size_t(t)];
 }
 

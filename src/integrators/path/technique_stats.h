@@ -14,11 +14,12 @@ enum class Technique : uint8_t {
     Emitted,        ///< an emitter seen directly by the camera (or escaped to the environment)
     BsdfHit,        ///< an emitter reached by BSDF sampling after a non-refractive vertex
     BsdfRefracted,  ///< an emitter reached by BSDF sampling through refractive interfaces after x_b
+    BsdfReflected,  ///< the same with an internal reflection among those interfaces (not MNEE's class)
     Nee,            ///< next event estimation (a shadow ray)
     MneeStraight,   ///< MNEE: the solution walked from the straight seed (paper Alg. 1)
     MneeSurface,    ///< MNEE: solutions walked from seeds sampled on the caster shapes (SMS)
 };
-inline constexpr int kTechniqueCount = 6;
+inline constexpr int kTechniqueCount = 7;
 
 /// The short names used in the statistics ("path.technique.<name>").
 const char* technique_name(Technique t);
