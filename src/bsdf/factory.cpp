@@ -2,6 +2,8 @@
 // bad values and unused parameters with their position in the scene file.
 #include "bsdf/factory.h"
 
+#include <algorithm>
+
 #include <cmath>
 
 #include "bsdf/conductor.h"
@@ -16,6 +18,9 @@
 namespace snell {
 
 namespace {
+
+/// Below this roughness (both alphas) a rough dielectric or conductor is built as the smooth one.
+constexpr double kEffectivelySmoothAlpha = 1e-3;
 
 /// An IOR given as a number or as one of Mitsuba's names ("water", "bk7", ...).
 double read_ior(const Props& p, const std::string& name, const std::string& def) {
@@ -113,6 +118,12 @@ std::shared_ptr<BSDF> build(const Props& p) {
     if (type == "roughdielectric") {
         auto distr = read_distribution(p);
         auto d = read_dielectric(p, true);
+        // Effectively smooth (pbrt-v4's rule): a microfacet lobe this narrow is a delta lobe that
+        // the rough model can only evaluate badly, so it becomes the smooth interface; a scene
+        // switches between smooth and rough glass with its alpha alone (-D alpha=0).
+        if (std::max(distr.alpha_u(), distr.alpha_v()) < kEffectivelySmoothAlpha)
+            return std::make_shared<DielectricBSDF>(d.int_ior, d.ext_ior, d.specular_reflectance,
+                                                    d.specular_transmittance, d.sigma_a);
         return std::make_shared<RoughDielectricBSDF>(distr, d.int_ior, d.ext_ior, d.specular_reflectance,
                                                      d.specular_transmittance, d.sigma_a);
     }
@@ -124,6 +135,9 @@ std::shared_ptr<BSDF> build(const Props& p) {
     if (type == "roughconductor") {
         auto distr = read_distribution(p);
         auto ior = read_conductor(p);
+        if (std::max(distr.alpha_u(), distr.alpha_v()) < kEffectivelySmoothAlpha)
+            return std::make_shared<ConductorBSDF>(
+                ior, p.get_spectrum("specular_reflectance", SpectrumUse::Reflectance, Spectrum::constant(1.0)));
         return std::make_shared<RoughConductorBSDF>(
             distr, ior, p.get_spectrum("specular_reflectance", SpectrumUse::Reflectance, Spectrum::constant(1.0)));
     }

@@ -236,6 +236,25 @@ TEST(BsdfFactory, BuildsEveryTypeWithMitsubaParameters) {
     }
 }
 
+// pbrt-v4's "effectively smooth" rule: below alpha 1e-3 (both directions) a rough dielectric or
+// conductor is built as the smooth one, so `-D alpha=0` makes a scene's glass smooth (a delta
+// lobe that MNEE treats as specular); at 1e-3 it stays rough.
+TEST(BsdfFactory, EffectivelySmoothRoughnessBuildsTheSmoothModel) {
+    const auto build = [](const char* type, double alpha) {
+        Props p = make(type);
+        p.set("alpha", alpha, kLoc);
+        return create_bsdf(p);
+    };
+    auto smooth = build("roughdielectric", 0.0);
+    ASSERT_NE(dynamic_cast<DielectricBSDF*>(smooth.get()), nullptr);
+    EXPECT_TRUE(smooth->has_delta());
+    EXPECT_EQ(smooth->microfacet(), nullptr);
+    EXPECT_NE(dynamic_cast<DielectricBSDF*>(build("roughdielectric", 0.0009).get()), nullptr);
+    EXPECT_NE(dynamic_cast<RoughDielectricBSDF*>(build("roughdielectric", 0.001).get()), nullptr);
+    EXPECT_NE(dynamic_cast<ConductorBSDF*>(build("roughconductor", 0.0).get()), nullptr);
+    EXPECT_NE(dynamic_cast<RoughConductorBSDF*>(build("roughconductor", 0.01).get()), nullptr);
+}
+
 TEST(BsdfFactory, RejectsBadInput) {
     auto throws = [](Props p) { EXPECT_THROW(create_bsdf(p), SceneError) << p.type(); };
     throws(make("velvet"));
