@@ -8,6 +8,10 @@
 #   caustic_equal_time.sh reference [seconds per case=2400]   results/caustics/ref_<case>.exr
 #   caustic_equal_time.sh render LABEL [seconds=30]            results/caustics/LABEL/<case>_<integ>.exr
 #   caustic_equal_time.sh score LABEL                          a table per case and crop
+#   caustic_equal_time.sh refcheck [seconds=600]               the references' own noise: a second
+#       reference (seed 78) for SECONDS, scored against the first; with the first's time T, the
+#       first's own relMSE is about that figure x SECONDS / (SECONDS + T)
+# CASES="droplet_a002" (say) limits the cases; droplet_smooth is the droplet with alpha 0.
 # SNELL=path/to/snell renders with another build (e.g. the one before issue 10); THREADS (2).
 source "$(dirname "$0")/common.sh"
 MODE=${1:?reference, render or score}
@@ -15,9 +19,9 @@ THREADS=${THREADS:-2}
 OUT=results/caustics
 mkdir -p "$OUT"
 
-CASES=(droplet_a002 glass_sphere)
+read -r -a CASES <<<"${CASES:-droplet_a002 glass_sphere droplet_smooth}"
 scene_of() { case $1 in droplet_*) echo scenes/droplet/droplet.xml ;; glass_sphere) echo scenes/glass_sphere/glass_sphere.xml ;; esac; }
-defines_of() { case $1 in droplet_a002) echo "-D alpha=0.02" ;; *) echo "" ;; esac; }
+defines_of() { case $1 in droplet_a002) echo "-D alpha=0.02" ;; droplet_smooth) echo "-D alpha=0" ;; *) echo "" ;; esac; }
 # The reference covers the union of a case's crops (x,y,w,h on the case's own film).
 ref_crop_of() { case $1 in droplet_*) echo 230,190,190,110 ;; glass_sphere) echo 140,70,260,285 ;; esac; }
 crops_of() { case $1 in droplet_*) echo "caustic:230,190,190,110" ;; glass_sphere) echo "caustic:260,290,140,65 cube:140,70,200,190" ;; esac; }
@@ -38,6 +42,7 @@ params_of() {
   case $1 in
     mnee_biased) echo '<boolean name="biased" value="true"/>' ;;
     mnee_unbiased) echo '<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/>' ;;
+    mnee_unbiased_biased) echo '<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/><boolean name="biased" value="true"/>' ;;
     *) echo "" ;;
   esac
 }
@@ -51,6 +56,22 @@ reference)
     # shellcheck disable=SC2046
     "$SNELL" render "$OUT/ref_$c.xml" $(defines_of "$c") -D integrator=bdpt --time "$T" -t "$THREADS" -q --seed 77 \
       -o "$OUT/ref_$c.exr"
+  done
+  ;;
+refcheck)
+  T=${2:-600}
+  for c in "${CASES[@]}"; do
+    [ -f "$OUT/ref_$c.exr" ] || continue
+    IFS=, read -r rx ry _ _ <<<"$(ref_crop_of "$c")"
+    with_crop "$(scene_of "$c")" "$OUT/ref2_$c.xml" "$(ref_crop_of "$c")"
+    # shellcheck disable=SC2046
+    "$SNELL" render "$OUT/ref2_$c.xml" $(defines_of "$c") -D integrator=bdpt --time "$T" -t "$THREADS" -q --seed 78 \
+      -o "$OUT/ref2_$c.exr"
+    for crop in $(crops_of "$c"); do
+      IFS=, read -r x y w h <<<"${crop#*:}"
+      "$SNELL" diff "$OUT/ref2_$c.exr" "$OUT/ref_$c.exr" --crop "$((x - rx)),$((y - ry)),$w,$h" | grep "^crop" \
+        | sed "s|^crop [0-9,]*|$c reference check ${crop%%:*}|"
+    done
   done
   ;;
 render)
@@ -74,7 +95,7 @@ score)
   LABEL=${2:?label}
   for c in "${CASES[@]}"; do
     IFS=, read -r rx ry _ _ <<<"$(ref_crop_of "$c")"
-    for integ in nee mnee mnee_biased mnee_unbiased; do
+    for integ in nee mnee mnee_biased mnee_unbiased mnee_unbiased_biased; do
       img="$OUT/$LABEL/${c}_$integ.exr"
       [ -f "$img" ] || continue
       spp=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['spp_reached'])" "${img%.exr}.json")

@@ -50,14 +50,13 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
     // Surface seeds on every caster, from their own stream (one sampler dimension in all).
     PCG32 rng(uint64_t(sampler.next_1d() * 0x1p53), 0x5eed);
     const double lambda = ctx.hero();
-    const auto next_u = [&rng] { return Vec2(rng.next_double(), rng.next_double()); };
     for (const Shape* caster : manifold_casters(*m_scene, lambda)) {
         if (st.solutions == MneeSolutions::All) {
             // Walk each seed to its solution first (no visibility, no measurement) and evaluate
             // only the new ones.
             for (int j = 0; j < st.trials; ++j) {
                 std::vector<ManifoldVertex> chain;
-                if (surface_trial(q, ctx, *caster, next_u(), lp, draws, max_k, &chain) &&
+                if (surface_trial(q, ctx, *caster, rng, lp, draws, max_k, &chain) &&
                     !holds_solution(out, before, slot, q.xb->p, chain, lp.p))
                     add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, true, out);
             }
@@ -75,7 +74,7 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
         std::vector<int> found;
         for (int j = 0; j < st.trials; ++j) {
             std::vector<ManifoldVertex> chain;
-            if (!surface_trial(q, ctx, *caster, next_u(), lp, draws, max_k, &chain)) continue;
+            if (!surface_trial(q, ctx, *caster, rng, lp, draws, max_k, &chain)) continue;
             if (holds_solution(out, before, slot, q.xb->p, chain, lp.p)) continue;
             const int index = add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, true, out);
             if (index >= 0) found.push_back(index);
@@ -84,7 +83,7 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
             int n = 1;
             for (; n <= st.max_trials; ++n) {
                 std::vector<ManifoldVertex> again;
-                if (surface_trial(q, ctx, *caster, next_u(), lp, draws, max_k, &again) &&
+                if (surface_trial(q, ctx, *caster, rng, lp, draws, max_k, &again) &&
                     same_solution(q.xb->p, again, out.solutions[size_t(index)].chain, lp.p))
                     break;
             }
@@ -98,9 +97,10 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
     walk_counters::solutions_per_connection.add(uint32_t(out.solutions.size() - size_t(before)));
 }
 
-bool ManifoldTechnique::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster,
-                                      const Vec2& u, const LightPoint& lp, HalfVectorDraws& draws, int max_k,
+bool ManifoldTechnique::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster, PCG32& rng,
+                                      const LightPoint& lp, HalfVectorDraws& draws, int max_k,
                                       std::vector<ManifoldVertex>* chain) const {
+    const Vec2 u(rng.next_double(), rng.next_double());
     // The side the seed starts from; with both, u.x picks it and is stretched back to [0, 1).
     SurfaceSide side = m_settings->surface_side;
     Vec2 v = u;
@@ -110,8 +110,8 @@ bool ManifoldTechnique::surface_trial(const ManifoldQuery& q, const BSDFContext&
     }
     const SurfaceSeedEnd end =
         side == SurfaceSide::Receiver
-            ? trace_surface_seed(*m_scene, *q.xb, caster, v, ctx.hero(), *m_settings, draws, chain)
-            : trace_light_seed(*m_scene, lp.p, caster, v, ctx.hero(), *m_settings, draws, chain);
+            ? trace_surface_seed(*m_scene, *q.xb, caster, v, ctx.hero(), *m_settings, draws, chain, &rng)
+            : trace_light_seed(*m_scene, lp.p, caster, v, ctx.hero(), *m_settings, draws, chain, &rng);
     if (end != SurfaceSeedEnd::Ok) return false;
     if (max_k >= 0 && int(chain->size()) > max_k) return false;
     // Which solution the seed walks to is all a trial asks: no visibility rays, no measurement.

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/medium_stack.h"
+#include "core/rng.h"
 #include "core/sampler.h"
 #include "manifold/light_point.h"
 #include "manifold/mnee.h"
@@ -67,7 +68,7 @@ private:
                      const LightPoint& lp, std::vector<ManifoldVertex> chain, HalfVectorDraws& draws, int max_k,
                      bool from_surface, SolutionSet& out) const;
     /// One surface seed on `caster` walked to a polished admissible path; false if it fails.
-    bool surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster, const Vec2& u,
+    bool surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster, PCG32& rng,
                        const LightPoint& lp, HalfVectorDraws& draws, int max_k,
                        std::vector<ManifoldVertex>* chain) const;
 

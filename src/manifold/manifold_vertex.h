@@ -27,6 +27,7 @@ struct ManifoldVertex {
     Vec3 ds_ds, ds_dt, dt_ds, dt_dt;  ///< frame derivatives along dp_ds and dp_dt
     double eta = 1;                   ///< IOR inside / outside at the path's wavelength (1: reflection only)
     Vec2 h_target;                    ///< target tangential half vector (0,0) for specular vertices
+    bool reflect = false;             ///< the chain asks this vertex to reflect (else to refract)
     const Shape* shape = nullptr;
     const BSDF* bsdf = nullptr;
     SurfaceInteraction si;  ///< full hit record at p

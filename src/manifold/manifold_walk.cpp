@@ -63,6 +63,7 @@ bool project_vertex(const Scene* scene, const ManifoldVertex& from, const Vec3& 
     }
     ManifoldVertex v = ManifoldVertex::from_interaction(si, from.eta);
     v.h_target = from.h_target;
+    v.reflect = from.reflect;
     v.bsdf = from.bsdf;
     *out = v;
     return true;

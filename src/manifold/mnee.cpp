@@ -31,7 +31,8 @@ bool admissible(const Vec3& xb, const std::vector<ManifoldVertex>& chain, const 
         const ManifoldVertex& v = chain[i];
         const Vec3 wi = normalize((i == 0 ? xb : chain[i - 1].p) - v.p);
         const Vec3 wo = normalize((i + 1 == chain.size() ? xc : chain[i + 1].p) - v.p);
-        if (!(dot(wi, v.ng) * dot(wo, v.ng) < 0)) return false;
+        // The scattering the chain asks of the vertex: wi and wo on one side (reflect) or not.
+        if ((dot(wi, v.ng) * dot(wo, v.ng) > 0) != v.reflect) return false;
         const Vec3 h = generalized_half_vector(v, wi, wo);
         if (!(dot(wi, h) * dot(wi, v.ng) > 0) || !(dot(wo, h) * dot(wo, v.ng) > 0)) return false;
     }
@@ -221,7 +222,7 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
         out.hero_only = out.hero_only || v.bsdf->dispersive();
         p_dH *= half_vector_density(v, generalized_half_vector(v, wi, wo));
         // Beer-Lambert inside absorbing interiors along the admissible path.
-        m.cross(v.bsdf->interior_absorption(), dot(wi, v.ng) > 0);
+        if (!v.reflect) m.cross(v.bsdf->interior_absorption(), dot(wi, v.ng) > 0);
         const Vec3 next = i + 1 < k ? chain[i + 1].p : xc;
         tr *= m.transmittance(length(next - v.p), ctx.wl);
         const Vec3 next_n = i + 1 < k ? chain[i + 1].ng : lp.n;
@@ -265,6 +266,13 @@ double solution_density(const Scene& scene, const MneeSettings& st, const Surfac
         const BSDF* b = path[i].bsdf();
         if (!is_manifold_interface(b, lambda) || path[i].emitter()) return 0;
         input[size_t(i)] = ManifoldVertex::from_interaction(path[i], b->eta(lambda));
+    }
+    // Each vertex as the path itself scatters there (reflections only with settings.reflections).
+    for (int i = 0; i < k; ++i) {
+        Vec3 wi, wo;
+        vertex_directions(xb.p, input, xc, size_t(i), &wi, &wo);
+        input[size_t(i)].reflect = dot(wi, input[size_t(i)].ng) * dot(wo, input[size_t(i)].ng) > 0;
+        if (input[size_t(i)].reflect && !st.reflections) return 0;
     }
     if (!admissible(xb.p, input, xc)) return 0;
     // The domain: refractive interfaces lie on the straight segment x_b -> x_c, blocked by an

@@ -45,6 +45,10 @@ struct MneeSettings {
     /// short by the factor (1 - p)^C (docs/mnee.md).
     int max_trials = 256;
     SurfaceSide surface_side = SurfaceSide::Receiver;
+    /// (reflections) surface seeds may reflect at an interface (with Fresnel's probability, and
+    /// always under total internal reflection), so that solutions=all and unbiased also find
+    /// paths with internal reflections, and take them from BSDF sampling by MIS.
+    bool reflections = false;
     WalkSettings walk;  ///< (max_iterations, threshold, allow_error_increase, projection)
 };
 

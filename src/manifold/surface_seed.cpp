@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "bsdf/bsdf.h"
+#include "bsdf/fresnel.h"
 #include "geometry/shape.h"
 #include "manifold/seed_path.h"
 #include "manifold/walk_counters.h"
@@ -38,7 +39,8 @@ bool refract_about(const Vec3& d, Vec3 m, double n1, double n2, Vec3* out) {
 // refracting about each vertex's target half vector (`draws` slot i, in hit order) or, without
 // `draws`, about the shading normal, until it meets anything else or leaves the scene.
 SurfaceSeedEnd trace_through(const Scene& scene, Ray ray, const Shape& caster, double lambda,
-                             const MneeSettings& settings, HalfVectorDraws* draws, std::vector<ManifoldVertex>* chain) {
+                             const MneeSettings& settings, HalfVectorDraws* draws, PCG32* scatter,
+                             std::vector<ManifoldVertex>* chain) {
     chain->clear();
     ray.tmax = kInfinity;  // beyond the drawn point too: the first hit must be the caster, wherever on it
     for (int i = 0;; ++i) {
@@ -56,8 +58,15 @@ SurfaceSeedEnd trace_through(const Scene& scene, Ray ray, const Shape& caster, d
         const Vec3 m = v.s * h.x + v.t * h.y + v.n * std::sqrt(std::max(0.0, 1 - h.x * h.x - h.y * h.y));
         const bool entering = dot(ray.d, v.ng) < 0;
         Vec3 d;
-        if (!refract_about(ray.d, m, entering ? 1.0 : v.eta, entering ? v.eta : 1.0, &d))
+        const bool refracts = refract_about(ray.d, m, entering ? 1.0 : v.eta, entering ? v.eta : 1.0, &d);
+        if (settings.reflections && scatter) {
+            // Reflect with Fresnel's probability (always under total internal reflection).
+            const double r = fresnel_dielectric(std::abs(dot(ray.d, m)), entering ? v.eta : 1.0 / v.eta).R;
+            v.reflect = !refracts || scatter->next_double() < r;
+            if (v.reflect) d = ray.d - m * (2 * dot(ray.d, m));
+        } else if (!refracts) {
             return SurfaceSeedEnd::TotalInternalReflection;
+        }
         chain->push_back(v);
         ray = scene.spawn_ray(si, d);
     }
@@ -68,10 +77,10 @@ SurfaceSeedEnd trace_through(const Scene& scene, Ray ray, const Shape& caster, d
 
 SurfaceSeedEnd trace_surface_seed(const Scene& scene, const SurfaceInteraction& xb, const Shape& caster, const Vec2& u,
                                   double lambda, const MneeSettings& settings, HalfVectorDraws& draws,
-                                  std::vector<ManifoldVertex>* chain) {
+                                  std::vector<ManifoldVertex>* chain, PCG32* scatter) {
     const auto y = caster.sample_from(xb.p, u);
     const SurfaceSeedEnd end =
-        y ? trace_through(scene, scene.spawn_ray_to(xb, y->p), caster, lambda, settings, &draws, chain)
+        y ? trace_through(scene, scene.spawn_ray_to(xb, y->p), caster, lambda, settings, &draws, scatter, chain)
           : SurfaceSeedEnd::MissedCaster;
     walk_counters::surface_seed_end.add(uint32_t(end));
     return end;
@@ -79,12 +88,12 @@ SurfaceSeedEnd trace_surface_seed(const Scene& scene, const SurfaceInteraction& 
 
 SurfaceSeedEnd trace_light_seed(const Scene& scene, const Vec3& xc, const Shape& caster, const Vec2& u, double lambda,
                                 const MneeSettings& settings, HalfVectorDraws& draws,
-                                std::vector<ManifoldVertex>* chain) {
+                                std::vector<ManifoldVertex>* chain, PCG32* scatter) {
     SurfaceSeedEnd end = SurfaceSeedEnd::MissedCaster;
     if (const auto y = caster.sample_from(xc, u)) {
         Ray ray{xc, normalize(y->p - xc), 0.0, kInfinity};
         ray.tmin = scene.ray_epsilon();
-        end = trace_through(scene, ray, caster, lambda, settings, nullptr, chain);
+        end = trace_through(scene, ray, caster, lambda, settings, nullptr, scatter, chain);
     }
     if (end == SurfaceSeedEnd::Ok) {
         // Traced from the light: the chain runs x_c -> x_b. Reverse it and give each vertex the

@@ -5,6 +5,7 @@
 // of the constraints has a nonzero chance to be the one the walk from such a seed reaches.
 #include <vector>
 
+#include "core/rng.h"
 #include "core/vector.h"
 #include "geometry/interaction.h"
 #include "manifold/half_vectors.h"
@@ -30,10 +31,12 @@ std::vector<const Shape*> manifold_casters(const Scene& scene, double lambda);
 /// Draws y on `caster` as seen from x_b (u), traces x_b -> y, and refracts at every refractive
 /// interface hit about the vertex's target half vector (slot i of `draws`: the shading normal for
 /// smooth vertices), until the ray meets anything else or leaves the scene. Fills `chain` with
-/// the interface vertices (h_target set).
+/// the interface vertices (h_target set). With settings.reflections and a `scatter` stream, a
+/// vertex reflects instead with Fresnel's probability (always under total internal reflection)
+/// and is marked `reflect`.
 SurfaceSeedEnd trace_surface_seed(const Scene& scene, const SurfaceInteraction& xb, const Shape& caster, const Vec2& u,
                                   double lambda, const MneeSettings& settings, HalfVectorDraws& draws,
-                                  std::vector<ManifoldVertex>* chain);
+                                  std::vector<ManifoldVertex>* chain, PCG32* scatter = nullptr);
 
 /// The same from the light's side: draws y on `caster` as seen from the light point `xc`, traces
 /// xc -> y and refracts about the shading normals until the ray meets anything else; the chain
@@ -43,6 +46,6 @@ SurfaceSeedEnd trace_surface_seed(const Scene& scene, const SurfaceInteraction& 
 /// basins, seen from x_b, are small) with a high probability.
 SurfaceSeedEnd trace_light_seed(const Scene& scene, const Vec3& xc, const Shape& caster, const Vec2& u, double lambda,
                                 const MneeSettings& settings, HalfVectorDraws& draws,
-                                std::vector<ManifoldVertex>* chain);
+                                std::vector<ManifoldVertex>* chain, PCG32* scatter = nullptr);
 
 }  // namespace snell

@@ -308,3 +308,18 @@ TEST(MneeAgreement, GlassAroundAnOpaqueBallAgreesAndMneeFindsThePathsAroundIt) {
     expect_mnee_matches_nee(with_ball(scene_with(smooth_water(), unbiased)), 256, 32,
                             "unbiased, glass around an opaque ball", with_ball(scene_with(smooth_water())));
 }
+
+// With reflections, surface seeds also reflect (Fresnel's probability), so the multi-solution
+// estimators find paths with an internal reflection too and MIS shares that light with BSDF
+// sampling: the image still agrees with nee. (A reflection counted with the wrong medium or
+// Fresnel factor, or a density that misses the reflection paths, breaks the agreement; that the
+// seeds do reach such paths is ManifoldSolutions.ReflectionsFindPathsWithAnInternalReflection.)
+TEST(MneeAgreement, UnbiasedWithReflectionsAgreesWithNee) {
+    const std::string with =
+        R"(<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/>
+      <boolean name="reflections" value="true"/>)";
+    expect_mnee_matches_nee(scene_with(smooth_water(), with), 256, 32, "unbiased with reflections, smooth",
+                            scene_with(smooth_water()));
+    expect_mnee_matches_nee(scene_with(rough_water(0.1), with), 256, 32, "unbiased with reflections, rough 0.1",
+                            scene_with(rough_water(0.1)));
+}

@@ -639,3 +639,52 @@ TEST(ManifoldSolutions, Alg2CreditsOnlyTheSolutionTheStraightSeedReaches) {
     }
     EXPECT_EQ(credited, 1);
 }
+
+// Surface seeds that may reflect (reflections=true) find paths with internal reflections: at
+// floor points behind the glass sphere, `all` with reflecting seeds finds solutions with reflect
+// vertices (x_b, into the glass, one or more reflections inside, out, the light), each vertex
+// scattering as its chain asks (the law of reflection where it reflects), with a positive value
+// and density; without reflections no solution has one.
+TEST(ManifoldSolutions, ReflectionsFindPathsWithAnInternalReflection) {
+    const LoadedScene ls = glass_sphere();
+    const Scene& scene = *ls.scene;
+    const Light& light = *scene.lights()[0];
+    const SampledWavelengths wl = SampledWavelengths::single(550);
+    MneeSettings st = all_solutions(1000);
+    st.reflections = true;
+    int with_reflection = 0, without = 0;
+    for (const Vec2& at : {Vec2(0.5, 0.5), Vec2(0.0, 1.0), Vec2(0.25, 1.25), Vec2(-0.5, 0.5)}) {
+        const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.y, 0.5);
+        IndependentSampler smp(5);
+        smp.start_pixel_sample(0, 0, 0);
+        const LightPoint lp = light_point(scene, light, *light.sample_li({xb.p, xb.n}, smp.next_2d(), wl), xb.p);
+        std::vector<ManifoldVertex> seed;
+        ASSERT_EQ(trace_seed_path(scene, xb, lp.p, 550, MneeSettings(), &seed), SeedStatus::Refractive);
+        const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false};
+        for (const ManifoldSolution& s : ManifoldTechnique(scene, st).solve(q, light, 1.0, lp, seed, smp).solutions) {
+            bool reflects = false;
+            for (size_t i = 0; i < s.chain.size(); ++i) {
+                const Vec3 wi = normalize((i == 0 ? xb.p : s.chain[i - 1].p) - s.chain[i].p);
+                const Vec3 wo = normalize((i + 1 == s.chain.size() ? lp.p : s.chain[i + 1].p) - s.chain[i].p);
+                EXPECT_EQ(dot(wi, s.chain[i].ng) * dot(wo, s.chain[i].ng) > 0, s.chain[i].reflect)
+                    << "a vertex scatters other than its chain asks";
+                if (!s.chain[i].reflect) continue;
+                reflects = true;
+                EXPECT_LT(length(cross(wi + wo, s.chain[i].n)), 1e-6) << "not the law of reflection";
+            }
+            if (!reflects) continue;
+            ++with_reflection;
+            EXPECT_GT(s.value[0], 0.0);
+            EXPECT_GT(s.density, 0.0);
+        }
+        IndependentSampler again(5);
+        again.start_pixel_sample(0, 0, 0);
+        again.next_2d();
+        for (const ManifoldSolution& s :
+             ManifoldTechnique(scene, all_solutions(1000)).solve(q, light, 1.0, lp, seed, again).solutions)
+            for (const ManifoldVertex& v : s.chain) without += v.reflect ? 1 : 0;
+    }
+    std::cout << "[reflections] solutions with an internal reflection: " << with_reflection << "\n";
+    EXPECT_GT(with_reflection, 0);
+    EXPECT_EQ(without, 0);
+}

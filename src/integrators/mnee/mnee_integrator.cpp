@@ -70,6 +70,9 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     s.surface_side =
         choice(p, "surface_side", s.surface_side,
                {{"receiver", SurfaceSide::Receiver}, {"light", SurfaceSide::Light}, {"both", SurfaceSide::Both}});
+    s.reflections = p.get_bool("reflections", s.reflections);
+    if (s.reflections && s.solutions == MneeSolutions::One)
+        p.raise_param("reflections", "reflections need the surface seeds of solutions=all or unbiased");
     s.walk.projection = choice(p, "projection", s.walk.projection,
                                {{"closest_point", Projection::ClosestPoint}, {"raycast", Projection::RayCast}});
     if (s.max_vertices < 1 || s.max_vertices > RefractiveSuffix::kMaxVertices)
@@ -134,9 +137,9 @@ double MneeIntegrator::emitter_hit_weight(const Scene& scene, const PathState& s
     const size_t last = size_t(s.k - 1);
     const double p_bsdf = s.p_prefix * s.q_last * std::abs(dot(lp.n, d)) / length_squared(lp.p - s.chain[last].p);
     const double p_mnee =
-        s.transmissions_only ? ManifoldTechnique(scene, m_mnee)
-                                   .density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light, pmf, lp.p, lp.n, ctx.hero())
-                             : 0.0;
+        covers(s, true) ? ManifoldTechnique(scene, m_mnee)
+                              .density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light, pmf, lp.p, lp.n, ctx.hero())
+                        : 0.0;
     const double p_nee =
         s.specular[last] ? 0.0 : s.p_prefix * pmf * light_point_pdf(scene, light, s.chain[last].p, lp.p, lp.n);
     // Sec. 3.5: outlier removal drops the light that BSDF sampling finds through interfaces after
@@ -167,12 +170,17 @@ SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const S
     const double p_bsdf =
         lp.delta ? 0.0 : s.p_prefix * bsdf.pdf(ctx, wo, wi) * std::abs(dot(lp.n, ls->wi)) / length_squared(lp.p - si.p);
     const bool refracts = dot(si.wo, si.ng) * dot(ls->wi, si.ng) < 0;
-    const double p_mnee = s.transmissions_only && refracts ? ManifoldTechnique(scene, m_mnee)
-                                                                 .density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k,
-                                                                          *light, pmf, lp.p, lp.n, ctx.hero())
-                                                           : 0.0;
-    if (m_mnee.biased && s.transmissions_only && refracts && !(p_mnee > 0)) return {};
+    const double p_mnee =
+        covers(s, refracts) ? ManifoldTechnique(scene, m_mnee)
+                                  .density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k, *light, pmf, lp.p, lp.n, ctx.hero())
+                            : 0.0;
+    if (m_mnee.biased && covers(s, refracts) && !(p_mnee > 0)) return {};
     return nee_estimate(si, bsdf, ctx, state.media, *ls, f, pmf, power_heuristic(p_nee, {p_bsdf, p_mnee}));
+}
+
+bool MneeIntegrator::covers(const RefractiveSuffix& s, bool last_refracts) const {
+    if (m_mnee.reflections && m_mnee.solutions != MneeSolutions::One) return true;
+    return s.transmissions_only && last_refracts;
 }
 
 Technique MneeIntegrator::emitter_hit_technique(const PathState& state) const {

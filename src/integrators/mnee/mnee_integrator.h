@@ -43,6 +43,11 @@ private:
     SampledSpectrum connect_at_interface(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
                                          const BSDFContext& ctx, const PathState& state, Sampler& sampler) const;
 
+    /// Whether the manifold technique can produce a path whose suffix after x_b is `s` (the
+    /// last vertex refracting or not): refractions only, or any suffix when its surface seeds
+    /// also reflect (solutions=all or unbiased with reflections).
+    bool covers(const RefractiveSuffix& s, bool last_refracts) const;
+
     MneeSettings m_mnee;
 };
 
