@@ -42,6 +42,7 @@ params_of() {
   case $1 in
     mnee_biased) echo '<boolean name="biased" value="true"/>' ;;
     mnee_unbiased) echo '<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/>' ;;
+    mnee_reflections) echo '<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/><boolean name="reflections" value="true"/>' ;;
     mnee_unbiased_biased) echo '<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/><boolean name="biased" value="true"/>' ;;
     *) echo "" ;;
   esac
@@ -95,7 +96,7 @@ score)
   LABEL=${2:?label}
   for c in "${CASES[@]}"; do
     IFS=, read -r rx ry _ _ <<<"$(ref_crop_of "$c")"
-    for integ in nee mnee mnee_biased mnee_unbiased mnee_unbiased_biased; do
+    for integ in nee mnee mnee_biased mnee_unbiased mnee_unbiased_biased mnee_reflections; do
       img="$OUT/$LABEL/${c}_$integ.exr"
       [ -f "$img" ] || continue
       spp=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['spp_reached'])" "${img%.exr}.json")
