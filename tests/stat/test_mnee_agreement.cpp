@@ -257,6 +257,10 @@ TEST(MneeAgreement, EverySolutionEstimatorsAgreeWithNee) {
                             scene_with(smooth_water()));
     expect_mnee_matches_nee(scene_with(rough_water(0.1), unbiased), 256, 32, "unbiased, rough 0.1",
                             scene_with(rough_water(0.1)));
+    // The roughnesses for every unbiased setting: 0.02 and 0.2.
+    for (const double alpha : {0.02, 0.2})
+        expect_mnee_matches_nee(scene_with(rough_water(alpha), unbiased), 256, 32,
+                                ("unbiased, rough " + std::to_string(alpha)).c_str(), scene_with(rough_water(alpha)));
 }
 
 namespace {
