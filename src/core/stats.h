@@ -123,6 +123,8 @@ public:
         add_bits(s[2], x * x);
         if (x > from_bits(s[3])) s[3] = to_bits(x);
     }
+    /// add(0), cheaper: a zero changes only the count.
+    void add_zero() { detail::thread_stat_slots()[m_slot]++; }
     uint32_t slot() const { return m_slot; }
 
     static double from_bits(uint64_t b) {

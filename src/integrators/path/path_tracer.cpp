@@ -59,7 +59,7 @@ SampledSpectrum PathTracer::trace(const Ray& camera_ray, const Scene& scene, Sam
     TechniqueLog log;  // the same radiance by technique, for the statistics
     const auto add = [&](Technique t, const SampledSpectrum& v) {
         L += v;
-        log.add(t, v, wl);
+        log.add(t, v);
     };
     Throughput tp;
     Ray ray = camera_ray;
@@ -113,7 +113,7 @@ SampledSpectrum PathTracer::trace(const Ray& camera_ray, const Scene& scene, Sam
         ray = scene.spawn_ray(si, bs_world.wi);
         if (depth + 1 >= m_settings.rr_depth && !tp.survives_roulette(sampler.next_1d())) break;
     }
-    log.record();
+    log.record(wl);
     return L;
 }
 

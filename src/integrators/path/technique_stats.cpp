@@ -31,11 +31,17 @@ const char* technique_name(Technique t) {
     return names[size_t(t)];
 }
 
-void TechniqueLog::record() const {
+void TechniqueLog::record(const SampledWavelengths& wl) const {
     double sum = 0;
     for (int i = 0; i < kTechniqueCount; ++i) {
-        kStats[size_t(i)]->add(y[size_t(i)]);
-        sum += y[size_t(i)];
+        const SampledSpectrum& v = m_by[size_t(i)];
+        if (v.is_zero()) {
+            kStats[size_t(i)]->add_zero();
+            continue;
+        }
+        const double y = wl.to_xyz(v).y;
+        kStats[size_t(i)]->add(y);
+        sum += y;
     }
     total.add(sum);
 }

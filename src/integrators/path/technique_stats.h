@@ -31,18 +31,17 @@ struct LightConnection {
     void add(Technique t, const SampledSpectrum& v) { by[size_t(t)] += v; }
 };
 
-/// One camera sample's luminance (CIE Y, divided by the wavelengths' density) per technique.
+/// One camera sample's radiance per technique; converted to luminance once, when recorded.
 class TechniqueLog {
 public:
-    void add(Technique t, const SampledSpectrum& v, const SampledWavelengths& wl) {
-        if (v.is_nonzero()) y[size_t(t)] += wl.to_xyz(v).y;
-    }
-    /// Adds this sample's value of every technique (zeros included) to the render's
-    /// statistics ("path.technique.<name>", StatMoments).
-    void record() const;
+    void add(Technique t, const SampledSpectrum& v) { m_by[size_t(t)] += v; }
+    /// Adds this sample's luminance (CIE Y, divided by the wavelengths' density) of every
+    /// technique (zeros included) to the render's statistics ("path.technique.<name>",
+    /// StatMoments), and their sum to "path.sample".
+    void record(const SampledWavelengths& wl) const;
 
 private:
-    std::array<double, kTechniqueCount> y{};
+    std::array<SampledSpectrum, kTechniqueCount> m_by{};
 };
 
 }  // namespace snell
