@@ -22,6 +22,9 @@ SeedStatus trace_seed_path(const Scene& scene, const SurfaceInteraction& xb, con
             if (int(chain->size()) >= settings.max_vertices) return SeedStatus::TooMany;
             chain->push_back(ManifoldVertex::from_interaction(si, bsdf->eta(lambda)));
         } else if (!settings.ignore_occluders) {
+            // The paper's estimator stops at a blocker; only the surface seeds of the
+            // multi-solution estimators need to know whether glass lies beyond it.
+            if (settings.solutions == MneeSolutions::One) return SeedStatus::Occluded;
             blocked = true;
         }
         ray = scene.spawn_ray_to(si, xc);

@@ -31,7 +31,9 @@ bool is_manifold_interface(const BSDF* bsdf, double lambda);
 
 /// Traces the straight segment from `xb` to `xc` and collects the refractive vertices
 /// (h_target zero; the half-vector sampler sets it). With settings.ignore_occluders, opaque
-/// surfaces on the segment are not reported (Refractive or Clear).
+/// surfaces on the segment are not reported (Refractive or Clear). With solutions=one a blocked
+/// segment is Occluded at its first blocker (BlockedRefractive only for the multi-solution
+/// estimators, which trace on).
 SeedStatus trace_seed_path(const Scene& scene, const SurfaceInteraction& xb, const Vec3& xc, double lambda,
                            const MneeSettings& settings, std::vector<ManifoldVertex>* chain);
 

@@ -255,10 +255,8 @@ TEST(MneeAgreement, EverySolutionEstimatorsAgreeWithNee) {
         R"(<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/>)";
     expect_mnee_matches_nee(scene_with(smooth_water(), unbiased), 256, 32, "unbiased, smooth",
                             scene_with(smooth_water()));
-    expect_mnee_matches_nee(scene_with(rough_water(0.1), unbiased), 256, 32, "unbiased, rough 0.1",
-                            scene_with(rough_water(0.1)));
-    // The issue's roughnesses for every unbiased setting: 0.02 and 0.2.
-    for (const double alpha : {0.02, 0.2})
+    // Rough: the issue's roughnesses 0.02 and 0.2, and 0.1.
+    for (const double alpha : {0.02, 0.1, 0.2})
         expect_mnee_matches_nee(scene_with(rough_water(alpha), unbiased), 256, 32,
                                 ("unbiased, rough " + std::to_string(alpha)).c_str(), scene_with(rough_water(alpha)));
 }
@@ -315,9 +313,10 @@ TEST(MneeAgreement, GlassAroundAnOpaqueBallAgreesAndMneeFindsThePathsAroundIt) {
 
 // With reflections, surface seeds also reflect (Fresnel's probability), so the multi-solution
 // estimators find paths with an internal reflection too and MIS shares that light with BSDF
-// sampling: the image still agrees with nee. (A reflection counted with the wrong medium or
-// Fresnel factor, or a density that misses the reflection paths, breaks the agreement; that the
-// seeds do reach such paths is ManifoldSolutions.ReflectionsFindPathsWithAnInternalReflection.)
+// sampling: the image still agrees with nee, so the density and MIS changes leave the rest of
+// the light intact. It cannot see errors in the reflection paths' own value: they carry too
+// little light here (a reflection factor doubled passes; see docs/testing.md). That the seeds
+// reach such paths is ManifoldSolutions.ReflectionsFindPathsWithAnInternalReflection.
 TEST(MneeAgreement, UnbiasedWithReflectionsAgreesWithNee) {
     const std::string with =
         R"(<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/>

@@ -101,28 +101,11 @@ TEST(MneeEstimator, MatchesBsdfSamplingOfTheSamePaths) {
         }
         for (int n = 0; n < 200000; ++n) {
             // Diffuse sampling at x_b, then refractions only, until the light.
-            double v = 0;
-            auto bs = xb.bsdf()->sample(kCtx, xb.to_local(xb.wo), smp.next_1d(), smp.next_2d());
-            if (bs) {
-                double beta = bs->weight[0];
-                Ray ray = scene.spawn_ray(xb, xb.to_world(bs->wi));
-                std::vector<SurfaceInteraction> chain;
-                SurfaceInteraction h;
-                for (int d = 0; d < 6 && scene.intersect(ray, &h); ++d) {
-                    if (h.emitter()) {
-                        const double pdf = chain.empty() ? 0.0
-                                                         : mnee_pdf(scene, st, xb, *xb.bsdf(), chain.data(),
-                                                                    int(chain.size()), light, 1.0, h.p, h.n, 550);
-                        if (pdf > 0) v = beta * h.emitter()->le(h.p, h.n, -ray.d, kCtx.wl)[0];
-                        break;
-                    }
-                    auto b2 = h.bsdf()->sample(kCtx, h.to_local(h.wo), smp.next_1d(), smp.next_2d());
-                    if (!b2 || !(b2->lobe & kTransmission)) break;
-                    chain.push_back(h);
-                    beta *= b2->weight[0];
-                    ray = scene.spawn_ray(h, h.to_world(b2->wi));
-                }
-            }
+            const double v = refracted_light_sample(
+                scene, xb, kCtx, smp, [&](const std::vector<SurfaceInteraction>& chain, const SurfaceInteraction& h) {
+                    return !chain.empty() && mnee_pdf(scene, st, xb, *xb.bsdf(), chain.data(), int(chain.size()), light,
+                                                      1.0, h.p, h.n, 550) > 0;
+                });
             bsdf.add(v);
         }
         const double se = std::sqrt(sqr(mnee.stderr_()) + sqr(bsdf.stderr_()));

@@ -67,7 +67,6 @@ SolutionSet solve(const Scene& scene, const SurfaceInteraction& xb, const MneeSe
     std::vector<ManifoldVertex> chain;
     const SeedStatus status = trace_seed_path(scene, xb, lp.p, 550, st, &chain);
     if (status != SeedStatus::Refractive && status != SeedStatus::BlockedRefractive) return {};
-    if (status == SeedStatus::BlockedRefractive && st.solutions == MneeSolutions::One) return {};
     const ManifoldQuery q{&xb,
                           xb.bsdf(),
                           BSDFContext{wl, TransportMode::Radiance},
@@ -177,7 +176,8 @@ TEST(ManifoldSolutions, SurfaceSeedsFindThePathsBesideABlockedStraightSeed) {
     visible = visible_roots(ball, xb.p);
     ASSERT_GE(visible.size(), 1u);
     std::vector<ManifoldVertex> seed;
-    ASSERT_EQ(trace_seed_path(*ls.scene, xb, kLight, 550, MneeSettings(), &seed), SeedStatus::BlockedRefractive);
+    ASSERT_EQ(trace_seed_path(*ls.scene, xb, kLight, 550, all_solutions(1), &seed), SeedStatus::BlockedRefractive);
+    ASSERT_EQ(trace_seed_path(*ls.scene, xb, kLight, 550, MneeSettings(), &seed), SeedStatus::Occluded);
 
     EXPECT_TRUE(solve(*ls.scene, xb, MneeSettings(), 7).solutions.empty()) << "the paper's seed is blocked";
     const SolutionSet set = solve(*ls.scene, xb, all_solutions(2000), 7);
@@ -217,25 +217,9 @@ TEST(ManifoldSolutions, AllEstimatesEveryRefractedPath) {
     }
     for (int n = 0; n < 2000000; ++n) {
         // Diffuse sampling at x_b, then refractions only, until the light.
-        double v = 0;
-        auto bs = xb.bsdf()->sample(ctx, xb.to_local(xb.wo), smp.next_1d(), smp.next_2d());
-        if (bs) {
-            double beta = bs->weight[0];
-            Ray ray = scene.spawn_ray(xb, xb.to_world(bs->wi));
-            SurfaceInteraction h;
-            bool refracted = false;
-            for (int d = 0; d < 6 && scene.intersect(ray, &h); ++d) {
-                if (h.emitter()) {
-                    if (refracted) v = beta * h.emitter()->le(h.p, h.n, -ray.d, ctx.wl)[0];
-                    break;
-                }
-                auto b2 = h.bsdf()->sample(ctx, h.to_local(h.wo), smp.next_1d(), smp.next_2d());
-                if (!b2 || !(b2->lobe & kTransmission)) break;
-                refracted = true;
-                beta *= b2->weight[0];
-                ray = scene.spawn_ray(h, h.to_world(b2->wi));
-            }
-        }
+        const double v = refracted_light_sample(
+            scene, xb, ctx, smp,
+            [](const std::vector<SurfaceInteraction>& chain, const SurfaceInteraction&) { return !chain.empty(); });
         bsdf.add(v);
     }
     const double se = std::sqrt(sqr(all.stderr_()) + sqr(bsdf.stderr_()));
@@ -427,25 +411,44 @@ LoadedScene glass_sphere() {
 </scene>)");
 }
 
-// The floor point (on a 0.05 grid) with the most exact paths through the glass, at least 0.02
-// apart; `histogram` counts the grid's points by their number of paths.
-Vec3 glass_receiver_with_most_paths(size_t* count, std::map<size_t, int>* histogram = nullptr) {
+// The light point the scene's first light gives x_b for the sampler's next pair, at 550 nm.
+LightPoint first_light_point(const Scene& scene, const SurfaceInteraction& xb, Sampler& smp) {
+    const Light& light = *scene.lights()[0];
+    return light_point(scene, light,
+                       light.sample_li({xb.p, xb.n}, smp.next_2d(), SampledWavelengths::single(550)).value(), xb.p);
+}
+
+struct MostPaths {
     Vec3 at;
-    *count = 0;
-    for (double x = -0.5; x < 2.01; x += 0.05)
-        for (double z = -0.5; z < 2.01; z += 0.05) {
-            const auto roots =
-                sphere_two_refraction_roots(kGlassCentre, 1.0, kGlassEta, Vec3(x, 0, z), kGlassLight, 4000);
-            if (histogram) (*histogram)[roots.size()]++;
-            double gap = kInfinity;
-            for (size_t i = 0; i < roots.size(); ++i)
-                for (size_t j = i + 1; j < roots.size(); ++j) gap = std::min(gap, length(roots[i].v1 - roots[j].v1));
-            if (roots.size() > *count && gap > 0.02) {
-                *count = roots.size();
-                at = Vec3(x, 0, z);
+    size_t count = 0;
+    std::map<size_t, int> histogram;  ///< grid points by their number of paths
+};
+
+// The floor point (on a 0.05 grid) with the most exact paths through the glass, at least 0.02
+// apart; searched once for every test that needs it.
+const MostPaths& glass_receiver_with_most_paths() {
+    static const MostPaths found = [] {
+        MostPaths m;
+        size_t* count = &m.count;
+        Vec3& at = m.at;
+        std::map<size_t, int>* histogram = &m.histogram;
+        for (double x = -0.5; x < 2.01; x += 0.05)
+            for (double z = -0.5; z < 2.01; z += 0.05) {
+                const auto roots =
+                    sphere_two_refraction_roots(kGlassCentre, 1.0, kGlassEta, Vec3(x, 0, z), kGlassLight, 4000);
+                (*histogram)[roots.size()]++;
+                double gap = kInfinity;
+                for (size_t i = 0; i < roots.size(); ++i)
+                    for (size_t j = i + 1; j < roots.size(); ++j)
+                        gap = std::min(gap, length(roots[i].v1 - roots[j].v1));
+                if (roots.size() > *count && gap > 0.02) {
+                    *count = roots.size();
+                    at = Vec3(x, 0, z);
+                }
             }
-        }
-    return at;
+        return m;
+    }();
+    return found;
 }
 
 }  // namespace
@@ -455,11 +458,11 @@ Vec3 glass_receiver_with_most_paths(size_t* count, std::map<size_t, int>* histog
 // and, past the fold, two more). The `all` estimator finds every one of them, each where the
 // search puts both its vertices, and the paper's straight seed at most one.
 TEST(ManifoldSolutions, AllMatchesBruteForceThroughTwoInterfaces) {
-    size_t count = 0;
-    std::map<size_t, int> receivers_by_count;
-    const Vec3 at = glass_receiver_with_most_paths(&count, &receivers_by_count);
+    const MostPaths& most = glass_receiver_with_most_paths();
+    const Vec3 at = most.at;
+    const size_t count = most.count;
     std::cout << "[two interfaces] receivers by number of exact paths:";
-    for (const auto& [n, k] : receivers_by_count) std::cout << " " << n << ": " << k;
+    for (const auto& [n, k] : most.histogram) std::cout << " " << n << ": " << k;
     std::cout << "; most at (" << at.x << ", " << at.z << "): " << count << "\n";
     ASSERT_GE(count, 2u);
 
@@ -472,9 +475,7 @@ TEST(ManifoldSolutions, AllMatchesBruteForceThroughTwoInterfaces) {
     const SampledWavelengths wl = SampledWavelengths::single(550);
     IndependentSampler smp(5);
     smp.start_pixel_sample(0, 0, 0);
-    const auto ls_ = light.sample_li({xb.p, xb.n}, smp.next_2d(), wl);
-    ASSERT_TRUE(ls_);
-    const LightPoint lp = light_point(*ls.scene, light, *ls_, xb.p);
+    const LightPoint lp = first_light_point(*ls.scene, xb, smp);
     std::vector<ManifoldVertex> chain;
     const SeedStatus status = trace_seed_path(*ls.scene, xb, lp.p, 550, MneeSettings(), &chain);
     ASSERT_EQ(status, SeedStatus::Refractive) << "the receiver is not in the sphere's shadow";
@@ -506,9 +507,8 @@ TEST(ManifoldSolutions, AllMatchesBruteForceThroughTwoInterfaces) {
 // alone (M = 1) finds path k with probability p_k and counts it N times; the mean N per path is
 // 1 / p_k within its confidence interval.
 TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
-    size_t count = 0;
-    const Vec3 at = glass_receiver_with_most_paths(&count);
-    ASSERT_EQ(count, 3u);
+    const Vec3 at = glass_receiver_with_most_paths().at;
+    ASSERT_EQ(glass_receiver_with_most_paths().count, 3u);
     const LoadedScene ls = glass_sphere();
     const Scene& scene = *ls.scene;
     const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z, 0.5);
@@ -524,7 +524,7 @@ TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
     const SampledWavelengths wl = SampledWavelengths::single(550);
     IndependentSampler smp(3);
     smp.start_pixel_sample(0, 0, 0);
-    const LightPoint lp = light_point(scene, light, *light.sample_li({xb.p, xb.n}, smp.next_2d(), wl), xb.p);
+    const LightPoint lp = first_light_point(scene, xb, smp);
     const Shape* glass = manifold_casters(scene, 550).at(0);
 
     // Basins: a 300 x 300 grid of seeds (cell centres), each walked to its solution.
@@ -606,9 +606,8 @@ TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
 // multi-solution estimators produce). An Alg. 2 that accepted any converged walk would give the
 // other two a density, and MIS would then take light from them that MNEE never delivers.
 TEST(ManifoldSolutions, Alg2CreditsOnlyTheSolutionTheStraightSeedReaches) {
-    size_t count = 0;
-    const Vec3 at = glass_receiver_with_most_paths(&count);
-    ASSERT_EQ(count, 3u);
+    const Vec3 at = glass_receiver_with_most_paths().at;
+    ASSERT_EQ(glass_receiver_with_most_paths().count, 3u);
     const LoadedScene ls = glass_sphere();
     const Scene& scene = *ls.scene;
     const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z, 0.5);
@@ -616,7 +615,7 @@ TEST(ManifoldSolutions, Alg2CreditsOnlyTheSolutionTheStraightSeedReaches) {
     const SampledWavelengths wl = SampledWavelengths::single(550);
     IndependentSampler smp(9);
     smp.start_pixel_sample(0, 0, 0);
-    const LightPoint lp = light_point(scene, light, *light.sample_li({xb.p, xb.n}, smp.next_2d(), wl), xb.p);
+    const LightPoint lp = first_light_point(scene, xb, smp);
     std::vector<ManifoldVertex> seed;
     ASSERT_EQ(trace_seed_path(scene, xb, lp.p, 550, MneeSettings(), &seed), SeedStatus::Refractive);
     const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false};
@@ -657,7 +656,7 @@ TEST(ManifoldSolutions, ReflectionsFindPathsWithAnInternalReflection) {
         const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.y, 0.5);
         IndependentSampler smp(5);
         smp.start_pixel_sample(0, 0, 0);
-        const LightPoint lp = light_point(scene, light, *light.sample_li({xb.p, xb.n}, smp.next_2d(), wl), xb.p);
+        const LightPoint lp = first_light_point(scene, xb, smp);
         std::vector<ManifoldVertex> seed;
         ASSERT_EQ(trace_seed_path(scene, xb, lp.p, 550, MneeSettings(), &seed), SeedStatus::Refractive);
         const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false};

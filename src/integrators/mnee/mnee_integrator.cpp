@@ -221,10 +221,9 @@ void MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteracti
             ++walk_counters::seeds_occluded;
             return;
         case SeedStatus::BlockedRefractive:
-            // The paper's seed is blocked; the multi-solution estimators' surface seeds may
-            // still find refracted paths around the blocker (an object inside glass).
+            // (Multi-solution estimators only.) The straight seed is blocked; the surface seeds
+            // may still find refracted paths around the blocker (an object inside glass).
             ++walk_counters::seeds_occluded;
-            if (m_mnee.solutions == MneeSolutions::One) return;
             break;
         case SeedStatus::TooMany:
             ++walk_counters::seeds_too_many;
