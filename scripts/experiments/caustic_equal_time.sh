@@ -44,6 +44,10 @@ params_of() {
     mnee_unbiased) echo '<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/>' ;;
     mnee_reflections) echo '<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/><boolean name="reflections" value="true"/>' ;;
     mnee_unbiased_biased) echo '<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/><boolean name="biased" value="true"/>' ;;
+    mnee_paper) echo '<string name="solutions" value="one"/>' ;;
+    mnee_paperbiased) echo '<string name="solutions" value="one"/><boolean name="biased" value="true"/>' ;;
+    mnee_fallback) echo '<string name="solutions" value="fallback"/>' ;;
+    mnee_fallback_biased) echo '<string name="solutions" value="fallback"/><boolean name="biased" value="true"/>' ;;
     *) echo "" ;;
   esac
 }
@@ -96,7 +100,7 @@ score)
   LABEL=${2:?label}
   for c in "${CASES[@]}"; do
     IFS=, read -r rx ry _ _ <<<"$(ref_crop_of "$c")"
-    for integ in nee mnee mnee_biased mnee_unbiased mnee_unbiased_biased mnee_reflections; do
+    for integ in nee mnee mnee_biased mnee_paper mnee_paperbiased mnee_unbiased mnee_unbiased_biased mnee_reflections mnee_fallback mnee_fallback_biased; do
       img="$OUT/$LABEL/${c}_$integ.exr"
       [ -f "$img" ] || continue
       spp=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['spp_reached'])" "${img%.exr}.json")

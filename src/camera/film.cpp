@@ -27,8 +27,19 @@ PixelDominance pixel_dominance(const Film& film) {
             const double share = film.largest_sample_share(x, y);
             if (!(share > 0)) continue;
             ++d.pixels;
-            if (share > PixelDominance::kThreshold) ++d.dominated;
             d.max_share = std::max(d.max_share, share);
+            if (!(share > PixelDominance::kThreshold)) continue;
+            ++d.dominated;
+            double around = 0;
+            int n = 0;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int u = x + dx, v = y + dy;
+                    if ((dx == 0 && dy == 0) || u < 0 || v < 0 || u >= film.width() || v >= film.height()) continue;
+                    around += film.xyz(u, v).y;
+                    ++n;
+                }
+            if (film.largest_sample_y(x, y) > PixelDominance::kOutlierRatio * around / std::max(n, 1)) ++d.outliers;
         }
     return d;
 }

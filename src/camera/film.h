@@ -46,6 +46,8 @@ public:
         const size_t i = size_t(y) * m_w + x;
         return m_xyz[i].y > 0 ? std::min(1.0, m_max_y[i] / m_xyz[i].y) : 0.0;
     }
+    /// The largest luminance (Y) one of the pixel's samples carried.
+    double largest_sample_y(int x, int y) const { return m_max_y[size_t(y) * m_w + x]; }
     /// Adds a splat to `layer` (0: the image, k > 0: debug layer k).
     void add_splat(int x, int y, const Vec3& xyz, int layer = 0) {
         if (size_t(layer) >= m_splats.size()) m_splats.resize(size_t(layer) + 1);
@@ -85,6 +87,12 @@ struct PixelDominance {
     uint64_t pixels = 0;     ///< pixels with a positive luminance sum
     uint64_t dominated = 0;  ///< of those, pixels whose largest sample carries > kThreshold
     double max_share = 0;    ///< the largest share of any pixel
+    /// A dominated pixel is dominated by an outlier when its largest sample also exceeds this
+    /// many times the mean luminance of its (up to) eight neighbours. A pixel at a sharp
+    /// caustic's edge, where one of its samples lands in the caustic, is dominated by that
+    /// sample, but the sample is no brighter than the lit pixels beside it; a firefly is.
+    static constexpr double kOutlierRatio = 10;
+    uint64_t outliers = 0;  ///< dominated pixels whose largest sample is an outlier
 };
 /// Film::largest_sample_share over the film's pixels.
 PixelDominance pixel_dominance(const Film& film);

@@ -56,7 +56,11 @@ void to_json(nlohmann::json& j, const RenderReport& r) {
         {"paths_per_second", r.paths_per_second()},
         {"rays_per_second", r.rays_per_second()},
         {"discarded", {{"nan", r.discarded_nan}, {"inf", r.discarded_inf}, {"negative", r.discarded_negative}}},
-        {"dominance", {{"pixels", r.pixels}, {"dominated", r.pixels_dominated}, {"max_share", r.max_sample_share}}},
+        {"dominance",
+         {{"pixels", r.pixels},
+          {"dominated", r.pixels_dominated},
+          {"outliers", r.pixels_outlier},
+          {"max_share", r.max_sample_share}}},
         {"extra", r.extra},
         {"counters", r.counters},
     };
@@ -90,6 +94,7 @@ void from_json(const nlohmann::json& j, RenderReport& r) {
         if (auto it = d->find("pixels"); it != d->end()) it->get_to(r.pixels);
         if (auto it = d->find("dominated"); it != d->end()) it->get_to(r.pixels_dominated);
         if (auto it = d->find("max_share"); it != d->end()) it->get_to(r.max_sample_share);
+        if (auto it = d->find("outliers"); it != d->end()) it->get_to(r.pixels_outlier);
     }
     if (auto it = j.find("extra"); it != j.end()) r.extra = *it;
     if (auto it = j.find("counters"); it != j.end()) r.counters = *it;

@@ -32,7 +32,7 @@ struct RenderReport {
     /// Pixel dominance (render/renderer.h PixelDominance), written under "dominance": pixels
     /// with a positive sum, those where one sample carries more than half of it, and the
     /// largest such share.
-    uint64_t pixels = 0, pixels_dominated = 0;
+    uint64_t pixels = 0, pixels_dominated = 0, pixels_outlier = 0;
     double max_sample_share = 0;
     /// Free-form technique statistics (e.g. MNEE walk outcomes); written under "extra".
     nlohmann::json extra = nlohmann::json::object();

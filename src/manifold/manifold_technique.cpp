@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/rng.h"
+#include "manifold/seed_path.h"
 #include "manifold/surface_seed.h"
 #include "manifold/walk_counters.h"
 
@@ -47,6 +48,8 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
     if (q.straight_seed && (st.solutions == MneeSolutions::One || st.seeding != MneeSeeding::Surface))
         add_solution(q, ctx, slot, light, pmf, lp, seed, draws, max_k, false, out);
     if (st.solutions == MneeSolutions::One || st.seeding == MneeSeeding::Straight) return;
+    // fallback: the surface seeds run only where an opaque surface blocks the straight seed.
+    if (st.solutions == MneeSolutions::Fallback && q.straight_seed) return;
     // Surface seeds on every caster, from their own stream (one sampler dimension in all).
     PCG32 rng(uint64_t(sampler.next_1d() * 0x1p53), 0x5eed);
     const double lambda = ctx.hero();
@@ -100,20 +103,44 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
 bool ManifoldTechnique::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster, PCG32& rng,
                                       const LightPoint& lp, HalfVectorDraws& draws, int max_k,
                                       std::vector<ManifoldVertex>* chain) const {
-    const Vec2 u(rng.next_double(), rng.next_double());
-    // The side the seed starts from; with both, u.x picks it and is stretched back to [0, 1).
-    SurfaceSide side = m_settings->surface_side;
-    Vec2 v = u;
-    if (side == SurfaceSide::Both) {
-        side = u.x < 0.5 ? SurfaceSide::Receiver : SurfaceSide::Light;
-        v.x = u.x < 0.5 ? 2 * u.x : 2 * u.x - 1;
+    const MneeSettings& st = *m_settings;
+    // Seeds from x_b: the best of `seed_candidates` traced seeds, the one whose last ray passes
+    // closest to the light point (tracing is cheap, walks are not). Any fixed procedure is a
+    // valid trial: the 1 / p estimate repeats the same one, and every solution keeps p > 0 (its
+    // neighbourhood passes closest with positive probability).
+    if (st.surface_side == SurfaceSide::Receiver) {
+        double best = kInfinity;
+        std::vector<ManifoldVertex> candidate;
+        for (int c = 0; c < st.seed_candidates; ++c) {
+            const Vec2 u(rng.next_double(), rng.next_double());
+            Vec3 exit_dir;
+            if (trace_surface_seed(*m_scene, *q.xb, caster, u, ctx.hero(), st, draws, &candidate, &rng, &exit_dir) !=
+                SurfaceSeedEnd::Ok)
+                continue;
+            if (max_k >= 0 && int(candidate.size()) > max_k) continue;
+            const double miss = st.seed_candidates > 1 ? seed_miss(candidate, exit_dir, lp.p) : 0.0;
+            if (miss < best) {
+                best = miss;
+                std::swap(*chain, candidate);
+            }
+        }
+        if (best == kInfinity) return false;
+    } else {
+        const Vec2 u(rng.next_double(), rng.next_double());
+        // With both, u.x picks the side and is stretched back to [0, 1).
+        SurfaceSide side = st.surface_side;
+        Vec2 v = u;
+        if (side == SurfaceSide::Both) {
+            side = u.x < 0.5 ? SurfaceSide::Receiver : SurfaceSide::Light;
+            v.x = u.x < 0.5 ? 2 * u.x : 2 * u.x - 1;
+        }
+        const SurfaceSeedEnd end =
+            side == SurfaceSide::Receiver
+                ? trace_surface_seed(*m_scene, *q.xb, caster, v, ctx.hero(), st, draws, chain, &rng)
+                : trace_light_seed(*m_scene, lp.p, caster, v, ctx.hero(), st, draws, chain, &rng);
+        if (end != SurfaceSeedEnd::Ok) return false;
+        if (max_k >= 0 && int(chain->size()) > max_k) return false;
     }
-    const SurfaceSeedEnd end =
-        side == SurfaceSide::Receiver
-            ? trace_surface_seed(*m_scene, *q.xb, caster, v, ctx.hero(), *m_settings, draws, chain, &rng)
-            : trace_light_seed(*m_scene, lp.p, caster, v, ctx.hero(), *m_settings, draws, chain, &rng);
-    if (end != SurfaceSeedEnd::Ok) return false;
-    if (max_k >= 0 && int(chain->size()) > max_k) return false;
     // Which solution the seed walks to is all a trial asks: no visibility rays, no measurement.
     if (mnee_walk(*m_scene, *m_settings, *q.xb, *q.bsdf_b, lp, *chain, draws, /*trial_only=*/true) !=
         MneeOutcome::Success)
@@ -130,7 +157,8 @@ int ManifoldTechnique::add_solution(const ManifoldQuery& q, const BSDFContext& c
     const MneeConnection c =
         mnee_connect(*m_scene, *m_settings, *q.xb, *q.bsdf_b, ctx, q.media, light, pmf, lp, chain, draws);
     if (c.outcome != MneeOutcome::Success) return -1;
-    if (m_settings->solutions != MneeSolutions::One) {
+    if (from_surface || m_settings->solutions == MneeSolutions::All ||
+        m_settings->solutions == MneeSolutions::Unbiased) {
         // Distinct paths only: compare polished chains (solution_set.h).
         std::vector<ManifoldVertex> polished = chain;
         polish_solution(m_scene, q.xb->p, polished, light_point_basis(lp.p, lp.n, normalize(lp.p - q.xb->p)),
@@ -160,6 +188,14 @@ int ManifoldTechnique::add_solution(const ManifoldQuery& q, const BSDFContext& c
 double ManifoldTechnique::density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain,
                                   int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
                                   double lambda) const {
+    if (m_settings->solutions == MneeSolutions::Fallback) {
+        // The straight seed's technique where the seed is clear of opaque surfaces (Alg. 2), the
+        // surface seeds' where one blocks it.
+        std::vector<ManifoldVertex> seed;
+        if (trace_seed_path(*m_scene, xb, xc, lambda, *m_settings, &seed) == SeedStatus::BlockedRefractive)
+            return solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
+        return mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
+    }
     if (m_settings->solutions != MneeSolutions::One)
         return solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
     return mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);

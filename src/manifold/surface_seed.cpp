@@ -40,7 +40,7 @@ bool refract_about(const Vec3& d, Vec3 m, double n1, double n2, Vec3* out) {
 // `draws`, about the shading normal, until it meets anything else or leaves the scene.
 SurfaceSeedEnd trace_through(const Scene& scene, Ray ray, const Shape& caster, double lambda,
                              const MneeSettings& settings, HalfVectorDraws* draws, PCG32* scatter,
-                             std::vector<ManifoldVertex>* chain) {
+                             std::vector<ManifoldVertex>* chain, Vec3* exit_dir) {
     chain->clear();
     ray.tmax = kInfinity;  // beyond the drawn point too: the first hit must be the caster, wherever on it
     for (int i = 0;; ++i) {
@@ -70,6 +70,7 @@ SurfaceSeedEnd trace_through(const Scene& scene, Ray ray, const Shape& caster, d
         chain->push_back(v);
         ray = scene.spawn_ray(si, d);
     }
+    if (exit_dir) *exit_dir = ray.d;
     return chain->empty() ? SurfaceSeedEnd::MissedCaster : SurfaceSeedEnd::Ok;
 }
 
@@ -77,11 +78,11 @@ SurfaceSeedEnd trace_through(const Scene& scene, Ray ray, const Shape& caster, d
 
 SurfaceSeedEnd trace_surface_seed(const Scene& scene, const SurfaceInteraction& xb, const Shape& caster, const Vec2& u,
                                   double lambda, const MneeSettings& settings, HalfVectorDraws& draws,
-                                  std::vector<ManifoldVertex>* chain, PCG32* scatter) {
+                                  std::vector<ManifoldVertex>* chain, PCG32* scatter, Vec3* exit_dir) {
     const auto y = caster.sample_from(xb.p, u);
-    const SurfaceSeedEnd end =
-        y ? trace_through(scene, scene.spawn_ray_to(xb, y->p), caster, lambda, settings, &draws, scatter, chain)
-          : SurfaceSeedEnd::MissedCaster;
+    const SurfaceSeedEnd end = y ? trace_through(scene, scene.spawn_ray_to(xb, y->p), caster, lambda, settings, &draws,
+                                                 scatter, chain, exit_dir)
+                                 : SurfaceSeedEnd::MissedCaster;
     walk_counters::surface_seed_end.add(uint32_t(end));
     return end;
 }
@@ -93,7 +94,7 @@ SurfaceSeedEnd trace_light_seed(const Scene& scene, const Vec3& xc, const Shape&
     if (const auto y = caster.sample_from(xc, u)) {
         Ray ray{xc, normalize(y->p - xc), 0.0, kInfinity};
         ray.tmin = scene.ray_epsilon();
-        end = trace_through(scene, ray, caster, lambda, settings, nullptr, scatter, chain);
+        end = trace_through(scene, ray, caster, lambda, settings, nullptr, scatter, chain, nullptr);
     }
     if (end == SurfaceSeedEnd::Ok) {
         // Traced from the light: the chain runs x_c -> x_b. Reverse it and give each vertex the
@@ -104,6 +105,15 @@ SurfaceSeedEnd trace_light_seed(const Scene& scene, const Vec3& xc, const Shape&
     }
     walk_counters::surface_seed_end.add(uint32_t(end));
     return end;
+}
+
+double seed_miss(const std::vector<ManifoldVertex>& chain, const Vec3& exit_dir, const Vec3& xc) {
+    const ManifoldVertex& last = chain.back();
+    const Vec3 to_light = normalize(xc - last.p);
+    const double miss = 1 - dot(exit_dir, to_light);
+    // Still inside the glass (the light lies across the last interface from the ray): the chain
+    // is one interface short of any path to the light.
+    return dot(exit_dir, last.ng) * dot(to_light, last.ng) < 0 ? 2 + miss : miss;
 }
 
 }  // namespace snell

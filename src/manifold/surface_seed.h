@@ -33,10 +33,17 @@ std::vector<const Shape*> manifold_casters(const Scene& scene, double lambda);
 /// smooth vertices), until the ray meets anything else or leaves the scene. Fills `chain` with
 /// the interface vertices (h_target set). With settings.reflections and a `scatter` stream, a
 /// vertex reflects instead with Fresnel's probability (always under total internal reflection)
-/// and is marked `reflect`.
+/// and is marked `reflect`. `exit_dir`: the direction of the ray after the last vertex.
 SurfaceSeedEnd trace_surface_seed(const Scene& scene, const SurfaceInteraction& xb, const Shape& caster, const Vec2& u,
                                   double lambda, const MneeSettings& settings, HalfVectorDraws& draws,
-                                  std::vector<ManifoldVertex>* chain, PCG32* scatter = nullptr);
+                                  std::vector<ManifoldVertex>* chain, PCG32* scatter = nullptr,
+                                  Vec3* exit_dir = nullptr);
+
+/// How far a traced seed's last ray (direction `exit_dir` from its last vertex) passes from the
+/// light point x_c: 1 - cos of the angle between it and the direction to x_c, in [0, 2]; plus 2
+/// where the ray is still inside the glass (the chain cannot reach the light). 0 for a seed that
+/// is already a solution: seeds that pass close start near one.
+double seed_miss(const std::vector<ManifoldVertex>& chain, const Vec3& exit_dir, const Vec3& xc);
 
 /// The same from the light's side: draws y on `caster` as seen from the light point `xc`, traces
 /// xc -> y and refracts about the shading normals until the ray meets anything else; the chain

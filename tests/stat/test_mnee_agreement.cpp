@@ -60,12 +60,14 @@ std::string rough_water(double alpha, const char* distribution = "beckmann") {
            R"("/><float name="int_ior" value="1.33"/><float name="ext_ior" value="1"/></bsdf>)";
 }
 
+// `replicas` of mnee's render give each block's standard error; heavy-tailed estimators (the
+// 1 / p counts of solutions=unbiased) need more of them for an honest one.
 void expect_mnee_matches_nee(const std::string& xml, int nee_spp, int mnee_spp, const char* what,
-                             const std::string& nee_xml = "") {
+                             const std::string& nee_xml = "", int replicas = 8) {
     LoadedScene nee = load_xml(nee_xml.empty() ? xml : nee_xml, {{"integrator", "nee"}});
     LoadedScene mnee = load_xml(xml, {{"integrator", "mnee"}});
     const auto a = block_estimates(nee, *nee.integrator, nee_spp, 8, 6, 100);
-    const auto b = block_estimates(mnee, *mnee.integrator, mnee_spp, 8, 6, 200);
+    const auto b = block_estimates(mnee, *mnee.integrator, mnee_spp, replicas, 6, 200);
     expect_agreement(a, b, 0.01, what);
 }
 
@@ -256,9 +258,12 @@ TEST(MneeAgreement, EverySolutionEstimatorsAgreeWithNee) {
     expect_mnee_matches_nee(scene_with(smooth_water(), unbiased), 256, 32, "unbiased, smooth",
                             scene_with(smooth_water()));
     // Rough: the issue's roughnesses 0.02 and 0.2, and 0.1.
+    // (16 replicas of 16 spp: with 8 of 32, one heavy 1 / p count in a block of the α 0.02 droplet
+    // gave a standard error too small, and a false alarm, with one seed as with the other.)
     for (const double alpha : {0.02, 0.1, 0.2})
-        expect_mnee_matches_nee(scene_with(rough_water(alpha), unbiased), 256, 32,
-                                ("unbiased, rough " + std::to_string(alpha)).c_str(), scene_with(rough_water(alpha)));
+        expect_mnee_matches_nee(scene_with(rough_water(alpha), unbiased), 256, 16,
+                                ("unbiased, rough " + std::to_string(alpha)).c_str(), scene_with(rough_water(alpha)),
+                                16);
 }
 
 namespace {
@@ -302,13 +307,31 @@ double mnee_share(const std::string& xml) {
 TEST(MneeAgreement, GlassAroundAnOpaqueBallAgreesAndMneeFindsThePathsAroundIt) {
     const std::string unbiased =
         R"(<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/>)";
-    const double one = mnee_share(with_ball(scene_with(smooth_water())));
+    const std::string fallback = R"(<string name="solutions" value="fallback"/>)";
+    const double one = mnee_share(with_ball(scene_with(smooth_water(), R"(<string name="solutions" value="one"/>)")));
     const double multi = mnee_share(with_ball(scene_with(smooth_water(), unbiased)));
-    std::cout << "[ball] share of the refracted light from MNEE: paper " << one << ", unbiased " << multi << "\n";
+    const double fell_back = mnee_share(with_ball(scene_with(smooth_water(), fallback)));
+    std::cout << "[ball] share of the refracted light from MNEE: paper " << one << ", unbiased " << multi
+              << ", fallback (the default) " << fell_back << "\n";
     EXPECT_GT(multi, 0.8);
     EXPECT_GT(multi, one + 0.1);
+    EXPECT_GT(fell_back, one + 0.1);
     expect_mnee_matches_nee(with_ball(scene_with(smooth_water(), unbiased)), 256, 32,
                             "unbiased, glass around an opaque ball", with_ball(scene_with(smooth_water())));
+    // fallback: Alg. 2 where the straight seed is clear, the solution density where the ball
+    // blocks it; smooth and rough.
+    expect_mnee_matches_nee(with_ball(scene_with(smooth_water(), fallback)), 256, 32,
+                            "fallback, glass around an opaque ball", with_ball(scene_with(smooth_water())));
+    expect_mnee_matches_nee(with_ball(scene_with(rough_water(0.2), fallback)), 256, 32,
+                            "fallback, rough 0.2 glass around an opaque ball", with_ball(scene_with(rough_water(0.2))));
+}
+
+// The paper's estimator (solutions=one: the straight seed's solution, MIS by Alg. 2), no longer
+// the default, still agrees with nee.
+TEST(MneeAgreement, PaperEstimatorMatchesNee) {
+    const std::string one = R"(<string name="solutions" value="one"/>)";
+    expect_mnee_matches_nee(scene_with(smooth_water(), one), 256, 64, "one, smooth", scene_with(smooth_water()));
+    expect_mnee_matches_nee(scene_with(rough_water(0.1), one), 256, 64, "one, rough 0.1", scene_with(rough_water(0.1)));
 }
 
 // With reflections, surface seeds also reflect (Fresnel's probability), so the multi-solution

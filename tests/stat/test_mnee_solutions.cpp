@@ -55,6 +55,15 @@ MneeSettings all_solutions(int trials) {
     return st;
 }
 
+// The default estimator's settings (the integrator's defaults for solutions=fallback).
+MneeSettings fallback_settings() {
+    MneeSettings st;
+    st.solutions = MneeSolutions::Fallback;
+    st.seeding = MneeSeeding::StraightAndSurface;
+    st.trials = 1;
+    return st;
+}
+
 // One light sample's solutions (an empty set when the straight seed does not refract).
 SolutionSet solve(const Scene& scene, const SurfaceInteraction& xb, const MneeSettings& st, Sampler& smp,
                   LightPoint* lp_out = nullptr) {
@@ -188,6 +197,32 @@ TEST(ManifoldSolutions, SurfaceSeedsFindThePathsBesideABlockedStraightSeed) {
         EXPECT_LT(nearest, 1e-6) << "a solution no visible exact root explains";
         EXPECT_TRUE(s.from_surface);
         EXPECT_GT(s.value[0], 0.0);
+    }
+    // The default estimator (fallback) runs its surface trials here, the straight seed being
+    // blocked, and finds the free paths.
+    const MneeSettings fallback = fallback_settings();
+    size_t found = 0;
+    for (uint64_t seed = 1; seed <= 200; ++seed)
+        for (const ManifoldSolution& s : solve(*ls.scene, xb, fallback, seed).solutions) found += s.from_surface;
+    // (One trial per light sample, and the free paths' basins are small here: 2 in 50.)
+    EXPECT_GT(found, 0u) << "fallback's surface trials never ran behind the blocker";
+}
+
+// Where the straight seed is clear, fallback (the default) is the paper's estimator: at a
+// two-path receiver it counts the straight seed's solution alone. Alg. 2 gives the other path to
+// BSDF sampling there, so surface solutions counted as well would count it twice (the agreement
+// renders do not see that: under their large light the second path carries little).
+TEST(ManifoldSolutions, FallbackWalksSurfaceSeedsOnlyBehindABlocker) {
+    size_t count = 0;
+    const Vec3 receiver = multi_solution_receiver(&count);
+    ASSERT_GE(count, 2u);
+    const LoadedScene ls = droplet();
+    const SurfaceInteraction xb = droplet_receiver(*ls.scene, receiver.x, receiver.z);
+    for (uint64_t seed = 1; seed <= 100; ++seed) {
+        const SolutionSet one = solve(*ls.scene, xb, MneeSettings(), seed);
+        const SolutionSet fb = solve(*ls.scene, xb, fallback_settings(), seed);
+        ASSERT_EQ(fb.solutions.size(), one.solutions.size()) << "light sample " << seed;
+        for (const ManifoldSolution& s : fb.solutions) EXPECT_FALSE(s.from_surface);
     }
 }
 
@@ -506,6 +541,13 @@ TEST(ManifoldSolutions, AllMatchesBruteForceThroughTwoInterfaces) {
 // measures p_k, the share of seeds that reach path k. The unbiased estimator with surface seeds
 // alone (M = 1) finds path k with probability p_k and counts it N times; the mean N per path is
 // 1 / p_k within its confidence interval.
+namespace {
+struct SeedCell {
+    double miss;  ///< seed_miss of the cell's seed
+    int path;     ///< the exact path its walk reaches, -1 for none
+};
+}  // namespace
+
 TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
     const Vec3 at = glass_receiver_with_most_paths().at;
     ASSERT_EQ(glass_receiver_with_most_paths().count, 3u);
@@ -532,20 +574,25 @@ TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
     st.solutions = MneeSolutions::Unbiased;
     st.seeding = MneeSeeding::Surface;
     st.max_trials = 1000000;
+    st.seed_candidates = 1;  // SMS's trial: one seed
     const int n = 300;
     std::vector<double> p(exact.size(), 0.0);
+    std::vector<SeedCell> cells;  // every cell's seed miss and the path it walks to (-1: none)
     HalfVectorDraws draws(smp);
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
             std::vector<ManifoldVertex> chain;
-            if (trace_surface_seed(scene, xb, *glass, Vec2((i + 0.5) / n, (j + 0.5) / n), 550, st, draws, &chain) !=
-                SurfaceSeedEnd::Ok)
+            Vec3 exit_dir;
+            if (trace_surface_seed(scene, xb, *glass, Vec2((i + 0.5) / n, (j + 0.5) / n), 550, st, draws, &chain,
+                                   nullptr, &exit_dir) != SurfaceSeedEnd::Ok)
                 continue;
-            if (mnee_walk(scene, st, xb, *xb.bsdf(), lp, chain, draws, /*trial_only=*/true) != MneeOutcome::Success)
-                continue;
-            polish_solution(&scene, xb.p, chain, light_point_basis(lp.p, lp.n, normalize(lp.p - xb.p)), st.walk);
-            const int k = which(chain);
-            if (k >= 0) p[size_t(k)] += 1.0 / (n * n);
+            SeedCell cell{seed_miss(chain, exit_dir, lp.p), -1};
+            if (mnee_walk(scene, st, xb, *xb.bsdf(), lp, chain, draws, /*trial_only=*/true) == MneeOutcome::Success) {
+                polish_solution(&scene, xb.p, chain, light_point_basis(lp.p, lp.n, normalize(lp.p - xb.p)), st.walk);
+                cell.path = which(chain);
+                if (cell.path >= 0) p[size_t(cell.path)] += 1.0 / (n * n);
+            }
+            cells.push_back(cell);
         }
 
     // The estimator: which path one trial finds, and N for it.
@@ -597,6 +644,46 @@ TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
         const double grid_tolerance = 300.0 / (n * n) / p[k];
         EXPECT_NEAR(counts[k].mean() * p[k], 1.0, 4.5 * counts[k].stderr_() * p[k] + grid_tolerance) << "path " << k;
         EXPECT_NEAR(double(counts[k].n) / runs, p[k], 4.5 * std::sqrt(p[k] / runs) + 300.0 / (n * n)) << "path " << k;
+    }
+
+    // The default trial walks the best of K = 4 traced seeds (the one whose last ray passes
+    // closest to the light). Its p_k follows from the grid by the order statistic: the best of K
+    // uniform seeds lies in cell c with probability (1 - A_c)^K - (1 - A_c - a)^K, A_c the area
+    // of the cells that pass closer, a a cell's. The estimator's mean N must be 1 / p_k of that.
+    MneeSettings best_of = st;
+    best_of.seed_candidates = 4;
+    std::sort(cells.begin(), cells.end(), [](const SeedCell& a, const SeedCell& b) { return a.miss < b.miss; });
+    std::vector<double> pk(exact.size(), 0.0);
+    double closer = 0;
+    const double a = 1.0 / (n * n);
+    for (const SeedCell& c : cells) {
+        const double chosen = std::pow(1 - closer, 4) - std::pow(std::max(0.0, 1 - closer - a), 4);
+        if (c.path >= 0) pk[size_t(c.path)] += chosen;
+        closer += a;
+    }
+    std::vector<Mean> best_counts(exact.size());
+    for (int run = 0; run < runs; ++run) {
+        IndependentSampler s(47);
+        s.start_pixel_sample(run, 0, 0);
+        std::vector<ManifoldVertex> none;
+        const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false, false};
+        for (const ManifoldSolution& sol :
+             ManifoldTechnique(scene, best_of).solve(q, light, 1.0, lp, none, s).solutions) {
+            const int k = which(sol.chain);
+            ASSERT_GE(k, 0);
+            best_counts[size_t(k)].add(sol.count);
+        }
+    }
+    for (size_t k = 0; k < exact.size(); ++k) {
+        std::cout << "[basins] best of 4, path " << k << ": p " << pk[k] << " (one seed: " << p[k] << "; found in "
+                  << double(best_counts[k].n) / runs << " of trials), mean N " << best_counts[k].mean() << " +- "
+                  << best_counts[k].stderr_() << "\n";
+        ASSERT_GT(pk[k], 0.001);
+        const double grid_tolerance = 1200.0 / (n * n) / pk[k];
+        EXPECT_NEAR(best_counts[k].mean() * pk[k], 1.0, 4.5 * best_counts[k].stderr_() * pk[k] + grid_tolerance)
+            << "path " << k;
+        EXPECT_NEAR(double(best_counts[k].n) / runs, pk[k], 4.5 * std::sqrt(pk[k] / runs) + 1200.0 / (n * n))
+            << "path " << k;
     }
 }
 

@@ -95,17 +95,22 @@ TEST(Film, SampledWavelengthsConvergeToSpectrumXyz) {
 // The share of a pixel's luminance carried by its largest sample: 1 / n for n equal samples,
 // near 1 for a firefly; pixel_dominance counts the pixels above one half.
 TEST(Film, LargestSampleShareAndDominance) {
-    Film film(3, 1);
+    Film film(4, 1);
     for (int i = 0; i < 4; ++i) film.add(0, 0, Vec3(0.1, 1.0, 0.2));  // four equal samples
     film.add_sum(1, 0, Vec3(0, 3.0, 0), 3, 1.0);                      // three samples, largest 1
     film.add(1, 0, Vec3(0, 0, 0));
-    film.add_sum(2, 0, Vec3(0, 10.0, 0), 8, 9.0);  // one sample of 9 among 8
+    film.add_sum(2, 0, Vec3(0, 10.0, 0), 8, 9.0);  // one sample of 9 among 8: a firefly
+    film.add_sum(3, 0, Vec3(0, 2.0, 0), 4, 2.0);   // one lit sample of 4, beside a bright pixel
     EXPECT_DOUBLE_EQ(film.largest_sample_share(0, 0), 0.25);
     EXPECT_DOUBLE_EQ(film.largest_sample_share(1, 0), 1.0 / 3.0);
     EXPECT_DOUBLE_EQ(film.largest_sample_share(2, 0), 0.9);
+    EXPECT_DOUBLE_EQ(film.largest_sample_share(3, 0), 1.0);
     const PixelDominance d = pixel_dominance(film);
-    EXPECT_EQ(d.pixels, 3u);
-    EXPECT_EQ(d.dominated, 1u);
-    EXPECT_DOUBLE_EQ(d.max_share, 0.9);
+    EXPECT_EQ(d.pixels, 4u);
+    EXPECT_EQ(d.dominated, 2u);
+    // Pixel 2's sample (9) is over ten times its neighbours' mean (0.75 and 0.5); pixel 3's (2)
+    // is not (its neighbour is 1.25).
+    EXPECT_EQ(d.outliers, 1u);
+    EXPECT_DOUBLE_EQ(d.max_share, 1.0);
     EXPECT_EQ(Film(1, 1).largest_sample_share(0, 0), 0.0) << "an empty pixel has no share";
 }
