@@ -39,14 +39,14 @@ struct Technique {
 };
 
 Technique parse_technique(const std::string& name) {
-    if (name == "path" || name == "nee" || name == "mnee" || name == "bdpt" || name == "erpt")
+    if (name == "pt" || name == "path" || name == "nee" || name == "mnee" || name == "bdpt" || name == "erpt")
         return {name, name, false, ""};
     if (name == "mnee-biased" || name == "mnee(biased)") return {name, "mnee", true, ""};
     if (name == "pssmlt(nee)") return {name, "pssmlt", false, "nee"};
     if (name == "pssmlt(mnee)") return {name, "pssmlt", false, "mnee"};
     throw std::runtime_error(
         "unknown integrator '" + name +
-        "' (known: path, nee, bdpt, erpt, mnee, mnee-biased or mnee(biased), pssmlt(nee), pssmlt(mnee))");
+        "' (known: pt, path, nee, bdpt, erpt, mnee, mnee-biased or mnee(biased), pssmlt(nee), pssmlt(mnee))");
 }
 
 // A loaded scene and the integrator to render it with.

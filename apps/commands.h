@@ -20,7 +20,7 @@ int cmd_diff(const std::string& a_path, const std::string& b_path, const std::ve
 /// Options of `snell compare` (docs/compare.md).
 struct CompareOptions {
     std::string scene;
-    std::vector<std::string> integrators;  ///< path, nee, mnee, mnee-biased
+    std::vector<std::string> integrators;  ///< pt, path, nee, mnee, mnee-biased, ...
     double time = 0;                       ///< equal-time budget per integrator (s)
     std::string out_dir;
     std::string reference_file;  ///< --reference ref.exr

@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
     cmp_cmd->add_option("scene", cmp.scene, "scene file, or builtin:droplet")->required();
     cmp_cmd
         ->add_option("--integrators", cmp.integrators,
-                     "comma-separated: path, nee, bdpt, mnee, mnee-biased, pssmlt(nee), pssmlt(mnee)")
+                     "comma-separated: pt, path, nee, bdpt, erpt, mnee, mnee-biased, pssmlt(nee), pssmlt(mnee)")
         ->required()
         ->delimiter(',');
     cmp_cmd->add_option("--time", cmp.time, "wall-clock seconds per integrator")

@@ -91,11 +91,11 @@ void render_bench(benchmark::State& state, const char* integrator, int threads =
     state.counters["closest/s"] = benchmark::Counter(rays, benchmark::Counter::kIsRate);
     state.counters["rays/path"] = all_rays / std::max(1.0, paths);
 }
-void BM_RenderPath(benchmark::State& s) { render_bench(s, "path"); }
+void BM_RenderPath(benchmark::State& s) { render_bench(s, "pt"); }
 void BM_RenderNEE(benchmark::State& s) { render_bench(s, "nee"); }
 void BM_RenderMNEE(benchmark::State& s) { render_bench(s, "mnee"); }
 void BM_RenderBDPT(benchmark::State& s) { render_bench(s, "bdpt"); }
-void BM_RenderPathSerial(benchmark::State& s) { render_bench(s, "path", 1); }
+void BM_RenderPathSerial(benchmark::State& s) { render_bench(s, "pt", 1); }
 void BM_RenderNEESerial(benchmark::State& s) { render_bench(s, "nee", 1); }
 
 /// One closest-hit query straight to Embree (no differential geometry, no shading).
@@ -163,7 +163,7 @@ const std::vector<Ray>& random_rays() {
 /// path), with the scene's max_depth (12) and the renderer's Russian roulette from depth 5.
 const std::vector<Ray>& renderer_rays() {
     static const std::vector<Ray> rays = [] {
-        const LoadedScene& ls = demo_scene("path");
+        const LoadedScene& ls = demo_scene("pt");
         const Scene& scene = *ls.scene;
         const PerspectiveCamera& cam = *scene.camera();
         const int max_depth = 12, rr_depth = 5, spp = 4, tile = 16;
@@ -211,7 +211,7 @@ void BM_EmbreeRawRandomRays(benchmark::State& state) {
 }
 
 void embree_raw_renderer_rays(benchmark::State& state, bool serial) {
-    const RTCScene s = demo_scene("path").scene->rtc_scene();
+    const RTCScene s = demo_scene("pt").scene->rtc_scene();
     const std::vector<Ray>& rays = renderer_rays();
     replay(
         state, rays, [s](const Ray& r) { return embree_closest_hit(s, r); }, serial);
@@ -221,7 +221,7 @@ void BM_EmbreeRawRendererRays(benchmark::State& state) { embree_raw_renderer_ray
 void BM_EmbreeRawRendererRaysSerial(benchmark::State& state) { embree_raw_renderer_rays(state, true); }
 
 void scene_intersect_renderer_rays(benchmark::State& state, bool serial) {
-    const Scene& scene = *demo_scene("path").scene;
+    const Scene& scene = *demo_scene("pt").scene;
     replay(
         state, renderer_rays(),
         [&scene](const Ray& r) {

@@ -20,8 +20,12 @@ const std::map<std::string, Factory>& registry() {
     static const std::map<std::string, Factory> r = {
         {"bdpt", [](const Props& p) { return std::make_shared<BdptIntegrator>(PathSettings::from_props(p)); }},
         {"erpt", [](const Props& p) { return std::make_shared<ErptIntegrator>(ErptSettings::from_props(p)); }},
-        {"path", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), false); }},
-        {"nee", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), true); }},
+        // `path` means what it means in Mitsuba and pbrt: emitter sampling and BSDF sampling, MIS.
+        {"path",
+         [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), true, "path"); }},
+        {"nee", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), true, "nee"); }},
+        // The paper's pure path tracing: BSDF sampling alone.
+        {"pt", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), false, "pt"); }},
         {"mnee",
          [](const Props& p) {
              return std::make_shared<MneeIntegrator>(PathSettings::from_props(p),

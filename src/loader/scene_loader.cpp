@@ -143,6 +143,10 @@ private:
         static const std::set<std::string> axes = {"x", "y", "smaller", "larger", "diagonal"};
         if (!axes.count(axis)) p.raise_param("fov_axis", "fov_axis must be x, y, smaller, larger or diagonal");
         const double near_clip = p.get_float("near_clip", 1e-2), far_clip = p.get_float("far_clip", 1e4);
+        // Mitsuba's exporters write focus_distance on every perspective sensor; a pinhole keeps
+        // everything in focus, so the value is checked and has no effect.
+        if (p.has("focus_distance") && !(p.get_float("focus_distance") > 0))
+            p.raise_param("focus_distance", "focus_distance must be > 0");
         if (!(near_clip > 0 && far_clip > near_clip)) p.raise_param("near_clip", "need 0 < near_clip < far_clip");
         const Transform to_world = p.get_transform("to_world");
 

@@ -103,6 +103,7 @@ public:
         auto scene = std::make_shared<XmlObject>();
         scene->tag = "scene";
         scene->base_dir = f.dir;
+        m_main_dir = f.dir;
         if (!canonical.empty()) m_include_stack.push_back(canonical);
         parse_document(text, f, *scene, /*is_root=*/true);
         resolve_refs();
@@ -129,6 +130,8 @@ private:
     std::map<std::string, SourceLoc> m_default_locs;
     std::set<std::string> m_declared, m_used;
     std::vector<std::string> m_include_stack;  // canonical paths of the files being read
+    std::string m_main_dir;                    // folder of the main scene file
+    std::vector<std::string> m_search_paths;   // <path> folders, the latest first (Mitsuba's prepend)
     std::map<std::string, std::shared_ptr<XmlObject>> m_ids;
     std::vector<PendingRef> m_refs;
 
@@ -173,8 +176,7 @@ private:
         const SourceLoc loc = f.at(n);
         const Attrs a = attrs(n, f, {"filename"});
         const std::string file = require(a, "filename", loc, "include");
-        fs::path p(file);
-        if (p.is_relative()) p = fs::path(f.dir) / p;
+        const fs::path p = resolve_file(file, f.dir);
         bool ok = false;
         const std::string text = read_file(p.string(), &ok);
         if (!ok) throw SceneError(loc, "include", "cannot open included file '" + p.string() + "'");
@@ -209,6 +211,9 @@ private:
                 parse_default(c, f);
             } else if (tag == "include") {
                 parse_include(c, obj, f);
+            } else if (tag == "path") {
+                if (obj.tag != "scene") throw SceneError(loc, tag, "<path> is only allowed directly inside <scene>");
+                parse_path(c, f);
             } else if (tag == "ref") {
                 if (obj.tag == "scene") throw SceneError(loc, tag, "<ref> is only allowed inside an object");
                 const Attrs a = attrs(c, f, {"id", "name"});
@@ -258,12 +263,38 @@ private:
         const Attrs a = attrs(n, f, {"name", "value"});
         const std::string name = require(a, "name", loc, "default");
         const std::string value = require(a, "value", loc, "default");
-        if (auto it = m_default_locs.find(name); it != m_default_locs.end())
-            throw SceneError(loc, "default",
-                             "duplicate <default> for '" + name + "' (first at " + it->second.str() + ")");
+        // Mitsuba keeps the first <default> of a name (a later one, e.g. in an include, is ignored).
+        if (m_default_locs.count(name)) return;
         m_default_locs[name] = loc;
         m_declared.insert(name);
         m_params.emplace(name, value);  // a -D define of the same name wins
+    }
+
+    // Mitsuba's <path value="..."/>: a folder that relative file names (meshes, images, includes)
+    // are also looked up in; relative to the file it is written in. The latest is searched first.
+    void parse_path(const pugi::xml_node& n, const FileCtx& f) {
+        const SourceLoc loc = f.at(n);
+        const Attrs a = attrs(n, f, {"value"});
+        fs::path p(require(a, "value", loc, "path"));
+        if (p.is_relative()) p = fs::path(f.dir) / p;
+        std::error_code ec;
+        if (!fs::is_directory(p, ec)) throw SceneError(loc, "path", "no such folder '" + p.string() + "'");
+        m_search_paths.insert(m_search_paths.begin(), p.string());
+    }
+
+    // A relative file name as Mitsuba's file resolver finds it, with the folder of the file that
+    // names it first: that folder, the <path> folders (latest first), the main scene's folder.
+    // The first candidate that exists; if none does, the first (errors then name that path).
+    fs::path resolve_file(const std::string& name, const std::string& own_dir) const {
+        const fs::path file(name);
+        if (file.is_absolute()) return file;
+        std::vector<fs::path> candidates{fs::path(own_dir) / file};
+        for (const auto& dir : m_search_paths) candidates.push_back(fs::path(dir) / file);
+        candidates.push_back(fs::path(m_main_dir) / file);
+        std::error_code ec;
+        for (const auto& c : candidates)
+            if (fs::exists(c, ec)) return c;
+        return candidates.front();
     }
 
     std::shared_ptr<XmlObject> parse_object(const pugi::xml_node& n, const FileCtx& f, std::string* name) {
@@ -284,7 +315,21 @@ private:
                                  "duplicate id '" + obj->id + "' (first used at " + it->second->loc.str() + ")");
         }
         parse_children(n, *obj, f);
+        // A file the object reads (a mesh, an image) is found as Mitsuba finds it.
+        for (auto& q : obj->params)
+            if (q.name == "filename")
+                if (auto* file = std::get_if<std::string>(&q.value)) *file = resolved_name(*file, f.dir);
         return obj;
+    }
+
+    // resolve_file() as an absolute path where the file exists; else the name as given (the
+    // loader reads it relative to the element's folder, and its error names that path).
+    std::string resolved_name(const std::string& name, const std::string& own_dir) const {
+        const fs::path p = resolve_file(name, own_dir);
+        std::error_code ec;
+        if (fs::path(name).is_absolute() || !fs::exists(p, ec)) return name;
+        const fs::path abs = fs::absolute(p, ec);
+        return ec ? p.string() : abs.lexically_normal().string();
     }
 
     // --- value tags --------------------------------------------------------------------------

@@ -51,12 +51,12 @@ CommandResult run(const std::string& cmd) {
 
 std::string quote(const std::string& s) { return "'" + s + "'"; }
 
-const char* k_integrators[] = {"path", "nee", "mnee"};
+const char* k_integrators[] = {"pt", "nee", "mnee"};
 constexpr int k_steps = 2;
 
 // The comparison every check below reads: 64x48 droplet, 0.5 s per integrator, two threads.
 std::string compare_command(const std::string& dir) {
-    return quote(env("SNELL_BIN")) + " compare builtin:droplet --integrators path,nee,mnee --time 0.5 -t 2 --seed 7" +
+    return quote(env("SNELL_BIN")) + " compare builtin:droplet --integrators pt,nee,mnee --time 0.5 -t 2 --seed 7" +
            " -D res_x=64 -D res_y=48 --reference-integrator mnee --reference-spp 64 --crop 20,20,16,12" +
            " --convergence-steps " + std::to_string(k_steps) + " -q --out " + quote(dir);
 }

@@ -39,11 +39,11 @@ RenderResult render_once(const LoadedScene& ls, const FilmSpec& spec, int spp, u
 
 }  // namespace
 
-// `path` at 2048 spp (per-block errors ~0.6%), shared by the agreement and sensitivity tests.
+// `pt` at 2048 spp (per-block errors ~0.6%), shared by the agreement and sensitivity tests.
 const std::vector<Estimate>& path_reference() {
     static const std::vector<Estimate> e = [] {
         Defines d = kSmallLight;
-        d["integrator"] = "path";
+        d["integrator"] = "pt";
         const LoadedScene p = load_xml(caustic_box(), d);
         return block_estimates(p, *p.integrator, 2048, 12, 12, 6000);
     }();

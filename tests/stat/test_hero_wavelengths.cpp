@@ -84,20 +84,20 @@ std::vector<Estimate> droplet_blocks(const std::string& integrator, int spectral
 // the wavelength pair is stratified across a pixel's samples too, so 64 samples carry 256
 // well-spread wavelengths. One wavelength (the paper's set-up) leaves several percent of colour
 // noise per pixel, and so do four with independent samples. Measured (this scene, seed 5):
-// path 0.17 % rms per pixel (4, sobol), 2.3 % (1, sobol), 5.1 % (4, independent); nee 1.2 %,
+// pt 0.17 % rms per pixel (4, sobol), 2.3 % (1, sobol), 5.1 % (4, independent); nee 1.2 %,
 // 9.8 %, 5.3 %; image means within 0.11 % of white.
 TEST(HeroWavelengths, FurnaceIsWhitePerChannel) {
-    for (const char* integ : {"path", "nee", "bdpt"}) {
+    for (const char* integ : {"pt", "nee", "bdpt"}) {
         const Whiteness four = furnace_whiteness(integ, 4, "sobol"), one = furnace_whiteness(integ, 1, "sobol");
         const Whiteness indep = furnace_whiteness(integ, 4, "independent");
         std::printf(
             "%s at 64 spp: per-pixel colour error rms %.4f max %.4f, image mean off white by %.4f "
             "(4 wavelengths, sobol); rms %.4f (1, sobol); rms %.4f (4, independent)\n",
             integ, four.chroma_rms, four.chroma_max, four.mean_max, one.chroma_rms, indep.chroma_rms);
-        // `path` returns exactly the illuminant for every sample: its colour error is spectral
+        // `pt` returns exactly the illuminant for every sample: its colour error is spectral
         // alone. nee and bdpt weight samples unequally (light sampling, MIS), which spoils part
         // of the stratification of the wavelengths across samples.
-        if (std::string(integ) == "path") {
+        if (std::string(integ) == "pt") {
             EXPECT_LT(four.chroma_rms, 0.005) << integ;
         }
         EXPECT_LT(four.chroma_rms, one.chroma_rms / 4) << integ;
@@ -115,10 +115,10 @@ class HeroAgreement : public ::testing::TestWithParam<std::tuple<const char*, co
 
 TEST_P(HeroAgreement, FourWavelengthsAgreeWithOne) {
     const auto [integ, alpha] = GetParam();
-    // `path` finds the small light only by BSDF sampling: its replicas are heavy-tailed and need
+    // `pt` finds the small light only by BSDF sampling: its replicas are heavy-tailed and need
     // more samples for Welch's test to hold; bdpt costs more per sample.
     const std::string name = integ;
-    const int spp = name == "path" ? 256 : name == "nee" ? 256 : name == "bdpt" ? 32 : 64;
+    const int spp = name == "pt" ? 256 : name == "nee" ? 256 : name == "bdpt" ? 32 : 64;
     for (int channel : {0, 2}) {
         const auto four = droplet_blocks(integ, 4, spp, 100, channel, alpha);
         // One wavelength has several times the variance per sample: give it four times the samples.
@@ -132,7 +132,7 @@ TEST_P(HeroAgreement, FourWavelengthsAgreeWithOne) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Techniques, HeroAgreement,
-                         ::testing::Combine(::testing::Values("path", "nee", "mnee", "bdpt"),
+                         ::testing::Combine(::testing::Values("pt", "nee", "mnee", "bdpt"),
                                             ::testing::Values("0", "0.1")),
                          [](const auto& info) {
                              return std::string(std::get<0>(info.param)) +

@@ -1,7 +1,7 @@
-// `path` and `nee` are independent estimators of the same image: their means must agree within
-// the standard errors measured from independent replicas, per pixel block (errors confined to
-// a region: a light that leaks, a BSDF on one object) and in whole-image luminance (small
-// errors spread over everything: a MIS weight a few percent off, a wrong light pdf).
+// `pt` (BSDF sampling alone, the paper's PT) and `nee` are independent estimators of the same image: their means must
+// agree within the standard errors measured from independent replicas, per pixel block (errors confined to a region: a
+// light that leaks, a BSDF on one object) and in whole-image luminance (small errors spread over everything: a MIS
+// weight a few percent off, a wrong light pdf).
 #include "stat/box_scene.h"
 #include "stat/replica_stats.h"
 
@@ -29,7 +29,7 @@ const char* kGlossy = R"(<scene version="3.0.0">
 </scene>)";
 
 void expect_path_and_nee_agree(const char* xml, int spp_path, int spp_nee, int block) {
-    LoadedScene path = load_xml(xml, {{"integrator", "path"}});
+    LoadedScene path = load_xml(xml, {{"integrator", "pt"}});
     LoadedScene nee = load_xml(xml, {{"integrator", "nee"}});
     expect_replicas_agree(replica_stats(path, spp_path, block, 1000), replica_stats(nee, spp_nee, block, 2000),
                           "path vs nee");
@@ -55,4 +55,36 @@ TEST(IntegratorAgreement, DetectsALightThreePercentBrighter) {
     const ReplicaStats a = replica_stats(base, 64, 8, 3000);
     const ReplicaStats b = replica_stats(brighter, 64, 8, 4000);
     EXPECT_GT(disagreements(a, b, 0.01, false), 0);
+}
+
+// `path` means what it means in Mitsuba and pbrt: emitter sampling with MIS. A Mitsuba scene with
+// `<integrator type="path">` and a point light must not render black (BSDF sampling alone cannot
+// hit a point light): `path` is `nee`, sample for sample, and lit.
+TEST(IntegratorNames, PathWithAPointLightIsNee) {
+    const char* xml = R"(<scene version="3.0.0">
+  <default name="integrator" value="path"/>
+  <integrator type="$integrator"/>
+  <sensor type="perspective"><float name="fov" value="40"/>
+    <transform name="to_world"><lookat origin="0, 1, 3" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="12"/><integer name="height" value="12"/></film></sensor>
+  <shape type="rectangle"><transform name="to_world"><scale value="3"/><rotate x="1" angle="-90"/></transform></shape>
+  <emitter type="point"><point name="position" x="0" y="2" z="0"/><rgb name="intensity" value="10"/></emitter>
+</scene>)";
+    const auto image = [&](const char* integ) {
+        LoadedScene ls = load_xml(xml, {{"integrator", integ}});
+        EXPECT_EQ(ls.integrator->name(), integ);
+        RenderOptions opt;
+        opt.spp = 4;
+        opt.progress = false;
+        return render(*ls.scene, *ls.integrator, ls.film, opt).film.to_linear_srgb();
+    };
+    const auto path = image("path"), nee = image("nee"), pt = image("pt");
+    double lit = 0, dark = 0;
+    for (size_t i = 0; i < path.size(); ++i) {
+        ASSERT_EQ(path[i], nee[i]) << "component " << i;
+        lit += path[i];
+        dark += pt[i];
+    }
+    EXPECT_GT(lit, 0.1 * double(path.size()));
+    EXPECT_EQ(dark, 0.0) << "pt, the paper's pure path tracing, cannot reach a point light";
 }

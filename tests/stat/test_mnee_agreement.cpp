@@ -199,7 +199,7 @@ TEST(MneeAgreement, AbsorbingRoughGlassMatchesPathTracing) {
         R"(<bsdf type="roughdielectric"><float name="alpha" value="0.3"/><float name="int_ior" value="1.5"/>
         <float name="ext_ior" value="1"/><rgb name="sigma_a" value="0.5, 0.2, 0.8"/></bsdf>)";
     const std::string xml = scene_with(glass);
-    LoadedScene path = load_xml(xml, {{"integrator", "path"}});
+    LoadedScene path = load_xml(xml, {{"integrator", "pt"}});
     const auto ref = block_estimates(path, *path.integrator, 512, 8, 6, 700);
     for (const char* integ : {"nee", "mnee"}) {
         LoadedScene ls = load_xml(xml, {{"integrator", integ}});
@@ -212,7 +212,7 @@ TEST(MneeAgreement, AbsorbingRoughGlassMatchesPathTracing) {
 TEST(MneeAgreement, EmissiveDielectricMatchesPathTracing) {
     std::string xml = scene_with(R"(<bsdf type="dielectric"><float name="int_ior" value="1.33"/></bsdf>
         <emitter type="area"><rgb name="radiance" value="0.5, 0.5, 0.5"/></emitter>)");
-    LoadedScene path = load_xml(xml, {{"integrator", "path"}});
+    LoadedScene path = load_xml(xml, {{"integrator", "pt"}});
     LoadedScene mnee = load_xml(xml, {{"integrator", "mnee"}});
     expect_agreement(block_estimates(path, *path.integrator, 256, 8, 6, 900),
                      block_estimates(mnee, *mnee.integrator, 64, 8, 6, 1000), 0.01, "emissive dielectric");

@@ -59,7 +59,7 @@ TEST(RussianRoulette, IsUnbiased) {
 // must be bit-identical with and without hide_emitters, and lit (emission at depth >= 1 kept).
 TEST(HideEmittersAndMaxDepth, OnlyDirectlySeenEmissionChanges) {
     const char* xml = R"(<scene version="3.0.0">
-      <default name="integrator" value="path"/><default name="hide" value="false"/><default name="depth" value="-1"/>
+      <default name="integrator" value="pt"/><default name="hide" value="false"/><default name="depth" value="-1"/>
       <integrator type="$integrator">
         <boolean name="hide_emitters" value="$hide"/><integer name="max_depth" value="$depth"/>
       </integrator>
@@ -70,7 +70,7 @@ TEST(HideEmittersAndMaxDepth, OnlyDirectlySeenEmissionChanges) {
       <shape type="rectangle"><transform name="to_world"><scale value="0.4"/><rotate x="1" angle="40"/><translate y="1.2" z="-0.5"/></transform>
         <emitter type="area"><rgb name="radiance" value="5"/></emitter></shape>
     </scene>)";
-    for (const char* integ : {"path", "nee"}) {
+    for (const char* integ : {"pt", "nee"}) {
         SCOPED_TRACE(integ);
         const auto shown = render_rgb(load_xml(xml, {{"integrator", integ}}), 16, 5);
         const auto hidden = render_rgb(load_xml(xml, {{"integrator", integ}, {"hide", "true"}}), 16, 5);

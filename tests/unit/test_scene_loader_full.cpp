@@ -138,6 +138,15 @@ TEST(SceneLoaderFull, SensorFilmSamplerErrors) {
         "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" "
         "value=\"200\"/>\n</sensor>\n</scene>",
         "test.xml:3: <sensor>", "fov");
+    // Mitsuba's exporters write focus_distance on perspective sensors: accepted (a pinhole is
+    // in focus everywhere), and checked.
+    EXPECT_EQ(load_error("<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n"
+                         "<float name=\"focus_distance\" value=\"4\"/>\n</sensor>\n</scene>"),
+              "");
+    expect_error(
+        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"focus_distance\" "
+        "value=\"-1\"/>\n</sensor>\n</scene>",
+        "test.xml:3: <sensor>", "focus_distance must be > 0");
 }
 
 TEST(SceneLoaderFull, EmitterPlacementErrors) {

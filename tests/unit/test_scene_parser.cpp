@@ -161,11 +161,35 @@ TEST(SceneParser, UnknownParamNamesFileAndLine) {
     <default name="t" value="diffuse"/>
 </scene>)",
                  2, "bsdf", "unknown parameter $t");
-    expect_error(R"(<scene version="3.0.0">
+    // Mitsuba keeps the first <default> of a name.
+    const auto first = parse(R"(<scene version="3.0.0">
     <default name="t" value="diffuse"/>
     <default name="t" value="conductor"/>
+    <bsdf type="$t"/>
+</scene>)");
+    EXPECT_EQ(first->children[0].obj->type, "diffuse");
+}
+
+// Mitsuba's file resolution: <path value="..."/> adds a folder to search, and a relative file
+// name in an included file is also looked up in the main scene's folder. Names resolve to the
+// absolute path of the file found.
+TEST(SceneParser, SearchPathsAndMitsubaFileResolution) {
+    const std::string dir = kDataDir + "/mitsuba_paths";
+    const auto s = parse_scene_xml_file(dir + "/scene.xml");
+    ASSERT_EQ(s->children.size(), 2u);
+    const auto file_of = [](const XmlObject& o) { return std::get<std::string>(o.param("filename")->value); };
+    const std::filesystem::path quad = file_of(*s->children[0].obj), tri = file_of(*s->children[1].obj);
+    EXPECT_TRUE(quad.is_absolute()) << quad;
+    EXPECT_EQ(std::filesystem::canonical(quad), std::filesystem::canonical(dir + "/meshes/quad.obj"));
+    EXPECT_EQ(std::filesystem::canonical(tri), std::filesystem::canonical(dir + "/assets/tri.obj"));
+    const std::string bad = file_error(dir + "/bad_path.xml");
+    EXPECT_NE(bad.find("bad_path.xml:2: <path>"), std::string::npos) << bad;
+    EXPECT_NE(bad.find("no_such_folder"), std::string::npos) << bad;
+    // Only directly inside <scene>.
+    expect_error(R"(<scene version="3.0.0">
+    <shape type="sphere"><path value="."/></shape>
 </scene>)",
-                 3, "default", "test.xml:2");
+                 2, "path", "only allowed directly inside <scene>");
 }
 
 TEST(SceneParser, IncludeSplicesRelativeToIncludingFile) {

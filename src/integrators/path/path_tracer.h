@@ -1,5 +1,6 @@
 #pragma once
 #include <optional>
+#include <string>
 
 #include "integrators/integrator.h"
 #include "integrators/path/path_state.h"
@@ -24,12 +25,14 @@ struct PathSettings {
     static PathSettings from_props(const Props& props);
 };
 
-/// Unidirectional path tracer. `path` samples only the BSDF (the paper's PT); `nee` adds next
-/// event estimation combined with BSDF sampling by the power heuristic (the paper's NEE).
-/// MNEE derives from it and replaces the light connection and the emitter-hit weights.
+/// Unidirectional path tracer. With `nee`, next event estimation combined with BSDF sampling by
+/// the power heuristic: Mitsuba's and pbrt's `path`, the paper's NEE (also named `nee`).
+/// Without, BSDF sampling alone: `pt`, the paper's pure path tracing (PT). MNEE derives from it
+/// and replaces the light connection and the emitter-hit weights.
 class PathTracer : public TileIntegrator {
 public:
-    PathTracer(const PathSettings& settings, bool nee) : m_settings(settings), m_nee(nee) {}
+    PathTracer(const PathSettings& settings, bool nee, std::string name = "")
+        : m_settings(settings), m_nee(nee), m_name(name.empty() ? (nee ? "nee" : "pt") : std::move(name)) {}
     /// Radiance arriving at the camera along `ray` at the wavelengths `wl` (nm). Thread-safe;
     /// all randomness from `sampler`.
     virtual SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler,
@@ -40,7 +43,7 @@ public:
     /// Stateless: the tracer calls li() for each camera sample.
     std::unique_ptr<SampleTracer> prepare(const Scene& scene, const FilmSpec& film,
                                           const RenderOptions& options) const override;
-    std::string name() const override { return m_nee ? "nee" : "path"; }
+    std::string name() const override { return m_name; }
     const PathSettings& settings() const { return m_settings; }
 
 protected:
@@ -68,6 +71,7 @@ protected:
 
     PathSettings m_settings;
     bool m_nee;
+    std::string m_name;  ///< the scene-file name it was created under
 };
 
 /// The path-tracing family's tracer: li() for every camera sample, no splats. Also how PSSMLT
