@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
@@ -37,9 +38,11 @@ const std::string* builtin_xml(const std::string& scene_arg) {
 }  // namespace
 
 LoadedScene load_scene_arg(const std::string& scene_arg, const Defines& defines) {
-    if (const std::string* xml = builtin_xml(scene_arg))
-        return load_scene_string(*xml, scene_arg, fs::current_path().string(), defines);
-    return load_scene_file(scene_arg, defines);
+    LoadedScene ls = builtin_xml(scene_arg)
+                         ? load_scene_string(*builtin_xml(scene_arg), scene_arg, fs::current_path().string(), defines)
+                         : load_scene_file(scene_arg, defines);
+    for (const std::string& n : ls.notices) std::fprintf(stderr, "snell: notice: %s\n", n.c_str());
+    return ls;
 }
 
 std::shared_ptr<XmlObject> parse_scene_arg(const std::string& scene_arg, const Defines& defines) {

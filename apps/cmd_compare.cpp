@@ -79,6 +79,9 @@ Prepared prepare(const std::string& scene, const Defines& user_defines, const Te
     const XmlObject* xi = nullptr;
     for (const XmlObject::Child& c : root->children)
         if (c.obj->tag == "integrator") xi = c.obj.get();
+    // Mitsuba's moment and aov wrappers: the parameters are the nested integrator's.
+    while (xi && (xi->type == "moment" || xi->type == "aov") && !xi->children.empty())
+        xi = xi->children.front().obj.get();
     const SourceLoc loc = xi ? xi->loc : SourceLoc{scene, 0};
     std::set<std::string> dropped;  // scene parameters the technique's type does not take
     auto make = [&] {

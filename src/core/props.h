@@ -99,6 +99,9 @@ public:
         return v.empty() ? nullptr : v[0];
     }
 
+    /// Marks the parameter used whatever its type (a value that is accepted and has no effect);
+    /// false if absent.
+    bool mark_used(const std::string& name) const;
     /// Throws SceneError naming the first parameter or child nobody asked for.
     void check_unused() const;
     /// Throws a SceneError located at this object's element.

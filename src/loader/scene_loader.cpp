@@ -11,6 +11,7 @@
 #include "camera/factory.h"
 #include "integrators/integrator.h"
 #include "light/factory.h"
+#include "loader/mitsuba_integrators.h"
 #include "loader/shape_factory.h"
 #include "loader/xml_scene.h"
 
@@ -60,6 +61,7 @@ public:
                     throw SceneError(o.loc, o.tag, "an area emitter must be nested inside the <shape> that emits");
                 Props p = props(o);
                 if (o.param("filename")) p.set("__base_dir", o.base_dir, o.loc);  // envmap image
+                sms_flags(p);
                 auto light = located(o, [&] { return create_light(p); });
                 p.check_unused();
                 scene->add_light(light);
@@ -68,7 +70,7 @@ public:
         if (!sensor) throw SceneError(root.loc, "scene", "the scene has no <sensor type=\"perspective\">");
         scene->set_camera(camera(*sensor));
         if (integrator) {
-            Props p = props(*integrator);
+            Props p = integrator_props(*integrator, &m_out.notices);
             auto integ = located(*integrator, [&] { return create_integrator(p); });
             p.check_unused();
             m_out.integrator = integ;
@@ -83,6 +85,16 @@ public:
 private:
     LoadedScene& m_out;
     std::map<const XmlObject*, std::shared_ptr<BSDF>> m_bsdfs;  // one instance per element (refs share)
+
+    // The SMS code's caustic flags on shapes and emitters: accepted, one notice per scene.
+    void sms_flags(const Props& p) {
+        if (!consume_sms_flags(p) || m_sms_notice) return;
+        m_sms_notice = true;
+        m_out.notices.push_back(p.loc().str() +
+                                ": the SMS code's caustic_* flags are ignored: snell's mnee treats every refractive "
+                                "shape as a caster and every other surface as a receiver");
+    }
+    bool m_sms_notice = false;
 
     static Props props(const XmlObject& o) {
         Props p(o.tag, o.type, o.loc);
@@ -121,11 +133,13 @@ private:
                 emitter = c.obj.get();
             }
         }
+        sms_flags(p);
         auto shape = located(o, [&] { return create_shape(p); });
         p.check_unused();
         shape->set_id(o.id);
         if (emitter) {
             Props ep = props(*emitter);
+            sms_flags(ep);
             auto light = located(*emitter, [&] { return create_area_light(ep, shape); });
             ep.check_unused();
             scene.add_light(light);

@@ -3,6 +3,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "camera/camera.h"
 #include "core/props.h"
@@ -24,6 +25,9 @@ struct LoadedScene {
     uint64_t seed = 0;    ///< sampler seed (offsets every random stream of the render)
     SamplerSpec sampler;  ///< sampler type and jitter; `independent` without a <sampler> (Mitsuba's default)
     std::string path;     ///< file it came from ("builtin:<name>" for built-ins)
+    /// "file:line: ..." lines on what renders differently from Mitsuba (an unwrapped AOV
+    /// integrator, an SMS integrator rendered as mnee, ignored SMS flags); the apps print them.
+    std::vector<std::string> notices;
 };
 
 /// Parameter overrides (-D name=value), applied like Mitsuba's <default> substitution.

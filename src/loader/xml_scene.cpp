@@ -35,6 +35,7 @@ const std::set<std::string> kTransformOps = {"lookat", "translate", "rotate", "s
 const std::set<std::string>& allowed_children(const std::string& parent) {
     static const std::map<std::string, std::set<std::string>> table = {
         {"scene", {"integrator", "sensor", "bsdf", "shape", "emitter"}},
+        {"integrator", {"integrator"}},  // Mitsuba's moment and aov wrappers
         {"sensor", {"film", "sampler"}},
         {"film", {"rfilter"}},
         {"bsdf", {"bsdf"}},

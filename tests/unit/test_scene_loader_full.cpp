@@ -7,6 +7,7 @@
 
 #include "bsdf/bsdf.h"
 #include "integrators/integrator.h"
+#include "integrators/mnee/mnee_integrator.h"
 #include "light/light.h"
 #include "loader/scene_loader.h"
 #include "unit/loader_errors.h"
@@ -191,4 +192,72 @@ TEST(SceneLoaderFull, ShippedScenesLoad) {
     const LoadedScene s = load_scene_file(droplet, {{"integrator", "path"}, {"spp", "3"}});
     EXPECT_EQ(s.integrator->name(), "path");
     EXPECT_EQ(s.spp, 3);
+}
+
+namespace {
+LoadedScene load_string(const std::string& xml) { return load_scene_string(xml, "test.xml", kDataDir); }
+bool has_notice(const LoadedScene& ls, const std::string& what) {
+    for (const auto& n : ls.notices)
+        if (n.find(what) != std::string::npos) return true;
+    return false;
+}
+}  // namespace
+
+// Mitsuba's moment and aov wrappers render their nested integrator, with a notice that the extra
+// images are not written; a wrapper needs exactly one.
+TEST(SceneLoaderFull, MomentAndAovWrappersAreUnwrapped) {
+    const LoadedScene ls = load_string(scene_with(R"(<integrator type="aov"><string name="aovs" value="nn:sh_normal"/>
+<integrator type="moment"><integrator type="path"><integer name="max_depth" value="3"/></integrator></integrator>
+</integrator>)"));
+    EXPECT_EQ(ls.integrator->name(), "path");
+    ASSERT_EQ(ls.notices.size(), 2u);
+    EXPECT_EQ(ls.notices[0].rfind("test.xml:3: <integrator type=\"aov\"> is unwrapped", 0), 0u) << ls.notices[0];
+    EXPECT_TRUE(has_notice(ls, "AOV images are not written"));
+    EXPECT_TRUE(has_notice(ls, "moment images are not written"));
+    expect_error(scene_with("<integrator type=\"moment\"/>"), "test.xml:3: <integrator>", "needs a nested");
+    expect_error(scene_with("<integrator type=\"moment\">\n<integrator type=\"path\"/>\n<integrator "
+                            "type=\"nee\"/>\n</integrator>"),
+                 "test.xml:5: <integrator>", "wraps one integrator");
+    expect_error(scene_with("<integrator type=\"path\">\n<integrator type=\"nee\"/>\n</integrator>"),
+                 "test.xml:4: <integrator>", "takes no nested");
+}
+
+// The SMS code's integrators render as mnee with the matching estimator, and say what differs;
+// its caustic flags on shapes are accepted with one notice.
+TEST(SceneLoaderFull, SmsIntegratorsMapToMnee) {
+    const auto solutions = [](const LoadedScene& ls) {
+        const auto* m = dynamic_cast<const MneeIntegrator*>(ls.integrator.get());
+        EXPECT_NE(m, nullptr);
+        return m ? m->mnee_settings() : MneeSettings();
+    };
+    const LoadedScene unbiased = load_string(scene_with(R"(<integrator type="path_sms_ss">
+<integer name="max_depth" value="8"/><integer name="max_trials" value="100"/>
+<boolean name="halfvector_constraints" value="true"/><float name="step_scale" value="1"/></integrator>
+<shape type="sphere"><boolean name="caustic_caster_single" value="true"/><bsdf type="dielectric"/></shape>
+<shape type="rectangle"><boolean name="caustic_receiver" value="true"/></shape>)"));
+    EXPECT_EQ(unbiased.integrator->name(), "mnee");
+    EXPECT_EQ(solutions(unbiased).solutions, MneeSolutions::Unbiased);
+    EXPECT_EQ(solutions(unbiased).max_trials, 100);
+    EXPECT_TRUE(has_notice(unbiased, "renders as mnee with SMS's unbiased estimator"));
+    EXPECT_TRUE(has_notice(unbiased, "ignored: halfvector_constraints, step_scale"));
+    EXPECT_TRUE(has_notice(unbiased, "caustic_* flags are ignored"));
+    EXPECT_EQ(unbiased.notices.size(), 2u) << "one notice for all the flags";
+
+    const LoadedScene biased = load_string(scene_with(
+        R"(<integrator type="path_sms_ms"><boolean name="biased" value="true"/><integer name="max_trials" value="8"/></integrator>)"));
+    EXPECT_EQ(solutions(biased).solutions, MneeSolutions::All);
+    EXPECT_EQ(solutions(biased).trials, 8);
+    EXPECT_TRUE(has_notice(biased, "solved as one chain"));
+
+    const LoadedScene mnee =
+        load_string(scene_with(R"(<integrator type="path_sms_ss"><boolean name="mnee_init" value="true"/>
+<boolean name="biased" value="true"/><integer name="max_trials" value="1"/><boolean name="biased_mnee" value="true"/></integrator>)"));
+    EXPECT_EQ(solutions(mnee).solutions, MneeSolutions::One);
+    EXPECT_TRUE(solutions(mnee).biased);
+    EXPECT_EQ(mnee.integrator->name(), "mnee-biased");
+
+    // A parameter neither SMS nor snell knows is still an error at its line.
+    expect_error(scene_with("<integrator type=\"path_sms_ss\">\n<float name=\"nope\" value=\"1\"/>\n</integrator>"),
+                 "test.xml:4: <integrator>", "unused parameter 'nope'");
+    expect_error(scene_with("<integrator type=\"path_sms_glints\"/>"), "test.xml:3: <integrator>", "glints");
 }
