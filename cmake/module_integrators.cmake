@@ -5,6 +5,7 @@ snell_library(snell_integrators
   src/integrators/light_connection.cpp
   src/integrators/path/path_tracer.cpp
   src/integrators/path/technique_stats.cpp
+  src/integrators/direct/direct.cpp
   src/integrators/mnee/mnee_integrator.cpp
   src/integrators/bdpt/bdpt.cpp
   src/integrators/bdpt/vertex.cpp

@@ -3,6 +3,7 @@
 
 #include "core/props.h"
 #include "integrators/bdpt/bdpt.h"
+#include "integrators/direct/direct.h"
 #include "integrators/erpt/erpt.h"
 #include "integrators/integrator.h"
 #include "integrators/mnee/mnee_integrator.h"
@@ -20,6 +21,8 @@ const std::map<std::string, Factory>& registry() {
     static const std::map<std::string, Factory> r = {
         {"bdpt", [](const Props& p) { return std::make_shared<BdptIntegrator>(PathSettings::from_props(p)); }},
         {"erpt", [](const Props& p) { return std::make_shared<ErptIntegrator>(ErptSettings::from_props(p)); }},
+        // Mitsuba's direct illumination integrator.
+        {"direct", [](const Props& p) { return std::make_shared<DirectIntegrator>(DirectSettings::from_props(p)); }},
         // `path` means what it means in Mitsuba and pbrt: emitter sampling and BSDF sampling, MIS.
         {"path",
          [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), true, "path"); }},
