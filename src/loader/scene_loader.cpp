@@ -56,7 +56,16 @@ public:
                 bsdf(o);  // instantiated even if unused, so its errors are reported
             } else if (o.tag == "shape") {
                 add_shape(o, *scene);
+            } else if (o.tag == "film" || o.tag == "sampler" || o.tag == "rfilter") {
+                // A declaration (Mitsuba 3): instantiated where a <ref> uses it.
+                if (!o.referenced)
+                    throw SceneError(
+                        o.loc, o.tag,
+                        "a top-level <" + o.tag + "> is used only through <ref id=\"...\"/> " + "inside a <sensor>" +
+                            (o.tag == "rfilter" ? "'s <film>" : "") +
+                            (o.id.empty() ? ", and this one has no id" : ", and none names '" + o.id + "'"));
             } else if (o.tag == "emitter") {
+                if (o.type == "area" && o.referenced) continue;  // declared here, used by a <shape>'s <ref>
                 if (o.type == "area")
                     throw SceneError(o.loc, o.tag, "an area emitter must be nested inside the <shape> that emits");
                 Props p = props(o);

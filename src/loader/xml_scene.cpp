@@ -34,7 +34,8 @@ const std::set<std::string> kTransformOps = {"lookat", "translate", "rotate", "s
 /// Which object tags may be nested (or referenced) inside which.
 const std::set<std::string>& allowed_children(const std::string& parent) {
     static const std::map<std::string, std::set<std::string>> table = {
-        {"scene", {"integrator", "sensor", "bsdf", "shape", "emitter"}},
+        // film, sampler and rfilter only as declarations with an id, used by <ref> (Mitsuba 3)
+        {"scene", {"integrator", "sensor", "bsdf", "shape", "emitter", "film", "sampler", "rfilter"}},
         {"integrator", {"integrator"}},  // Mitsuba's moment and aov wrappers
         {"sensor", {"film", "sampler"}},
         {"film", {"rfilter"}},
@@ -618,6 +619,7 @@ private:
                     r.loc, "ref",
                     "id '" + r.id + "' is a <" + tag + ">, which cannot be used inside <" + r.parent->tag + ">");
             r.parent->children[r.index].obj = it->second;
+            it->second->referenced = true;
         }
     }
 

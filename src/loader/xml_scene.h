@@ -35,6 +35,7 @@ struct XmlObject {
     std::string base_dir;          ///< folder of the file the element was written in
     std::vector<XmlParam> params;  ///< value tags in file order (names unique)
     std::vector<Child> children;   ///< nested objects and resolved refs in file order
+    bool referenced = false;       ///< some <ref> names it (top-level declarations used elsewhere)
 
     /// The parameter called `name`, or nullptr.
     const XmlParam* param(const std::string& name) const;

@@ -261,3 +261,23 @@ TEST(SceneLoaderFull, SmsIntegratorsMapToMnee) {
                  "test.xml:4: <integrator>", "unused parameter 'nope'");
     expect_error(scene_with("<integrator type=\"path_sms_glints\"/>"), "test.xml:3: <integrator>", "glints");
 }
+
+// Mitsuba 3 scenes declare films, samplers and area emitters at the top level with an id and use
+// them through <ref>: they are instantiated where they are used; one nobody uses is an error.
+TEST(SceneLoaderFull, TopLevelDeclarationsUsedByRef) {
+    const LoadedScene ls = load_string(R"(<scene version="3.0.0">
+<film type="hdrfilm" id="film"><integer name="width" value="20"/><integer name="height" value="10"/></film>
+<sampler type="independent" id="spl"><integer name="sample_count" value="7"/></sampler>
+<emitter type="area" id="glow"><rgb name="radiance" value="2"/></emitter>
+<sensor type="perspective"><ref id="film"/><ref id="spl"/></sensor>
+<shape type="sphere"><ref id="glow"/></shape>
+<shape type="rectangle"><ref id="glow"/></shape>
+</scene>)");
+    EXPECT_EQ(ls.film.out_width(), 20);
+    EXPECT_EQ(ls.film.out_height(), 10);
+    EXPECT_EQ(ls.spp, 7);
+    EXPECT_EQ(ls.scene->lights().size(), 2u) << "one area light per shape that uses the emitter";
+    expect_error(scene_with("<film type=\"hdrfilm\" id=\"f\"/>"), "test.xml:3: <film>", "none names 'f'");
+    expect_error(scene_with("<sampler type=\"independent\"/>"), "test.xml:3: <sampler>", "has no id");
+    expect_error(scene_with("<emitter type=\"area\" id=\"e\"/>"), "test.xml:3: <emitter>", "must be nested");
+}
