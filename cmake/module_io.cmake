@@ -1,13 +1,14 @@
-# File formats only (owner: io): EXR/PNG images, OBJ/PLY meshes, render statistics JSON. Nothing
+# File formats only (owner: io): EXR/PNG images, OBJ/PLY/serialized meshes, render statistics JSON. Nothing
 # here knows the film, shapes or scenes; callers convert to and from plain buffers and MeshData.
 snell_library(snell_io
   src/io/image.cpp
   src/io/stats_json.cpp
   src/io/mesh_obj.cpp
   src/io/mesh_ply.cpp
+  src/io/mesh_serialized.cpp
 )
 target_link_libraries(snell_io PUBLIC snell_core nlohmann_json::nlohmann_json
-                      PRIVATE OpenEXR::OpenEXR tinyobjloader::tinyobjloader ${STB_LIBRARY})
+                      PRIVATE OpenEXR::OpenEXR tinyobjloader::tinyobjloader ZLIB::ZLIB ${STB_LIBRARY})
 target_include_directories(snell_io PRIVATE ${STB_INCLUDE_DIR})
 
 snell_test(test_image
@@ -20,4 +21,4 @@ endif()
 
 snell_test(test_mesh_io
   SOURCES tests/unit/test_mesh_io.cpp
-  LIBS snell_io)
+  LIBS snell_io ZLIB::ZLIB)

@@ -12,6 +12,7 @@ PACKAGES=(
   libtbb-dev           # oneTBB: tile scheduling
   libpugixml-dev       # Mitsuba-style XML scenes
   libtinyobjloader-dev # OBJ meshes
+  zlib1g-dev           # Mitsuba's serialized meshes
   libcli11-dev         # command line
   libstb-dev           # PNG output
   nlohmann-json3-dev   # stats JSON

@@ -8,6 +8,7 @@
 #include "geometry/sphere.h"
 #include "io/mesh_obj.h"
 #include "io/mesh_ply.h"
+#include "io/mesh_serialized.h"
 #include "light/light.h"
 
 namespace snell {
@@ -45,8 +46,9 @@ std::shared_ptr<Shape> create_shape(const Props& props) {
     std::shared_ptr<Shape> shape;
     if (type == "sphere") {
         shape = make_sphere(props, xf, flip);
-    } else if (type == "rectangle" || type == "disk" || type == "cube" || type == "obj" || type == "ply") {
-        const bool face_normals = props.get_bool("face_normals", false);
+    } else if (type == "rectangle" || type == "disk" || type == "cube" || type == "obj" || type == "ply" ||
+               type == "serialized") {
+        bool face_normals = props.get_bool("face_normals", false);
         MeshData data;
         std::string name = type;
         try {
@@ -64,6 +66,12 @@ std::shared_ptr<Shape> create_shape(const Props& props) {
                     data = load_obj(name);
                     if (flip_tex)
                         for (Vec2& uv : data.uvs) uv.y = 1 - uv.y;
+                } else if (type == "serialized") {
+                    // Mitsuba's compressed meshes; the file may ask for face normals itself.
+                    const int64_t index = props.get_int("shape_index", 0);
+                    bool file_face_normals = false;
+                    data = load_serialized(name, index, &file_face_normals);
+                    face_normals = face_normals || file_face_normals;
                 } else {
                     data = load_ply(name);
                 }

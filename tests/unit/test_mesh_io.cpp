@@ -9,6 +9,9 @@
 
 #include "io/mesh_obj.h"
 #include "io/mesh_ply.h"
+#include "io/mesh_serialized.h"
+
+#include <zlib.h>
 
 using namespace snell;
 namespace fs = std::filesystem;
@@ -154,4 +157,111 @@ TEST(MeshIo, PlyErrorsNameThePath) {
           "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 "
           "0\n3 0 1 5\n");
     expect_throws_naming([&] { load_ply(idx.string()); }, idx.string(), "vertex 5");
+}
+
+namespace {
+
+// One mesh of Mitsuba's serialized format: header, then the zlib stream of its body.
+std::string serialized_mesh(uint16_t version, uint32_t flags, const std::vector<Vec3>& p,
+                            const std::vector<std::array<uint32_t, 3>>& tris, const std::vector<Vec2>& uv = {}) {
+    std::string body;
+    put<uint32_t>(body, flags, false);
+    if (version == 4) body += std::string("mesh") + '\0';
+    put<uint64_t>(body, p.size(), false);
+    put<uint64_t>(body, tris.size(), false);
+    const bool dbl = flags & serialized::kDoublePrecision;
+    const auto real = [&](double x) { dbl ? put<double>(body, x, false) : put<float>(body, float(x), false); };
+    for (const Vec3& v : p) real(v.x), real(v.y), real(v.z);
+    for (const Vec2& t : uv) real(t.x), real(t.y);
+    for (const auto& t : tris)
+        for (uint32_t i : t) put<uint32_t>(body, i, false);
+    uLongf n = compressBound(uLong(body.size()));
+    std::string z(n, '\0');
+    EXPECT_EQ(compress2(reinterpret_cast<Bytef*>(z.data()), &n, reinterpret_cast<const Bytef*>(body.data()),
+                        uLong(body.size()), 6),
+              Z_OK);
+    z.resize(n);
+    std::string out;
+    put<uint16_t>(out, 0x041C, false);
+    put<uint16_t>(out, version, false);
+    return out + z;
+}
+
+// A file of meshes with the offset table at its end.
+std::string serialized_file(uint16_t version, const std::vector<std::string>& meshes) {
+    std::string out;
+    std::vector<uint64_t> offsets;
+    for (const auto& m : meshes) {
+        offsets.push_back(out.size());
+        out += m;
+    }
+    for (uint64_t o : offsets) version == 4 ? put<uint64_t>(out, o, false) : put<uint32_t>(out, uint32_t(o), false);
+    put<uint32_t>(out, uint32_t(meshes.size()), false);
+    return out;
+}
+
+const std::vector<Vec3> kQuad = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+const std::vector<std::array<uint32_t, 3>> kQuadTris = {{0, 1, 2}, {0, 2, 3}};
+
+}  // namespace
+
+// Mitsuba's serialized meshes: several per file (shape_index), versions 3 and 4, single and
+// double precision, texture coordinates, the face-normal flag.
+TEST(MeshIo, SerializedMeshes) {
+    const fs::path f4 = temp_dir() / "two.serialized";
+    write(f4,
+          serialized_file(
+              4, {serialized_mesh(4, serialized::kSinglePrecision, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}}),
+                  serialized_mesh(4, serialized::kDoublePrecision | serialized::kTexcoords | serialized::kFaceNormals,
+                                  kQuad, kQuadTris, {{0, 0}, {1, 0}, {1, 1}, {0.25, 1}})}));
+    bool face = true;
+    const MeshData a = load_serialized(f4.string(), 0, &face);
+    EXPECT_EQ(a.positions.size(), 3u);
+    EXPECT_EQ(a.triangles.size(), 1u);
+    EXPECT_FALSE(face);
+    const MeshData b = load_serialized(f4.string(), 1, &face);
+    ASSERT_EQ(b.positions.size(), 4u);
+    ASSERT_EQ(b.triangles.size(), 2u);
+    EXPECT_EQ(b.positions[2].x, 1.0);
+    EXPECT_EQ(b.triangles[1][2], 3u);
+    ASSERT_EQ(b.uvs.size(), 4u);
+    EXPECT_EQ(b.uvs[3].x, 0.25);
+    EXPECT_TRUE(face);
+    const fs::path f3 = temp_dir() / "one.serialized";
+    write(f3, serialized_file(3, {serialized_mesh(3, serialized::kSinglePrecision, kQuad, kQuadTris)}));
+    EXPECT_EQ(load_serialized(f3.string(), 0).triangles.size(), 2u);
+}
+
+TEST(MeshIo, SerializedErrorsNameThePath) {
+    const auto error = [](const std::string& bytes, int64_t index = 0) {
+        const fs::path f = temp_dir() / "bad.serialized";
+        write(f, bytes);
+        try {
+            load_serialized(f.string(), index);
+        } catch (const std::runtime_error& e) {
+            const std::string msg = e.what();
+            EXPECT_NE(msg.find("bad.serialized"), std::string::npos) << msg;
+            return msg;
+        }
+        return std::string("no error");
+    };
+    const std::string good = serialized_file(4, {serialized_mesh(4, serialized::kSinglePrecision, kQuad, kQuadTris)});
+    EXPECT_NE(error(good, 1).find("shape_index 1 out of range (the file has 1 mesh)"), std::string::npos);
+    EXPECT_NE(error(good, -1).find("out of range"), std::string::npos);
+    EXPECT_NE(error("PLY\n" + good).find("bad identifier"), std::string::npos);
+    EXPECT_NE(error(good.substr(0, 6)).find("too short"), std::string::npos);
+    // A corrupt compressed stream, and one cut short.
+    std::string corrupt = good;
+    corrupt[10] = char(corrupt[10] ^ 0x5a);
+    corrupt[11] = char(corrupt[11] ^ 0x5a);
+    EXPECT_NE(error(corrupt).find("bad.serialized"), std::string::npos);
+    // Counts larger than the data, and an index past the vertices.
+    EXPECT_NE(error(serialized_file(4, {serialized_mesh(4, serialized::kSinglePrecision, kQuad, {{0, 1, 7}})}))
+                  .find("index 7 out of range"),
+              std::string::npos);
+    std::string missing_table = good;
+    missing_table.resize(missing_table.size() - 4);
+    put<uint32_t>(missing_table, 1000000, false);
+    EXPECT_NE(error(missing_table).find("corrupt offset table"), std::string::npos);
+    EXPECT_NE(error("").find("too short"), std::string::npos);
 }

@@ -281,3 +281,17 @@ TEST(SceneLoaderFull, TopLevelDeclarationsUsedByRef) {
     expect_error(scene_with("<sampler type=\"independent\"/>"), "test.xml:3: <sampler>", "has no id");
     expect_error(scene_with("<emitter type=\"area\" id=\"e\"/>"), "test.xml:3: <emitter>", "must be nested");
 }
+
+// Mitsuba's serialized meshes (tests/data/scenes/full/meshes/two.serialized: a triangle, then a
+// quad), chosen by shape_index; a bad index names the file and the element's line.
+TEST(SceneLoaderFull, SerializedShapes) {
+    const LoadedScene ls = load_string(scene_with(R"(<shape type="serialized">
+<string name="filename" value="meshes/two.serialized"/><integer name="shape_index" value="1"/></shape>)"));
+    ASSERT_EQ(ls.scene->shapes().size(), 1u);
+    EXPECT_NEAR(ls.scene->shapes()[0]->area(), 1.0, 1e-6) << "the quad, not the triangle";
+    const std::string msg = load_error(
+        scene_with("<shape type=\"serialized\">\n<string name=\"filename\" value=\"meshes/two.serialized\"/>\n<integer "
+                   "name=\"shape_index\" value=\"2\"/>\n</shape>"));
+    EXPECT_EQ(msg.rfind("test.xml:3: <shape>", 0), 0u) << msg;
+    EXPECT_NE(msg.find("two.serialized: shape_index 2 out of range (the file has 2 meshes)"), std::string::npos) << msg;
+}
