@@ -10,6 +10,7 @@ snell_library(snell_bsdf
   src/bsdf/conductor.cpp
   src/bsdf/roughconductor.cpp
   src/bsdf/plastic.cpp
+  src/bsdf/roughplastic.cpp
   src/bsdf/twosided.cpp
   src/bsdf/factory.cpp
 )

@@ -12,6 +12,7 @@
 #include "bsdf/plastic.h"
 #include "bsdf/roughconductor.h"
 #include "bsdf/roughdielectric.h"
+#include "bsdf/roughplastic.h"
 #include "bsdf/thindielectric.h"
 #include "bsdf/twosided.h"
 
@@ -149,6 +150,17 @@ std::shared_ptr<BSDF> build(const Props& p) {
             p.get_spectrum("specular_reflectance", SpectrumUse::Reflectance, Spectrum::constant(1.0)), int_ior, ext_ior,
             p.get_bool("nonlinear", false));
     }
+    if (type == "roughplastic") {
+        auto distr = read_distribution(p);
+        const double int_ior = read_ior(p, "int_ior", "polypropylene");
+        const double ext_ior = read_ior(p, "ext_ior", "air");
+        auto diffuse = p.get_spectrum("diffuse_reflectance", SpectrumUse::Reflectance, Spectrum::constant(0.5));
+        auto specular = p.get_spectrum("specular_reflectance", SpectrumUse::Reflectance, Spectrum::constant(1.0));
+        const bool nonlinear = p.get_bool("nonlinear", false);
+        if (std::max(distr.alpha_u(), distr.alpha_v()) < kEffectivelySmoothAlpha)
+            return std::make_shared<PlasticBSDF>(diffuse, specular, int_ior, ext_ior, nonlinear);
+        return std::make_shared<RoughPlasticBSDF>(distr, diffuse, specular, int_ior, ext_ior, nonlinear);
+    }
     if (type == "twosided") {
         auto kids = p.children<BSDF>();
         if (kids.empty() || kids.size() > 2) p.raise("twosided needs one or two nested BSDFs");
@@ -158,7 +170,7 @@ std::shared_ptr<BSDF> build(const Props& p) {
     }
     p.raise("unknown BSDF type '" + type +
             "' (known: diffuse, dielectric, thindielectric, roughdielectric, conductor, "
-            "roughconductor, plastic, twosided)");
+            "roughconductor, plastic, roughplastic, twosided)");
 }
 
 }  // namespace

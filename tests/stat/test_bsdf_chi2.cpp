@@ -4,13 +4,16 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <tuple>
 
 #include "bsdf/conductor_data.h"
 #include "bsdf/diffuse.h"
 #include "bsdf/microfacet.h"
+
 #include "bsdf/plastic.h"
 #include "bsdf/roughconductor.h"
 #include "bsdf/roughdielectric.h"
+#include "bsdf/roughplastic.h"
 #include "bsdf/twosided.h"
 #include "stat/chi2.h"
 
@@ -81,6 +84,16 @@ std::vector<Case> make_cases() {
     c.push_back(bsdf_case(
         "plastic_nonlinear",
         std::make_shared<PlasticBSDF>(Spectrum::constant(0.9), Spectrum::constant(0.5), 1.6, 1.0, true), dir(50)));
+    for (auto [t, a, th] : {std::tuple{B, 0.1, 30.0}, std::tuple{G, 0.3, 70.0}, std::tuple{G, 0.05, 10.0}})
+        c.push_back(bsdf_case(
+            "roughplastic_" + std::string(t == B ? "beckmann" : "ggx") + "_" + std::to_string(int(a * 100)) + "_th" +
+                std::to_string(int(th)),
+            std::make_shared<RoughPlasticBSDF>(MD(t, a), Spectrum::constant(0.6), Spectrum::constant(1.0), 1.49, 1.0),
+            dir(th)));
+    c.push_back(bsdf_case("roughplastic_nonlinear",
+                          std::make_shared<RoughPlasticBSDF>(MD(G, 0.2), Spectrum::constant(0.9),
+                                                             Spectrum::constant(0.5), 1.6, 1.0, true),
+                          dir(50)));
     auto diffuse = std::make_shared<DiffuseBSDF>(Spectrum::constant(0.5));
     c.push_back(bsdf_case("twosided_diffuse_below", std::make_shared<TwoSidedBSDF>(diffuse), dir(120)));
     c.push_back(bsdf_case("twosided_two_below",

@@ -295,3 +295,16 @@ TEST(SceneLoaderFull, SerializedShapes) {
     EXPECT_EQ(msg.rfind("test.xml:3: <shape>", 0), 0u) << msg;
     EXPECT_NE(msg.find("two.serialized: shape_index 2 out of range (the file has 2 meshes)"), std::string::npos) << msg;
 }
+
+// roughplastic loads with Mitsuba's parameters; an effectively smooth one is the smooth plastic.
+TEST(SceneLoaderFull, RoughPlastic) {
+    const LoadedScene ls = load_string(scene_with(R"(<shape type="sphere"><bsdf type="roughplastic">
+<string name="distribution" value="ggx"/><float name="alpha" value="0.2"/><rgb name="diffuse_reflectance" value="0.2, 0.4, 0.6"/>
+<float name="int_ior" value="1.5"/><boolean name="nonlinear" value="true"/></bsdf></shape>
+<shape type="sphere"><bsdf type="roughplastic"><float name="alpha" value="0"/></bsdf></shape>)"));
+    ASSERT_EQ(ls.scene->shapes().size(), 2u);
+    EXPECT_EQ(ls.scene->shapes()[0]->bsdf()->flags(), kReflection | kGlossy | kDiffuse);
+    EXPECT_EQ(ls.scene->shapes()[1]->bsdf()->flags(), kReflection | kSpecular | kDiffuse);
+    expect_error(scene_with("<bsdf type=\"roughplastic\">\n<string name=\"distribution\" value=\"phong\"/>\n</bsdf>"),
+                 "test.xml:4: <bsdf>", "unknown distribution 'phong'");
+}

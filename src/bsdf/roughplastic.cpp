@@ -1,0 +1,121 @@
+#include "bsdf/roughplastic.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bsdf/fresnel.h"
+#include "core/warp.h"
+
+namespace snell {
+
+namespace {
+
+constexpr int kTableSize = 64;   // mu samples of the transmittance table
+constexpr int kQuadrature = 48;  // per dimension: the microfacet lobe's albedo by a stratified grid
+
+// Specular albedo of the rough dielectric coating at cos theta = mu, with relative IOR eta
+// (inside over outside; < 1 seen from inside): E(mu) = int F(wo.m) D G / (4 mu cos_i) cos_i dwi,
+// by a midpoint grid over the sampler's primary square (the lobe's own importance sampling).
+double specular_albedo(const MicrofacetDistribution& distr, double mu, double eta) {
+    mu = std::clamp(mu, 1e-4, 1.0);
+    const Vec3 wo(std::sqrt(1 - mu * mu), 0, mu);
+    double sum = 0;
+    for (int i = 0; i < kQuadrature; ++i)
+        for (int j = 0; j < kQuadrature; ++j) {
+            const Vec2 u((i + 0.5) / kQuadrature, (j + 0.5) / kQuadrature);
+            const auto [m, pm] = distr.sample(wo, u);
+            if (!(pm > 0)) continue;
+            const double om = dot(wo, m);
+            if (om <= 0) continue;
+            const Vec3 wi = reflect(wo, m);
+            if (wi.z <= 0) continue;
+            // f cos_i / p(wi), with p(wi) = pm / (4 om).
+            const double f = fresnel_dielectric(om, eta).R * distr.D(m) * distr.G(wo, wi, m) / (4 * wo.z * wi.z);
+            sum += f * wi.z * 4 * om / pm;
+        }
+    return std::min(1.0, sum / (kQuadrature * kQuadrature));
+}
+
+}  // namespace
+
+RoughPlasticBSDF::RoughPlasticBSDF(MicrofacetDistribution distribution, Spectrum diffuse_reflectance,
+                                   Spectrum specular_reflectance, double int_ior, double ext_ior, bool nonlinear)
+    : m_distr(distribution),
+      m_diffuse_reflectance(std::move(diffuse_reflectance)),
+      m_specular_reflectance(std::move(specular_reflectance)),
+      m_eta(int_ior / ext_ior),
+      m_inv_eta2(1.0 / sqr(int_ior / ext_ior)),
+      m_nonlinear(nonlinear) {
+    // Lobe selection by the average albedos, as Mitsuba does.
+    const double d = m_diffuse_reflectance.average(), s = m_specular_reflectance.average();
+    m_specular_sampling_weight = d + s > 0 ? s / (d + s) : 0.5;
+    m_external_transmittance.resize(kTableSize);
+    double internal = 0;
+    for (int i = 0; i < kTableSize; ++i) {
+        const double mu = double(i) / (kTableSize - 1);
+        m_external_transmittance[size_t(i)] = 1 - specular_albedo(m_distr, mu, m_eta);
+        // Cosine-weighted hemispherical mean from inside: 2 int R(mu) mu dmu (trapezoid rule).
+        const double w = (i == 0 || i == kTableSize - 1) ? 0.5 : 1.0;
+        internal += w * specular_albedo(m_distr, mu, 1 / m_eta) * mu;
+    }
+    m_internal_reflectance = std::min(1.0, 2 * internal / (kTableSize - 1));
+}
+
+double RoughPlasticBSDF::external_transmittance(double mu) const {
+    const double x = std::clamp(mu, 0.0, 1.0) * (kTableSize - 1);
+    const int i = std::min(int(x), kTableSize - 2);
+    const double f = x - i;
+    return (1 - f) * m_external_transmittance[size_t(i)] + f * m_external_transmittance[size_t(i) + 1];
+}
+
+double RoughPlasticBSDF::specular_probability(double t_o) const {
+    const double ps = (1 - t_o) * m_specular_sampling_weight, pd = t_o * (1 - m_specular_sampling_weight);
+    return ps + pd > 0 ? ps / (ps + pd) : 0.0;
+}
+
+SampledSpectrum RoughPlasticBSDF::eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
+    if (wo.z <= 0 || wi.z <= 0) return {};
+    SampledSpectrum out;
+    const Vec3 m = normalize(wo + wi);
+    const double D = m_distr.D(m);
+    if (D > 0) {
+        const double F = fresnel_dielectric(dot(wo, m), m_eta).R;
+        out = m_specular_reflectance.eval(ctx.wl) * (F * D * m_distr.G(wo, wi, m) / (4 * wo.z * wi.z));
+    }
+    SampledSpectrum diff = m_diffuse_reflectance.eval(ctx.wl);
+    for (int i = 0; i < kSpectrumSamples; ++i)
+        diff[i] /= 1 - (m_nonlinear ? diff[i] * m_internal_reflectance : m_internal_reflectance);
+    return out + diff * (m_inv_eta2 * external_transmittance(wo.z) * external_transmittance(wi.z) * kInvPi);
+}
+
+double RoughPlasticBSDF::pdf(const BSDFContext&, const Vec3& wo, const Vec3& wi) const {
+    if (wo.z <= 0 || wi.z <= 0) return 0;
+    const double ps = specular_probability(external_transmittance(wo.z));
+    const Vec3 m = normalize(wo + wi);
+    const double dm = dot(wi, m);
+    const double p_spec = dm > 0 ? m_distr.pdf(wo, m) / (4 * dm) : 0.0;
+    return ps * p_spec + (1 - ps) * warp::square_to_cosine_hemisphere_pdf(wi);
+}
+
+std::optional<BSDFSample> RoughPlasticBSDF::sample(const BSDFContext& ctx, const Vec3& wo, double uc,
+                                                   const Vec2& u) const {
+    if (wo.z <= 0) return std::nullopt;
+    const double ps = specular_probability(external_transmittance(wo.z));
+    BSDFSample s;
+    if (uc < ps) {
+        const auto [m, pm] = m_distr.sample(wo, u);
+        if (!(pm > 0) || dot(wo, m) <= 0) return std::nullopt;
+        s.wi = reflect(wo, m);
+        s.lobe = kReflection | kGlossy;
+    } else {
+        s.wi = warp::square_to_cosine_hemisphere(u);
+        s.lobe = kReflection | kDiffuse;
+    }
+    if (s.wi.z <= 0) return std::nullopt;
+    s.pdf = pdf(ctx, wo, s.wi);
+    if (!(s.pdf > 0)) return std::nullopt;
+    s.weight = eval(ctx, wo, s.wi) * s.wi.z / s.pdf;
+    return s;
+}
+
+}  // namespace snell
