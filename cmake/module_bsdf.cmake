@@ -11,6 +11,7 @@ snell_library(snell_bsdf
   src/bsdf/roughconductor.cpp
   src/bsdf/plastic.cpp
   src/bsdf/roughplastic.cpp
+  src/bsdf/blend.cpp
   src/bsdf/twosided.cpp
   src/bsdf/factory.cpp
 )

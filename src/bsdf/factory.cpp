@@ -6,9 +6,11 @@
 
 #include <cmath>
 
+#include "bsdf/blend.h"
 #include "bsdf/conductor.h"
 #include "bsdf/dielectric.h"
 #include "bsdf/diffuse.h"
+#include "bsdf/null_bsdf.h"
 #include "bsdf/plastic.h"
 #include "bsdf/roughconductor.h"
 #include "bsdf/roughdielectric.h"
@@ -161,6 +163,21 @@ std::shared_ptr<BSDF> build(const Props& p) {
             return std::make_shared<PlasticBSDF>(diffuse, specular, int_ior, ext_ior, nonlinear);
         return std::make_shared<RoughPlasticBSDF>(distr, diffuse, specular, int_ior, ext_ior, nonlinear);
     }
+    if (type == "null") return std::make_shared<NullBSDF>();
+    if (type == "blendbsdf" || type == "mask") {
+        // blendbsdf: (1 - weight) first + weight second; mask: opacity times the nested BSDF,
+        // the rest passes through (null).
+        const char* param = type == "mask" ? "opacity" : "weight";
+        const double w = p.get_float(param, 0.5);
+        if (!(w >= 0 && w <= 1)) p.raise_param(param, std::string(param) + " must lie in [0, 1]");
+        auto kids = p.children<BSDF>();
+        if (type == "mask") {
+            if (kids.size() != 1) p.raise("mask needs exactly one nested BSDF");
+            return std::make_shared<BlendBSDF>(w, std::make_shared<NullBSDF>(), kids[0]);
+        }
+        if (kids.size() != 2) p.raise("blendbsdf needs exactly two nested BSDFs");
+        return std::make_shared<BlendBSDF>(w, kids[0], kids[1]);
+    }
     if (type == "twosided") {
         auto kids = p.children<BSDF>();
         if (kids.empty() || kids.size() > 2) p.raise("twosided needs one or two nested BSDFs");
@@ -170,7 +187,7 @@ std::shared_ptr<BSDF> build(const Props& p) {
     }
     p.raise("unknown BSDF type '" + type +
             "' (known: diffuse, dielectric, thindielectric, roughdielectric, conductor, "
-            "roughconductor, plastic, roughplastic, twosided)");
+            "roughconductor, plastic, roughplastic, twosided, blendbsdf, mask, null)");
 }
 
 }  // namespace

@@ -6,9 +6,11 @@
 #include <memory>
 #include <tuple>
 
+#include "bsdf/blend.h"
 #include "bsdf/conductor_data.h"
 #include "bsdf/diffuse.h"
 #include "bsdf/microfacet.h"
+#include "bsdf/null_bsdf.h"
 
 #include "bsdf/plastic.h"
 #include "bsdf/roughconductor.h"
@@ -95,6 +97,11 @@ std::vector<Case> make_cases() {
                                                              Spectrum::constant(0.5), 1.6, 1.0, true),
                           dir(50)));
     auto diffuse = std::make_shared<DiffuseBSDF>(Spectrum::constant(0.5));
+    c.push_back(bsdf_case(
+        "blendbsdf_diffuse_roughconductor",
+        std::make_shared<BlendBSDF>(0.3, diffuse, std::make_shared<RoughConductorBSDF>(MD(G, 0.1), au)), dir(40)));
+    c.push_back(
+        bsdf_case("mask_diffuse", std::make_shared<BlendBSDF>(0.4, std::make_shared<NullBSDF>(), diffuse), dir(25)));
     c.push_back(bsdf_case("twosided_diffuse_below", std::make_shared<TwoSidedBSDF>(diffuse), dir(120)));
     c.push_back(bsdf_case("twosided_two_below",
                           std::make_shared<TwoSidedBSDF>(diffuse, std::make_shared<RoughConductorBSDF>(MD(G, 0.3), au)),

@@ -5,12 +5,14 @@
 
 #include <memory>
 
+#include "bsdf/blend.h"
 #include "bsdf/conductor.h"
 #include "bsdf/conductor_data.h"
 #include "bsdf/dielectric.h"
 #include "bsdf/diffuse.h"
 #include "bsdf/fresnel.h"
 #include "bsdf/microfacet.h"
+#include "bsdf/null_bsdf.h"
 #include "bsdf/plastic.h"
 #include "bsdf/roughconductor.h"
 #include "bsdf/roughdielectric.h"
@@ -150,6 +152,26 @@ TEST(BsdfFurnace, WhiteRoughPlasticLosesOnlyShadowedEnergy) {
     RoughPlasticBSDF grey(MD(MD::Type::GGX, 0.2), Spectrum::constant(0.5), Spectrum::constant(1.0), 1.49, 1.0, true);
     const Estimate g = albedo_sampled(grey, ctx, dir(30), 100000, 399);
     EXPECT_LT(g.mean + 4 * g.sigma, 0.8);
+}
+
+// null passes everything; a mask of a white diffuse BSDF reflects its opacity and passes the
+// rest; a blend of two white BSDFs is white.
+TEST(BsdfFurnace, NullMaskAndBlendConserveEnergy) {
+    const BSDFContext ctx;
+    auto white = std::make_shared<DiffuseBSDF>(Spectrum::constant(1.0));
+    const NullBSDF null;
+    EXPECT_NEAR(albedo_sampled(null, ctx, dir(30), 1000, 1).mean, 1.0, 1e-12);
+    const BlendBSDF mask(0.3, std::make_shared<NullBSDF>(), white);
+    const Estimate m = albedo_sampled(mask, ctx, dir(40), 100000, 2);
+    EXPECT_NEAR(m.mean, 1.0, 4 * m.sigma + 1e-9);
+    const BlendBSDF grey_mask(0.3, std::make_shared<NullBSDF>(),
+                              std::make_shared<DiffuseBSDF>(Spectrum::constant(0.5)));
+    const Estimate g = albedo_sampled(grey_mask, ctx, dir(40), 100000, 3);
+    EXPECT_NEAR(g.mean, 0.7 + 0.3 * 0.5, 4 * g.sigma);
+    const BlendBSDF blend(0.6, white,
+                          std::make_shared<PlasticBSDF>(Spectrum::constant(1.0), Spectrum::constant(1.0), 1.49, 1.0));
+    const Estimate b = albedo_sampled(blend, ctx, dir(60), 100000, 4);
+    EXPECT_NEAR(b.mean, 1.0, 4 * b.sigma);
 }
 
 struct RoughCase {

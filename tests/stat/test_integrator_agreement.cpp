@@ -132,3 +132,30 @@ TEST(IntegratorAgreement, DirectAgreesWithNeeOfMaxDepthTwo) {
             ("direct, emitter_samples " + std::to_string(e) + ", bsdf_samples " + std::to_string(b)).c_str());
     }
 }
+
+// A `null` surface changes nothing: a floor under a light renders the same with a null sheet
+// across the view and across the light (shadow rays it blocks are made up by BSDF sampling
+// through it); a `mask` of opacity 0 is a null surface too. (Unbounded depth: crossing a null
+// surface is a bounce, as in Mitsuba's path tracer, so a max_depth would cut paths here.)
+TEST(IntegratorAgreement, NullAndTransparentMaskSurfacesChangeNothing) {
+    const auto scene = [](const std::string& sheet) {
+        return R"(<scene version="3.0.0"><integrator type="nee"/>
+  <sensor type="perspective"><float name="fov" value="40"/>
+    <transform name="to_world"><lookat origin="0, 2, 3" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/></film></sensor>
+  <shape type="rectangle"><transform name="to_world"><scale value="2"/><rotate x="1" angle="-90"/></transform></shape>
+  <shape type="rectangle"><transform name="to_world"><scale value="0.8"/><rotate x="1" angle="90"/><translate y="1.5"/></transform>
+    <emitter type="area"><rgb name="radiance" value="4"/></emitter></shape>
+  )" + sheet + R"(
+</scene>)";
+    };
+    const std::string sheet = R"(<shape type="rectangle">
+    <transform name="to_world"><scale value="3"/><rotate x="1" angle="-60"/><translate y="0.8"/></transform>)";
+    LoadedScene none = load_xml(scene(""));
+    LoadedScene null = load_xml(scene(sheet + R"(<bsdf type="null"/></shape>)"));
+    LoadedScene mask = load_xml(scene(sheet + R"(<bsdf type="mask"><float name="opacity" value="0"/>
+      <bsdf type="diffuse"/></bsdf></shape>)"));
+    const auto ref = replica_stats(none, 64, 4, 5000);
+    expect_replicas_agree(ref, replica_stats(null, 256, 4, 5100), "null sheet");
+    expect_replicas_agree(ref, replica_stats(mask, 256, 4, 5200), "mask of opacity 0");
+}
