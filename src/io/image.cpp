@@ -5,12 +5,16 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <stdexcept>
 
 namespace snell {
@@ -110,6 +114,31 @@ void write_png(const std::string& path, const Image& img, double exposure) {
     }
     if (!stbi_write_png(path.c_str(), img.width, img.height, 3, bytes.data(), img.width * 3))
         fail("cannot write PNG", path, "stb_image_write failed (unwritable path or out of memory)");
+}
+
+Image read_hdr(const std::string& path) {
+    FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) throw std::runtime_error("cannot open image '" + path + "'");
+    const bool is_hdr = stbi_is_hdr_from_file(f);
+    int w = 0, h = 0, n = 0;
+    float* data = is_hdr ? stbi_loadf_from_file(f, &w, &h, &n, 3) : nullptr;
+    std::fclose(f);
+    if (!is_hdr) throw std::runtime_error(path + ": not a Radiance HDR (RGBE) file");
+    if (!data) throw std::runtime_error(path + ": cannot read HDR image (" + std::string(stbi_failure_reason()) + ")");
+    Image img;
+    img.width = w;
+    img.height = h;
+    img.rgb.assign(data, data + size_t(w) * size_t(h) * 3);
+    stbi_image_free(data);
+    return img;
+}
+
+Image read_image(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == ".exr") return read_exr(path);
+    if (ext == ".hdr" || ext == ".rgbe" || ext == ".pic") return read_hdr(path);
+    throw std::runtime_error(path + ": unsupported image format '" + ext + "' (supported: .exr, .hdr)");
 }
 
 }  // namespace snell

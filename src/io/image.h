@@ -16,6 +16,10 @@ struct Image {
 void write_exr(const std::string& path, const Image& img);
 /// Reads an RGB(A) OpenEXR file (missing channels are zero); throws naming the path.
 Image read_exr(const std::string& path);
+/// Reads a Radiance RGBE (.hdr) file; throws naming the path.
+Image read_hdr(const std::string& path);
+/// read_exr or read_hdr by the file's extension (.exr, .hdr); anything else throws naming it.
+Image read_image(const std::string& path);
 /// Writes an 8-bit sRGB-encoded PNG after multiplying by 2^exposure; throws naming the path.
 void write_png(const std::string& path, const Image& img, double exposure = 0.0);
 

@@ -73,7 +73,7 @@ std::shared_ptr<Light> make_envmap(const Props& props) {
     if (!std::isfinite(scale) || scale < 0) props.raise_param("scale", "scale must be finite and non-negative");
     Image img;
     try {
-        img = read_exr(file.string());
+        img = read_image(file.string());
     } catch (const std::exception& e) {
         props.raise_param("filename", e.what());
     }

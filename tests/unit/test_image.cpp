@@ -5,8 +5,10 @@
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
 #include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
 
 #include <unistd.h>
+#include <algorithm>
 #include <cmath>
 
 #include <filesystem>
@@ -247,5 +249,36 @@ TEST_F(ImageIO, PngBadPathThrowsWithPath) {
         FAIL() << "expected an exception";
     } catch (const std::runtime_error& e) {
         EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
+    }
+}
+
+// Radiance .hdr images (environment maps): read back within RGBE's precision (8-bit mantissas);
+// a file that is not RGBE, and an unknown extension, are errors naming the path.
+TEST_F(ImageIO, ReadsRadianceHdr) {
+    const int w = 4, h = 2;
+    std::vector<float> px(size_t(w) * h * 3);
+    for (size_t i = 0; i < px.size(); ++i) px[i] = float(0.01 * double(i + 1) * double(i + 1));
+    ASSERT_TRUE(stbi_write_hdr(path("sky.hdr").c_str(), w, h, 3, px.data()));
+    const Image img = read_image(path("sky.hdr"));
+    ASSERT_EQ(img.width, w);
+    ASSERT_EQ(img.height, h);
+    // RGBE shares one exponent per pixel: each channel is exact to 1/256 of the pixel's largest.
+    for (size_t i = 0; i < px.size(); ++i) {
+        const size_t p0 = i / 3 * 3;
+        const float top = std::max({px[p0], px[p0 + 1], px[p0 + 2]});
+        EXPECT_NEAR(img.rgb[i], px[i], top / 128) << i;
+    }
+    std::ofstream(path("fake.hdr")) << "not an image";
+    try {
+        read_image(path("fake.hdr"));
+        FAIL();
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("fake.hdr: not a Radiance HDR"), std::string::npos) << e.what();
+    }
+    try {
+        read_image(path("sky.png"));
+        FAIL();
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("unsupported image format '.png'"), std::string::npos) << e.what();
     }
 }
