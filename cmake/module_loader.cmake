@@ -9,6 +9,7 @@ snell_library(snell_loader
   src/loader/scene_loader.cpp
   src/loader/shape_factory.cpp
   src/loader/mitsuba_integrators.cpp
+  src/loader/unsupported.cpp
 )
 target_link_libraries(snell_loader PUBLIC snell_integrators snell_scene snell_sampler snell_camera snell_geometry
                       snell_bsdf snell_light snell_io snell_core PRIVATE pugixml::pugixml)

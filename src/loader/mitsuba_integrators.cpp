@@ -2,11 +2,14 @@
 
 #include <set>
 
+#include "loader/unsupported.h"
+
 namespace snell {
 
 namespace {
 
 Props props_of(const XmlObject& o, const std::string& type) {
+    if (const std::string why = unsupported_feature(o.tag, o.type); !why.empty()) throw SceneError(o.loc, o.tag, why);
     Props p(o.tag, type, o.loc);
     p.set_id(o.id);
     for (const auto& q : o.params) p.set(q.name, q.value, q.loc);

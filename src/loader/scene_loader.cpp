@@ -13,6 +13,7 @@
 #include "light/factory.h"
 #include "loader/mitsuba_integrators.h"
 #include "loader/shape_factory.h"
+#include "loader/unsupported.h"
 #include "loader/xml_scene.h"
 
 namespace snell {
@@ -106,6 +107,8 @@ private:
     bool m_sms_notice = false;
 
     static Props props(const XmlObject& o) {
+        if (const std::string why = unsupported_feature(o.tag, o.type); !why.empty())
+            throw SceneError(o.loc, o.tag, why);
         Props p(o.tag, o.type, o.loc);
         p.set_id(o.id);
         for (const auto& q : o.params) p.set(q.name, q.value, q.loc);

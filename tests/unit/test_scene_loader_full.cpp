@@ -308,3 +308,14 @@ TEST(SceneLoaderFull, RoughPlastic) {
     expect_error(scene_with("<bsdf type=\"roughplastic\">\n<string name=\"distribution\" value=\"phong\"/>\n</bsdf>"),
                  "test.xml:4: <bsdf>", "unknown distribution 'phong'");
 }
+
+// What snell does not have fails at the element with the feature's name, never silently.
+TEST(SceneLoaderFull, UnsupportedFeaturesAreNamed) {
+    expect_error(scene_with("<shape type=\"bsplinecurve\"/>"), "test.xml:3: <shape>", "curves are not supported");
+    expect_error(scene_with("<shape type=\"sdfgrid\"/>"), "test.xml:3: <shape>", "SDF grids are not supported");
+    expect_error(scene_with("<bsdf type=\"polarizer\"/>"), "test.xml:3: <bsdf>", "polarisation is not supported");
+    expect_error(scene_with("<integrator type=\"volpath\"/>"), "test.xml:3: <integrator>",
+                 "participating media are not supported");
+    expect_error(scene_with("<integrator type=\"moment\"><integrator type=\"volpath\"/></integrator>"),
+                 "test.xml:3: <integrator>", "participating media");
+}
