@@ -53,16 +53,15 @@ std::string join(const std::set<std::string>& s) {
     return out;
 }
 
-/// "toWorld" -> "to_world", to suggest the Mitsuba 2/3 spelling of a Mitsuba 0.6 name.
+/// "toWorld" -> "to_world", "intIOR" -> "int_ior": the Mitsuba 2/3 spelling of a Mitsuba 0.6
+/// name (an underscore before an upper-case letter that follows a lower-case one or a digit).
 std::string snake_case(const std::string& s) {
     std::string out;
-    for (char c : s) {
-        if (std::isupper(static_cast<unsigned char>(c))) {
-            out += '_';
-            out += char(std::tolower(static_cast<unsigned char>(c)));
-        } else {
-            out += c;
-        }
+    for (size_t i = 0; i < s.size(); ++i) {
+        const unsigned char c = static_cast<unsigned char>(s[i]);
+        const unsigned char prev = i > 0 ? static_cast<unsigned char>(s[i - 1]) : 0;
+        if (std::isupper(c) && (std::islower(prev) || std::isdigit(prev))) out += '_';
+        out += char(std::tolower(c));
     }
     return out;
 }
@@ -153,12 +152,25 @@ private:
         if (std::string(root.name()) != "scene")
             throw SceneError(f.at(root), root.name(), "the root element must be <scene version=\"3.0.0\">");
         const Attrs a = attrs(root, f, {"version"});
-        check_version(a, f.at(root));
+        if (check_version(a, f.at(root)) < 2) upgrade_from_mitsuba_0_6(root);
         if (is_root) parent.loc = f.at(root);
         parse_children(root, parent, f);
     }
 
-    void check_version(const Attrs& a, const SourceLoc& loc) {
+    // Mitsuba 0.6 scenes, upgraded in memory as Mitsuba's loader does: parameter names from
+    // camelCase to snake_case (toWorld -> to_world, intIOR -> int_ior, sampleCount ->
+    // sample_count), <lookAt> -> <lookat>, <srgb> -> <rgb>.
+    static void upgrade_from_mitsuba_0_6(pugi::xml_node node) {
+        for (pugi::xml_node n : node.children()) {
+            if (n.type() != pugi::node_element) continue;
+            const std::string tag = n.name();
+            if (tag == "lookAt") n.set_name("lookat");
+            if (tag == "srgb") n.set_name("rgb");
+            if (pugi::xml_attribute name = n.attribute("name")) name.set_value(snake_case(name.value()).c_str());
+            upgrade_from_mitsuba_0_6(n);
+        }
+    }
+    int check_version(const Attrs& a, const SourceLoc& loc) {
         auto it = a.find("version");
         if (it == a.end())
             throw SceneError(loc, "scene", "missing attribute 'version' (write version=\"3.0.0\" or \"2.0.0\")");
@@ -166,12 +178,11 @@ private:
         const int major = std::atoi(v.c_str());
         if (v.empty() || !std::isdigit(static_cast<unsigned char>(v[0])))
             throw SceneError(loc, "scene", "cannot read version '" + v + "'");
-        if (major < 2)
-            throw SceneError(loc, "scene",
-                             "version " + v +
-                                 ": Mitsuba 0.x scenes (camelCase names such as toWorld, "
-                                 "sampleCount) are not supported; use the Mitsuba 2/3 format (version 2.x or 3.x)");
-        if (major > 3) throw SceneError(loc, "scene", "version " + v + " is not supported (2.x and 3.x are)");
+        if (major < 0 || (major == 0 && v.rfind("0.", 0) != 0))
+            throw SceneError(loc, "scene", "cannot read version '" + v + "'");
+        if (major > 3) throw SceneError(loc, "scene", "version " + v + " is not supported (0.x, 2.x and 3.x are)");
+        if (major == 1) throw SceneError(loc, "scene", "version " + v + " is not supported (0.x, 2.x and 3.x are)");
+        return major;
     }
 
     void parse_include(const pugi::xml_node& n, XmlObject& parent, const FileCtx& f) {

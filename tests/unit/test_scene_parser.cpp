@@ -388,7 +388,22 @@ TEST(SceneParser, BadValues) {
 TEST(SceneParser, VersionsAndMitsuba06) {
     EXPECT_NO_THROW(parse(R"(<scene version="2.0.0"><bsdf type="diffuse"/></scene>)"));
     EXPECT_NO_THROW(parse(R"(<scene version="3.5.2"><bsdf type="diffuse"/></scene>)"));
-    expect_error(R"(<scene version="0.6.0"/>)", 1, "scene", "Mitsuba 0.x");
+    // Mitsuba 0.6 files are upgraded in memory: camelCase names, <lookAt>, <srgb>.
+    const auto old = parse(R"(<scene version="0.6.0">
+    <sensor type="perspective">
+        <float name="fov" value="30"/><string name="fovAxis" value="smaller"/>
+        <transform name="toWorld"><lookAt origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <sampler type="independent"><integer name="sampleCount" value="8"/></sampler>
+    </sensor>
+    <bsdf type="dielectric"><float name="intIOR" value="1.5"/><srgb name="specularReflectance" value="1, 1, 1"/></bsdf>
+</scene>)");
+    const XmlObject& sensor = *old->children[0].obj;
+    EXPECT_NE(sensor.param("fov_axis"), nullptr);
+    EXPECT_NE(sensor.param("to_world"), nullptr);
+    EXPECT_NE(sensor.children[0].obj->param("sample_count"), nullptr);
+    EXPECT_NE(old->children[1].obj->param("int_ior"), nullptr);
+    EXPECT_NE(old->children[1].obj->param("specular_reflectance"), nullptr);
+    expect_error(R"(<scene version="1.0.0"/>)", 1, "scene", "not supported (0.x, 2.x and 3.x are)");
     expect_error(R"(<scene/>)", 1, "scene", "missing attribute 'version'");
     expect_error(R"(<scene version="3.0.0">
     <shape type="sphere">
