@@ -352,6 +352,11 @@ private:
         const SourceLoc loc = f.at(n);
         XmlParam p;
         p.loc = loc;
+        // Mitsuba 2's texture-valued parameters: <spectrum type="bitmap">, <rgb type=...>.
+        if (pugi::xml_attribute t = n.attribute("type"); t && (tag == "spectrum" || tag == "rgb"))
+            throw SceneError(loc, tag,
+                             std::string("texture-valued parameters (type=\"") + t.value() +
+                                 "\") are not supported yet; give a constant <rgb>, <spectrum> or <float>");
         Attrs a;
         if (tag == "point" || tag == "vector")
             a = attrs(n, f, {"name", "value", "x", "y", "z"});

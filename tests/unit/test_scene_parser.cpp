@@ -404,6 +404,11 @@ TEST(SceneParser, VersionsAndMitsuba06) {
     EXPECT_NE(old->children[1].obj->param("int_ior"), nullptr);
     EXPECT_NE(old->children[1].obj->param("specular_reflectance"), nullptr);
     expect_error(R"(<scene version="1.0.0"/>)", 1, "scene", "not supported (0.x, 2.x and 3.x are)");
+    // Mitsuba 2's texture-valued spectra are named as such.
+    expect_error(R"(<scene version="2.0.0">
+    <bsdf type="diffuse"><spectrum name="reflectance" type="bitmap"/></bsdf>
+</scene>)",
+                 2, "spectrum", "texture-valued parameters (type=\"bitmap\") are not supported yet");
     expect_error(R"(<scene/>)", 1, "scene", "missing attribute 'version'");
     expect_error(R"(<scene version="3.0.0">
     <shape type="sphere">
