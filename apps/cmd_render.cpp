@@ -27,6 +27,8 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
 
     RenderOptions opt;
     opt.spp = spp > 0 ? spp : ls.spp;
+    // The scene's own time budget (Mitsuba's integrator `timeout`) unless --spp or --time is given.
+    if (time_limit <= 0 && spp <= 0) time_limit = ls.time_limit;
     opt.time_limit = time_limit;
     opt.threads = threads;
     const uint64_t seed = seed_arg ? *seed_arg : ls.seed;  // --seed overrides the scene's <sampler> seed

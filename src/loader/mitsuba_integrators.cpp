@@ -28,7 +28,7 @@ Props sms_as_mnee(const XmlObject& o, std::vector<std::string>* notices) {
     Props in = props_of(o, o.type);
     Props out(o.tag, "mnee", o.loc);
     out.set_id(o.id);
-    for (const char* name : {"max_depth", "rr_depth", "hide_emitters", "max_iterations"})
+    for (const char* name : {"max_depth", "rr_depth", "hide_emitters", "max_iterations", "timeout", "samples_per_pass"})
         if (const XmlParam* q = o.param(name)) {
             in.mark_used(name);
             out.set(name, q->value, q->loc);
@@ -59,7 +59,7 @@ Props sms_as_mnee(const XmlObject& o, std::vector<std::string>* notices) {
     for (const char* name :
          {"halfvector_constraints", "twostage", "step_scale", "solver_threshold", "uniqueness_threshold",
           "disable_reflected_emitters", "biased_mnee", "bounces", "max_glints", "caustics_filtered", "glints",
-          "caustics", "glints_filtered", "non_sms_paths", "crop_caustic", "filter_radius", "samples_per_pass"})
+          "caustics", "glints_filtered", "non_sms_paths", "crop_caustic", "filter_radius"})
         if ((!mnee_init || std::string(name) != "biased_mnee") && in.mark_used(name))
             ignored += (ignored.empty() ? "" : ", ") + std::string(name);
     in.check_unused();

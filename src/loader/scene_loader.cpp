@@ -81,6 +81,10 @@ public:
         scene->set_camera(camera(*sensor));
         if (integrator) {
             Props p = integrator_props(*integrator, &m_out.notices);
+            // Mitsuba's render-loop settings, common to its sampling integrators: the time
+            // budget, and the samples per pass (snell renders tiles progressively anyway).
+            if (p.has("timeout")) m_out.time_limit = std::max(0.0, p.get_float("timeout"));
+            p.mark_used("samples_per_pass");
             auto integ = located(*integrator, [&] { return create_integrator(p); });
             p.check_unused();
             m_out.integrator = integ;

@@ -28,6 +28,9 @@ struct LoadedScene {
     /// "file:line: ..." lines on what renders differently from Mitsuba (an unwrapped AOV
     /// integrator, an SMS integrator rendered as mnee, ignored SMS flags); the apps print them.
     std::vector<std::string> notices;
+    /// Mitsuba's integrator `timeout` in seconds (0: none): `snell render` stops there unless
+    /// --spp or --time says otherwise.
+    double time_limit = 0;
 };
 
 /// Parameter overrides (-D name=value), applied like Mitsuba's <default> substitution.

@@ -319,3 +319,17 @@ TEST(SceneLoaderFull, UnsupportedFeaturesAreNamed) {
     expect_error(scene_with("<integrator type=\"moment\"><integrator type=\"volpath\"/></integrator>"),
                  "test.xml:3: <integrator>", "participating media");
 }
+
+// Mitsuba's sampling-integrator settings: `timeout` becomes the scene's time budget,
+// `samples_per_pass` is accepted (snell renders tiles progressively).
+TEST(SceneLoaderFull, MitsubaTimeoutAndSamplesPerPass) {
+    const LoadedScene ls = load_string(scene_with(R"(<integrator type="path"><float name="timeout" value="12.5"/>
+<integer name="samples_per_pass" value="4"/></integrator>)"));
+    EXPECT_EQ(ls.time_limit, 12.5);
+    const LoadedScene sms = load_string(scene_with(R"(<integrator type="path_sms_ss"><float name="timeout" value="3"/>
+<integer name="samples_per_pass" value="4"/></integrator>)"));
+    EXPECT_EQ(sms.time_limit, 3.0);
+    EXPECT_EQ(load_string(scene_with(R"(<integrator type="path"><float name="timeout" value="-1"/></integrator>)"))
+                  .time_limit,
+              0.0);
+}
