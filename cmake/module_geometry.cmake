@@ -1,9 +1,11 @@
-# Shapes (analytic sphere, triangle meshes and Mitsuba's built-in meshes) with their Embree
+# Shapes (analytic sphere and cylinder, triangle meshes and Mitsuba's built-in meshes) with their Embree
 # geometry and closest-point projection (owner: geometry). The Scene is in scene/, the shape
 # factory in loader/ (it attaches BSDFs), the OBJ/PLY readers in io/.
 snell_library(snell_geometry
   src/geometry/shape.cpp
+  src/geometry/analytic_shape.cpp
   src/geometry/sphere.cpp
+  src/geometry/cylinder.cpp
   src/geometry/mesh.cpp
   src/geometry/builders.cpp
 )

@@ -9,6 +9,6 @@ target_link_libraries(snell_scene PUBLIC snell_geometry snell_light snell_camera
 # The shape tests trace rays through a Scene, so they are registered here rather than beside
 # snell_geometry.
 snell_test(test_geometry
-  SOURCES tests/unit/test_geometry_sphere.cpp tests/unit/test_geometry_mesh.cpp
+  SOURCES tests/unit/test_geometry_sphere.cpp tests/unit/test_geometry_cylinder.cpp tests/unit/test_geometry_mesh.cpp
           tests/unit/test_geometry_scene.cpp
   LIBS snell_scene)

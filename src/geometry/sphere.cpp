@@ -1,100 +1,15 @@
 #include "geometry/sphere.h"
 
-#include <cassert>
 #include <stdexcept>
 
 #include "core/warp.h"
-#include "geometry/embree_context.h"
 
 namespace snell {
-namespace {
-
-void sphere_bounds(const RTCBoundsFunctionArguments* args) {
-    const auto* s = static_cast<const Sphere*>(args->geometryUserPtr);
-    const Bounds3 b = s->bounds();
-    args->bounds_o->lower_x = float(b.lo.x);
-    args->bounds_o->lower_y = float(b.lo.y);
-    args->bounds_o->lower_z = float(b.lo.z);
-    args->bounds_o->upper_x = float(b.hi.x);
-    args->bounds_o->upper_y = float(b.hi.y);
-    args->bounds_o->upper_z = float(b.hi.z);
-}
-
-/// The double ray of the query: from our extended context when present, else the float copy.
-Ray query_ray(const RTCIntersectContext* ctx, const RTCRay& r) {
-    if (ctx) {
-        if (const Ray* dr = RayContext::from(ctx)->ray) return *dr;
-    }
-    Ray out;
-    out.o = {r.org_x, r.org_y, r.org_z};
-    out.d = {r.dir_x, r.dir_y, r.dir_z};
-    out.tmin = r.tnear;
-    out.tmax = r.tfar;
-    return out;
-}
-
-/// The nearest root inside (tnear, tfar), or a negative value.
-double nearest_root(const Sphere& s, const Ray& ray, double tnear, double tfar) {
-    double t0, t1;
-    if (!s.intersect_line(ray, &t0, &t1)) return -1;
-    if (t0 > tnear && t0 < tfar) return t0;
-    if (t1 > tnear && t1 < tfar) return t1;  // origin inside the sphere: far side
-    return -1;
-}
-
-void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
-    if (!args->valid[0]) return;
-    assert(args->N == 1);
-    const auto* s = static_cast<const Sphere*>(args->geometryUserPtr);
-    auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
-    const Ray ray = query_ray(args->context, rh->ray);
-    // Embree's tfar shrinks as closer hits are found; compare against it in double.
-    const double t = nearest_root(*s, ray, std::max<double>(ray.tmin, rh->ray.tnear), rh->ray.tfar);
-    if (t < 0) return;
-    const Vec3 n = ray.at(t) - s->center();
-    rh->ray.tfar = float(t);
-    rh->hit.Ng_x = float(n.x);
-    rh->hit.Ng_y = float(n.y);
-    rh->hit.Ng_z = float(n.z);
-    rh->hit.u = rh->hit.v = 0;
-    rh->hit.primID = args->primID;
-    rh->hit.geomID = args->geomID;
-    rh->hit.instID[0] = args->context->instID[0];
-    if (RayContext* c = RayContext::from(args->context); c->ray) {
-        c->t_exact = t;
-        c->geom_exact = args->geomID;
-    }
-}
-
-void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
-    if (!args->valid[0]) return;
-    assert(args->N == 1);
-    const auto* s = static_cast<const Sphere*>(args->geometryUserPtr);
-    auto* r = reinterpret_cast<RTCRay*>(args->ray);
-    const Ray ray = query_ray(args->context, *r);
-    if (nearest_root(*s, ray, std::max<double>(ray.tmin, r->tnear), std::min<double>(ray.tmax, r->tfar)) >= 0)
-        r->tfar = -kInfinity;  // Embree's "occluded" marker
-}
-
-}  // namespace
 
 Sphere::Sphere(const Vec3& center, double radius, bool flip_normals)
     : m_center(center), m_radius(radius), m_flip(flip_normals) {
     if (!(radius > 0) || !std::isfinite(radius) || !is_finite(center))
         throw std::runtime_error("sphere: radius must be positive and finite");
-}
-
-unsigned Sphere::attach(RTCDevice device, RTCScene scene) {
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-    rtcSetGeometryUserPrimitiveCount(g, 1);
-    rtcSetGeometryUserData(g, this);
-    rtcSetGeometryBoundsFunction(g, sphere_bounds, nullptr);
-    rtcSetGeometryIntersectFunction(g, sphere_intersect);
-    rtcSetGeometryOccludedFunction(g, sphere_occluded);
-    rtcCommitGeometry(g);
-    m_geom_id = rtcAttachGeometry(scene, g);
-    rtcReleaseGeometry(g);
-    return m_geom_id;
 }
 
 Bounds3 Sphere::bounds() const {
@@ -108,6 +23,16 @@ Bounds3 Sphere::bounds() const {
     b.expand(m_center + r);
     return b;
 }
+
+double Sphere::nearest_root(const Ray& ray, double tnear, double tfar) const {
+    double t0, t1;
+    if (!intersect_line(ray, &t0, &t1)) return -1;
+    if (t0 > tnear && t0 < tfar) return t0;
+    if (t1 > tnear && t1 < tfar) return t1;  // origin inside the sphere: far side
+    return -1;
+}
+
+Vec3 Sphere::hit_normal(const Ray& ray, double t) const { return ray.at(t) - m_center; }
 
 bool Sphere::intersect_line(const Ray& ray, double* t0, double* t1) const {
     const Vec3 f = ray.o - m_center;

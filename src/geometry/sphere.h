@@ -1,5 +1,5 @@
 #pragma once
-#include "geometry/shape.h"
+#include "geometry/analytic_shape.h"
 
 namespace snell {
 
@@ -9,12 +9,13 @@ namespace snell {
 /// sin th sin ph, cos th) with ph = 2 pi u, th = pi v, so dp/du = 2 pi (-(p-c).y, (p-c).x, 0),
 /// dp/dv = pi (..), n = (p-c)/r and dn/du = dp/du / r, dn/dv = dp/dv / r (all negated when
 /// `flip_normals`: the normal then points inwards). At the poles dp/du vanishes.
-class Sphere final : public Shape {
+class Sphere final : public AnalyticShape {
 public:
     /// `radius` > 0 in world units; `flip_normals` makes n point towards the centre.
     Sphere(const Vec3& center, double radius, bool flip_normals = false);
 
-    unsigned attach(RTCDevice device, RTCScene scene) override;
+    double nearest_root(const Ray& ray, double tnear, double tfar) const override;
+    Vec3 hit_normal(const Ray& ray, double t) const override;
     Bounds3 bounds() const override;
     double area() const override { return 4 * kPi * m_radius * m_radius; }
     void compute_interaction(const Ray& ray, double t, uint32_t prim, const Vec2& uv,

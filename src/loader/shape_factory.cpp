@@ -4,6 +4,7 @@
 
 #include "bsdf/factory.h"
 #include "geometry/builders.h"
+#include "geometry/cylinder.h"
 #include "geometry/mesh.h"
 #include "geometry/sphere.h"
 #include "io/mesh_obj.h"
@@ -14,19 +15,34 @@
 namespace snell {
 namespace {
 
-/// Sphere: Mitsuba composes `center`/`radius` with `to_world`, which may only translate,
-/// rotate and scale uniformly (the shape stays a sphere).
-std::shared_ptr<Shape> make_sphere(const Props& props, const Transform& xf, bool flip) {
-    const Vec3 c = props.get_vec3("center", Vec3(0, 0, 0));
-    const double r = props.get_float("radius", 1.0);
-    if (!(r > 0)) props.raise_param("radius", "sphere radius must be positive");
+/// The uniform scale of `xf`, which may only translate, rotate and scale uniformly for shapes
+/// that must stay what they are (a sphere, a circular cylinder); raises on `to_world` otherwise.
+double uniform_scale(const Props& props, const Transform& xf, const char* what) {
     const Vec3 ax = xf.vector({1, 0, 0}), ay = xf.vector({0, 1, 0}), az = xf.vector({0, 0, 1});
     const double s = length(ax);
     const double tol = 1e-6 * s;
     if (std::abs(length(ay) - s) > tol || std::abs(length(az) - s) > tol || std::abs(dot(ax, ay)) > tol * s ||
         std::abs(dot(ax, az)) > tol * s || std::abs(dot(ay, az)) > tol * s || !(s > 0))
-        props.raise_param("to_world", "a sphere's to_world may only rotate, translate and scale uniformly");
-    return std::make_shared<Sphere>(xf.point(c), r * s, flip);
+        props.raise_param("to_world",
+                          std::string("a ") + what + "'s to_world may only rotate, translate and scale uniformly");
+    return s;
+}
+
+/// Sphere: Mitsuba composes `center`/`radius` with `to_world`.
+std::shared_ptr<Shape> make_sphere(const Props& props, const Transform& xf, bool flip) {
+    const Vec3 c = props.get_vec3("center", Vec3(0, 0, 0));
+    const double r = props.get_float("radius", 1.0);
+    if (!(r > 0)) props.raise_param("radius", "sphere radius must be positive");
+    return std::make_shared<Sphere>(xf.point(c), r * uniform_scale(props, xf, "sphere"), flip);
+}
+
+/// Cylinder (open, Mitsuba's): `p0`, `p1` (the axis' ends) and `radius`, composed with `to_world`.
+std::shared_ptr<Shape> make_cylinder(const Props& props, const Transform& xf, bool flip) {
+    const Vec3 p0 = props.get_vec3("p0", Vec3(0, 0, 0)), p1 = props.get_vec3("p1", Vec3(0, 0, 1));
+    const double r = props.get_float("radius", 1.0);
+    if (!(r > 0)) props.raise_param("radius", "cylinder radius must be positive");
+    if (!(length(p1 - p0) > 0)) props.raise_param("p1", "a cylinder's p0 and p1 must differ");
+    return std::make_shared<Cylinder>(xf.point(p0), xf.point(p1), r * uniform_scale(props, xf, "cylinder"), flip);
 }
 
 std::string resolve(const Props& props) {
@@ -46,6 +62,8 @@ std::shared_ptr<Shape> create_shape(const Props& props) {
     std::shared_ptr<Shape> shape;
     if (type == "sphere") {
         shape = make_sphere(props, xf, flip);
+    } else if (type == "cylinder") {
+        shape = make_cylinder(props, xf, flip);
     } else if (type == "rectangle" || type == "disk" || type == "cube" || type == "obj" || type == "ply" ||
                type == "serialized") {
         bool face_normals = props.get_bool("face_normals", false);

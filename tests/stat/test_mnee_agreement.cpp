@@ -349,3 +349,23 @@ TEST(MneeAgreement, UnbiasedWithReflectionsAgreesWithNee) {
     expect_mnee_matches_nee(scene_with(rough_water(0.1), with), 256, 32, "unbiased with reflections, rough 0.1",
                             scene_with(rough_water(0.1)));
 }
+
+// A glass rod (an open cylinder, IOR 1.5) lying above the floor under a large light: MNEE walks
+// its chains on the cylinder's mantle (its closest point and shape operator) and agrees with nee.
+TEST(MneeAgreement, GlassCylinderMatchesNee) {
+    const std::string rod = R"(<scene version="3.0.0">
+  <integrator type="$integrator"><integer name="max_depth" value="8"/></integrator>
+  <sensor type="perspective"><float name="fov" value="35"/>
+    <transform name="to_world"><lookat origin="0, 3, 3" target="0, 0.2, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="24"/><integer name="height" value="18"/></film></sensor>
+  <shape type="rectangle"><transform name="to_world"><scale value="4"/><rotate x="1" angle="-90"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.7, 0.7"/></bsdf></shape>
+  <shape type="cylinder"><point name="p0" x="-1.2" y="0.5" z="0"/><point name="p1" x="1.2" y="0.5" z="0.1"/>
+    <float name="radius" value="0.3"/>
+    <bsdf type="dielectric"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/></bsdf></shape>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="1.5"/><rotate x="1" angle="90"/><translate x="-0.3" y="3" z="-0.5"/></transform>
+    <emitter type="area"><rgb name="radiance" value="3, 3, 3"/></emitter></shape>
+</scene>)";
+    expect_mnee_matches_nee(rod, 256, 64, "glass cylinder");
+}

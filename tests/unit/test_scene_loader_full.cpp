@@ -333,3 +333,14 @@ TEST(SceneLoaderFull, MitsubaTimeoutAndSamplesPerPass) {
                   .time_limit,
               0.0);
 }
+
+// Mitsuba's cylinder: p0, p1, radius, composed with to_world (uniform scale only).
+TEST(SceneLoaderFull, Cylinder) {
+    const LoadedScene ls = load_string(scene_with(R"(<shape type="cylinder"><float name="radius" value="0.5"/>
+<point name="p1" x="0" y="0" z="1.5"/><transform name="to_world"><scale value="2"/></transform></shape>)"));
+    ASSERT_EQ(ls.scene->shapes().size(), 1u);
+    EXPECT_NEAR(ls.scene->shapes()[0]->area(), 2 * kPi * 1.0 * 3.0, 1e-12);
+    expect_error(scene_with("<shape type=\"cylinder\">\n<transform name=\"to_world\"><scale x=\"1\" y=\"2\" "
+                            "z=\"1\"/></transform>\n</shape>"),
+                 "test.xml:4: <shape>", "may only rotate, translate and scale uniformly");
+}
