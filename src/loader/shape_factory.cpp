@@ -36,13 +36,23 @@ std::shared_ptr<Shape> make_sphere(const Props& props, const Transform& xf, bool
     return std::make_shared<Sphere>(xf.point(c), r * uniform_scale(props, xf, "sphere"), flip);
 }
 
-/// Cylinder (open, Mitsuba's): `p0`, `p1` (the axis' ends) and `radius`, composed with `to_world`.
+/// Cylinder (open, Mitsuba's): `p0`, `p1` (the axis' ends) and `radius`, composed with
+/// `to_world`. As in Mitsuba, the transform may scale the axis differently from the cross
+/// section, but must keep the cross section circular.
 std::shared_ptr<Shape> make_cylinder(const Props& props, const Transform& xf, bool flip) {
     const Vec3 p0 = props.get_vec3("p0", Vec3(0, 0, 0)), p1 = props.get_vec3("p1", Vec3(0, 0, 1));
     const double r = props.get_float("radius", 1.0);
     if (!(r > 0)) props.raise_param("radius", "cylinder radius must be positive");
     if (!(length(p1 - p0) > 0)) props.raise_param("p1", "a cylinder's p0 and p1 must differ");
-    return std::make_shared<Cylinder>(xf.point(p0), xf.point(p1), r * uniform_scale(props, xf, "cylinder"), flip);
+    const Frame f = Frame::from_normal(normalize(p1 - p0));
+    const Vec3 r1 = xf.vector(f.s), r2 = xf.vector(f.t), axis = xf.vector(f.n);
+    const double s = length(r1), tol = 1e-6 * s;
+    if (!(s > 0) || std::abs(length(r2) - s) > tol || std::abs(dot(r1, r2)) > tol * s ||
+        std::abs(dot(r1, axis)) > tol * length(axis) || std::abs(dot(r2, axis)) > tol * length(axis))
+        props.raise_param("to_world",
+                          "a cylinder's to_world must keep its cross section circular (it may rotate, "
+                          "translate, scale uniformly, and scale the axis on its own)");
+    return std::make_shared<Cylinder>(xf.point(p0), xf.point(p1), r * s, flip);
 }
 
 std::string resolve(const Props& props) {
