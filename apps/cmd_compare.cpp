@@ -16,6 +16,7 @@
 #include "commands.h"
 #include "core/props.h"
 #include "integrators/integrator.h"
+#include "loader/mitsuba_integrators.h"
 #include "manifold/walk_statistics.h"
 #include "render/renderer.h"
 #include "report/compare_report.h"
@@ -80,8 +81,7 @@ Prepared prepare(const std::string& scene, const Defines& user_defines, const Te
     for (const XmlObject::Child& c : root->children)
         if (c.obj->tag == "integrator") xi = c.obj.get();
     // Mitsuba's moment and aov wrappers: the parameters are the nested integrator's.
-    while (xi && (xi->type == "moment" || xi->type == "aov") && !xi->children.empty())
-        xi = xi->children.front().obj.get();
+    if (xi) xi = &unwrap_integrator(*xi, nullptr);
     const SourceLoc loc = xi ? xi->loc : SourceLoc{scene, 0};
     std::set<std::string> dropped;  // scene parameters the technique's type does not take
     auto make = [&] {

@@ -32,19 +32,21 @@ SampledSpectrum nee_estimate(const SurfaceInteraction& si, const BSDF& bsdf, con
 }
 
 double nee_weight(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx, const LightSample& ls,
-                  double pmf) {
+                  double pmf, double light_share, double bsdf_share) {
     // Delta lights cannot be hit by BSDF sampling.
     if (ls.delta) return 1.0;
-    return power_heuristic(pmf * ls.pdf, bsdf.pdf(ctx, si.to_local(si.wo), si.to_local(ls.wi)));
+    return power_heuristic(light_share * pmf * ls.pdf,
+                           bsdf_share * bsdf.pdf(ctx, si.to_local(si.wo), si.to_local(ls.wi)));
 }
 
 SampledSpectrum nee_connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
-                            const MediumStack& media, const LightSample& ls, double pmf) {
+                            const MediumStack& media, const LightSample& ls, double pmf, double light_share,
+                            double bsdf_share) {
     const SampledSpectrum f = bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls.wi));
     if (f.is_zero()) return {};
     const Ray shadow = std::isinf(ls.dist) ? scene.spawn_ray(si, ls.wi) : scene.spawn_ray_to(si, ls.p);
     if (scene.occluded(shadow)) return {};
-    return nee_estimate(si, bsdf, ctx, media, ls, f, pmf, nee_weight(si, bsdf, ctx, ls, pmf));
+    return nee_estimate(si, bsdf, ctx, media, ls, f, pmf, nee_weight(si, bsdf, ctx, ls, pmf, light_share, bsdf_share));
 }
 
 }  // namespace snell

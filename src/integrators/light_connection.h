@@ -25,13 +25,16 @@ std::optional<LightSample> sample_light(const Scene& scene, const SurfaceInterac
                                         Sampler& sampler, const Light** light, double* pmf, bool keep_dark = false);
 
 /// NEE for an already drawn light sample: shadow ray, power heuristic against BSDF sampling.
-/// `media` is the medium the path is in at si.
+/// `media` is the medium the path is in at si. `light_share`, `bsdf_share`: the two techniques'
+/// shares of the samples when they take several each (Veach's n_i in n_i p_i; Mitsuba's direct).
 SampledSpectrum nee_connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
-                            const MediumStack& media, const LightSample& ls, double pmf);
+                            const MediumStack& media, const LightSample& ls, double pmf, double light_share = 1,
+                            double bsdf_share = 1);
 
-/// MIS weight of NEE against BSDF sampling (power heuristic, solid angle); 1 for delta lights.
+/// MIS weight of NEE against BSDF sampling (power heuristic, solid angle, with the sample
+/// shares as for nee_connect); 1 for delta lights.
 double nee_weight(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx, const LightSample& ls,
-                  double pmf);
+                  double pmf, double light_share = 1, double bsdf_share = 1);
 
 /// NEE estimate for a visible light sample with BSDF value `f` (towards ls.wi) and MIS weight
 /// `w`: f |cos| Tr Le w / (pmf pdf).

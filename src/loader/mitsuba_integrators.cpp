@@ -8,14 +8,6 @@ namespace snell {
 
 namespace {
 
-Props props_of(const XmlObject& o, const std::string& type) {
-    if (const std::string why = unsupported_feature(o.tag, o.type); !why.empty()) throw SceneError(o.loc, o.tag, why);
-    Props p(o.tag, type, o.loc);
-    p.set_id(o.id);
-    for (const auto& q : o.params) p.set(q.name, q.value, q.loc);
-    return p;
-}
-
 // The SMS code's integrators (tizian/specular-manifold-sampling, src/integrators/).
 const std::set<std::string> kSmsIntegrators = {"path_sms_ss",      "path_sms_ms",      "path_sms_teaser",
                                                "path_filtered_ss", "path_filtered_ms", "path_filtered_teaser"};
@@ -25,7 +17,7 @@ const std::set<std::string> kSmsIntegrators = {"path_sms_ss",      "path_sms_ms"
 // M trials, which is solutions=all with trials=M; mnee_init=true with max_trials=1 is the
 // paper's MNEE (solutions=one), biased_mnee its outlier removal.
 Props sms_as_mnee(const XmlObject& o, std::vector<std::string>* notices) {
-    Props in = props_of(o, o.type);
+    Props in = object_props(o);
     Props out(o.tag, "mnee", o.loc);
     out.set_id(o.id);
     for (const char* name : {"max_depth", "rr_depth", "hide_emitters", "max_iterations", "timeout", "samples_per_pass"})
@@ -75,7 +67,7 @@ Props sms_as_mnee(const XmlObject& o, std::vector<std::string>* notices) {
 
 }  // namespace
 
-Props integrator_props(const XmlObject& o_in, std::vector<std::string>* notices) {
+const XmlObject& unwrap_integrator(const XmlObject& o_in, std::vector<std::string>* notices) {
     const XmlObject* o = &o_in;
     // Mitsuba's wrappers that add outputs around an inner integrator.
     while (o->type == "moment" || o->type == "aov") {
@@ -91,20 +83,22 @@ Props integrator_props(const XmlObject& o_in, std::vector<std::string>* notices)
         if (!inner)
             throw SceneError(o->loc, "integrator",
                              "<integrator type=\"" + o->type + "\"> needs a nested <integrator> to render with");
-        notices->push_back(o->loc.str() + ": <integrator type=\"" + o->type + "\"> is unwrapped: its nested " +
-                           "<integrator type=\"" + inner->type + "\"> renders, the " +
-                           (o->type == "aov" ? "AOV" : "moment") + " images are not written");
+        if (notices)
+            notices->push_back(o->loc.str() + ": <integrator type=\"" + o->type + "\"> is unwrapped: its nested " +
+                               "<integrator type=\"" + inner->type + "\"> renders, the " +
+                               (o->type == "aov" ? "AOV" : "moment") + " images are not written");
         o = inner;
     }
+    return *o;
+}
+
+Props integrator_props(const XmlObject& wrapped, std::vector<std::string>* notices) {
+    const XmlObject* o = &unwrap_integrator(wrapped, notices);
     for (const auto& c : o->children)
         throw SceneError(c.obj->loc, c.obj->tag,
                          "<integrator type=\"" + o->type + "\"> takes no nested <" + c.obj->tag + ">");
     if (kSmsIntegrators.count(o->type)) return sms_as_mnee(*o, notices);
-    if (o->type == "path_sms_glints")
-        throw SceneError(o->loc, "integrator",
-                         "path_sms_glints (glints from normal-mapped reflectors) is not supported: snell has no "
-                         "manifold technique for reflection glints; use path");
-    return props_of(*o, o->type);
+    return object_props(*o);
 }
 
 bool consume_sms_flags(const Props& p) {

@@ -12,6 +12,10 @@
 
 namespace snell {
 
+/// The integrator that renders for `o`: `o` itself, or the one a `moment`/`aov` wrapper nests
+/// (checked: exactly one), with a notice per wrapper when `notices` is given.
+const XmlObject& unwrap_integrator(const XmlObject& o, std::vector<std::string>* notices);
+
 /// The Props to create the integrator of `o` from, after unwrapping and translation; `notices`
 /// receives "file:line: what differs" lines.
 Props integrator_props(const XmlObject& o, std::vector<std::string>* notices);

@@ -110,14 +110,7 @@ private:
     }
     bool m_sms_notice = false;
 
-    static Props props(const XmlObject& o) {
-        if (const std::string why = unsupported_feature(o.tag, o.type); !why.empty())
-            throw SceneError(o.loc, o.tag, why);
-        Props p(o.tag, o.type, o.loc);
-        p.set_id(o.id);
-        for (const auto& q : o.params) p.set(q.name, q.value, q.loc);
-        return p;
-    }
+    static Props props(const XmlObject& o) { return object_props(o); }
 
     std::shared_ptr<BSDF> bsdf(const XmlObject& o) {
         if (auto it = m_bsdfs.find(&o); it != m_bsdfs.end()) return it->second;

@@ -20,6 +20,8 @@ std::string unsupported_feature(const std::string& tag, const std::string& type)
         {{"integrator", "volpathmis"}, "participating media are"},
         {{"integrator", "prbvolpath"}, "participating media are"},
         {{"integrator", "stokes"}, "polarisation is"},
+        {{"integrator", "path_sms_glints"},
+         "glints from normal-mapped reflectors (no manifold technique for them) are"},
         {{"sensor", "radiancemeter"}, "radiance meters are"},
         {{"sensor", "irradiancemeter"}, "irradiance meters are"},
         {{"emitter", "projector"}, "projector emitters (textures) are"},
@@ -27,6 +29,14 @@ std::string unsupported_feature(const std::string& tag, const std::string& type)
     const auto it = table.find({tag, type});
     if (it == table.end()) return "";
     return "<" + tag + " type=\"" + type + "\">: " + it->second + " not supported by snell";
+}
+
+Props object_props(const XmlObject& o) {
+    if (const std::string why = unsupported_feature(o.tag, o.type); !why.empty()) throw SceneError(o.loc, o.tag, why);
+    Props p(o.tag, o.type, o.loc);
+    p.set_id(o.id);
+    for (const auto& q : o.params) p.set(q.name, q.value, q.loc);
+    return p;
 }
 
 }  // namespace snell

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -178,8 +179,7 @@ private:
         const int major = std::atoi(v.c_str());
         if (v.empty() || !std::isdigit(static_cast<unsigned char>(v[0])))
             throw SceneError(loc, "scene", "cannot read version '" + v + "'");
-        if (major < 0 || (major == 0 && v.rfind("0.", 0) != 0))
-            throw SceneError(loc, "scene", "cannot read version '" + v + "'");
+        if (major == 0 && v.rfind("0.", 0) != 0) throw SceneError(loc, "scene", "cannot read version '" + v + "'");
         if (major > 3) throw SceneError(loc, "scene", "version " + v + " is not supported (0.x, 2.x and 3.x are)");
         if (major == 1) throw SceneError(loc, "scene", "version " + v + " is not supported (0.x, 2.x and 3.x are)");
         return major;
@@ -189,7 +189,8 @@ private:
         const SourceLoc loc = f.at(n);
         const Attrs a = attrs(n, f, {"filename"});
         const std::string file = require(a, "filename", loc, "include");
-        const fs::path p = resolve_file(file, f.dir);
+        // Not found anywhere: the error names the path beside the including file.
+        const fs::path p = resolve_file(file, f.dir).value_or(fs::path(f.dir) / file);
         bool ok = false;
         const std::string text = read_file(p.string(), &ok);
         if (!ok) throw SceneError(loc, "include", "cannot open included file '" + p.string() + "'");
@@ -297,8 +298,8 @@ private:
 
     // A relative file name as Mitsuba's file resolver finds it, with the folder of the file that
     // names it first: that folder, the <path> folders (latest first), the main scene's folder.
-    // The first candidate that exists; if none does, the first (errors then name that path).
-    fs::path resolve_file(const std::string& name, const std::string& own_dir) const {
+    // The first candidate that exists, or none (absolute names are taken as they are).
+    std::optional<fs::path> resolve_file(const std::string& name, const std::string& own_dir) const {
         const fs::path file(name);
         if (file.is_absolute()) return file;
         std::vector<fs::path> candidates{fs::path(own_dir) / file};
@@ -307,7 +308,7 @@ private:
         std::error_code ec;
         for (const auto& c : candidates)
             if (fs::exists(c, ec)) return c;
-        return candidates.front();
+        return std::nullopt;
     }
 
     std::shared_ptr<XmlObject> parse_object(const pugi::xml_node& n, const FileCtx& f, std::string* name) {
@@ -338,11 +339,12 @@ private:
     // resolve_file() as an absolute path where the file exists; else the name as given (the
     // loader reads it relative to the element's folder, and its error names that path).
     std::string resolved_name(const std::string& name, const std::string& own_dir) const {
-        const fs::path p = resolve_file(name, own_dir);
+        if (fs::path(name).is_absolute()) return name;
+        const auto p = resolve_file(name, own_dir);
+        if (!p) return name;
         std::error_code ec;
-        if (fs::path(name).is_absolute() || !fs::exists(p, ec)) return name;
-        const fs::path abs = fs::absolute(p, ec);
-        return ec ? p.string() : abs.lexically_normal().string();
+        const fs::path abs = fs::absolute(*p, ec);
+        return ec ? p->string() : abs.lexically_normal().string();
     }
 
     // --- value tags --------------------------------------------------------------------------

@@ -190,11 +190,11 @@ double ManifoldTechnique::density(const SurfaceInteraction& xb, const BSDF& bsdf
                                   double lambda) const {
     if (m_settings->solutions == MneeSolutions::Fallback) {
         // The straight seed's technique where the seed is clear of opaque surfaces (Alg. 2), the
-        // surface seeds' where one blocks it.
-        std::vector<ManifoldVertex> seed;
-        if (trace_seed_path(*m_scene, xb, xc, lambda, *m_settings, &seed) == SeedStatus::BlockedRefractive)
-            return solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
-        return mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
+        // surface seeds' where one blocks it; the seed is traced once for either.
+        const StraightSeed seed = trace_straight_seed(*m_scene, xb, xc, lambda, *m_settings);
+        if (seed.status == SeedStatus::BlockedRefractive)
+            return solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
+        return mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
     }
     if (m_settings->solutions != MneeSolutions::One)
         return solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);

@@ -255,9 +255,16 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     return out;
 }
 
+StraightSeed trace_straight_seed(const Scene& scene, const SurfaceInteraction& xb, const Vec3& xc, double lambda,
+                                 const MneeSettings& settings) {
+    StraightSeed s;
+    s.status = trace_seed_path(scene, xb, xc, lambda, settings, &s.chain);
+    return s;
+}
+
 double solution_density(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb, const BSDF& bsdf_b,
                         const SurfaceInteraction* path, int k, const Light& light, double pmf, const Vec3& xc,
-                        const Vec3& nc, double lambda) {
+                        const Vec3& nc, double lambda, const StraightSeed* traced) {
     if (k <= 0 || k > st.max_vertices) return 0;
     const double p_point = light_point_pdf(scene, light, xb.p, xc, nc);  // Alg. 2 line 1
     if (!(p_point > 0) || mnee_seed_culled(xb, bsdf_b, xc, st.cull_margin)) return 0;
@@ -277,8 +284,7 @@ double solution_density(const Scene& scene, const MneeSettings& st, const Surfac
     if (!admissible(xb.p, input, xc)) return 0;
     // The domain: refractive interfaces lie on the straight segment x_b -> x_c, blocked by an
     // opaque surface or not (the integrator runs the surface seeds for both).
-    std::vector<ManifoldVertex> seed;
-    const SeedStatus status = trace_seed_path(scene, xb, xc, lambda, st, &seed);
+    const SeedStatus status = traced ? traced->status : trace_straight_seed(scene, xb, xc, lambda, st).status;
     if (status != SeedStatus::Refractive && status != SeedStatus::BlockedRefractive) return 0;
     double p_dH = 1;  // line 3, on the path's own half vectors
     for (int i = 0; i < k; ++i) {
@@ -293,7 +299,7 @@ double solution_density(const Scene& scene, const MneeSettings& st, const Surfac
 
 double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb, const BSDF& bsdf_b,
                 const SurfaceInteraction* path, int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
-                double lambda) {
+                double lambda, const StraightSeed* traced) {
     if (k <= 0 || k > st.max_vertices) return 0;
     // Alg. 2, line 1: density of x_c as the light sampler would produce it from x_b.
     const double p_point = light_point_pdf(scene, light, xb.p, xc, nc);
@@ -309,8 +315,11 @@ double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInterac
     if (!admissible(xb.p, input, xc)) return 0;
 
     // Line 2: the seed path from x_b to x_c must cross the same shapes in the same order.
-    std::vector<ManifoldVertex> seed;
-    if (trace_seed_path(scene, xb, xc, lambda, st, &seed) != SeedStatus::Refractive || int(seed.size()) != k) return 0;
+    StraightSeed own;
+    if (!traced) own = trace_straight_seed(scene, xb, xc, lambda, st);
+    if ((traced ? traced : &own)->status != SeedStatus::Refractive) return 0;
+    std::vector<ManifoldVertex> seed = traced ? traced->chain : std::move(own.chain);  // the walk moves it
+    if (int(seed.size()) != k) return 0;
     double p_dH = 1;
     for (int i = 0; i < k; ++i) {
         if (seed[size_t(i)].shape != input[size_t(i)].shape) return 0;

@@ -18,6 +18,7 @@
 #include "manifold/light_point.h"
 #include "manifold/manifold_vertex.h"
 #include "manifold/mnee_settings.h"
+#include "manifold/seed_path.h"
 
 namespace snell {
 
@@ -94,6 +95,15 @@ MneeOutcome mnee_walk(const Scene& scene, const MneeSettings& settings, const Su
 /// without area (point, spot) the plane perpendicular to the arriving direction.
 TangentBasis light_point_basis(const Vec3& p, const Vec3& n, const Vec3& arrival_dir);
 
+/// The straight seed x_b -> x_c (Alg. 2, line 2), traced once when several densities of the same
+/// path need it.
+struct StraightSeed {
+    SeedStatus status = SeedStatus::Clear;
+    std::vector<ManifoldVertex> chain;
+};
+StraightSeed trace_straight_seed(const Scene& scene, const SurfaceInteraction& xb, const Vec3& xc, double lambda,
+                                 const MneeSettings& settings);
+
 /// The density of the all-solutions technique for the path x_b, chain[0..k), x_c: Alg. 2 lines
 /// 1, 3 and 8 (light point, half vectors, |dH/dX|) without its walk, times the indicator of the
 /// technique's domain (a refractive interface lies on the straight segment from x_b to x_c,
@@ -101,14 +111,15 @@ TangentBasis light_point_basis(const Vec3& p, const Vec3& n, const Vec3& arrival
 /// there is the technique's, found or not.
 double solution_density(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb,
                         const BSDF& bsdf_b, const SurfaceInteraction* chain, int k, const Light& light, double pmf,
-                        const Vec3& xc, const Vec3& nc, double lambda);
+                        const Vec3& xc, const Vec3& nc, double lambda, const StraightSeed* traced = nullptr);
 
 /// Alg. 2: area density with which MNEE from x_b produces the path x_b, chain[0..k), x_c, at
 /// the hero wavelength `lambda`.
-/// 0 if the seed path from x_b to x_c walks to a different path (or none).
+/// 0 if the seed path from x_b to x_c walks to a different path (or none). `traced`: the straight
+/// seed when the caller has it already (else traced here).
 double mnee_pdf(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb, const BSDF& bsdf_b,
                 const SurfaceInteraction* chain, int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
-                double lambda);
+                double lambda, const StraightSeed* traced = nullptr);
 
 /// Culling of a seed at x_b with the tolerance margin of Fig. 3.
 bool mnee_seed_culled(const SurfaceInteraction& xb, const BSDF& bsdf_b, const Vec3& xc, double margin);

@@ -39,6 +39,8 @@ struct MneeSettings {
     /// log-divergent (issue 10). A value t > 0 scales a connection by min(1, t / r): biased,
     /// energy is only removed. 0 (default): off.
     double max_geometry = 0;
+    // The paper's estimator here; a scene's `mnee` defaults to solutions=fallback with
+    // straight+surface seeds (MneeIntegrator::settings_from_props).
     MneeSeeding seeding = MneeSeeding::Straight;
     MneeSolutions solutions = MneeSolutions::One;
     /// (trials) surface seeds per caster and light connection: every one walked (solutions=all),

@@ -20,6 +20,15 @@ inline LoadedScene load_xml(const std::string& xml, const Defines& d = {}) {
     return load_scene_string(xml, "test-scene", SNELL_SOURCE_DIR, d);
 }
 
+/// One render of `spp` samples with `seed`, as linear sRGB floats.
+inline std::vector<float> render_rgb(const LoadedScene& ls, int spp, uint64_t seed = 0) {
+    RenderOptions opt;
+    opt.spp = spp;
+    opt.seed = seed;
+    opt.progress = false;
+    return render(*ls.scene, *ls.integrator, ls.film, opt).film.to_linear_srgb();
+}
+
 /// Every value of the film's image is finite and the image is not black.
 inline void expect_finite_and_lit(const Film& film) {
     double sum = 0;

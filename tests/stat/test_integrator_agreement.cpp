@@ -73,10 +73,7 @@ TEST(IntegratorNames, PathWithAPointLightIsNee) {
     const auto image = [&](const char* integ) {
         LoadedScene ls = load_xml(xml, {{"integrator", integ}});
         EXPECT_EQ(ls.integrator->name(), integ);
-        RenderOptions opt;
-        opt.spp = 4;
-        opt.progress = false;
-        return render(*ls.scene, *ls.integrator, ls.film, opt).film.to_linear_srgb();
+        return render_rgb(ls, 4);
     };
     const auto path = image("path"), nee = image("nee"), pt = image("pt");
     double lit = 0, dark = 0;

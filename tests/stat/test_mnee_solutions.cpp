@@ -595,20 +595,34 @@ TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
             cells.push_back(cell);
         }
 
+    // `runs` independent light connections of the surface-seeds-only estimator at x_b; `per_run`
+    // gets the count of each exact path (0 when not found).
+    const int runs = 20000;
+    const auto estimate = [&](const MneeSettings& settings, uint64_t seed, const auto& per_run) {
+        for (int run = 0; run < runs; ++run) {
+            IndependentSampler s(seed);
+            s.start_pixel_sample(run, 0, 0);
+            std::vector<ManifoldVertex> none;
+            const ManifoldQuery q{&xb,           xb.bsdf(), BSDFContext{wl, TransportMode::Radiance},
+                                  MediumStack(), false,     false};
+            std::vector<double> c(exact.size(), 0.0);
+            std::vector<bool> found(exact.size(), false);
+            for (const ManifoldSolution& sol :
+                 ManifoldTechnique(scene, settings).solve(q, light, 1.0, lp, none, s).solutions) {
+                const int k = which(sol.chain);
+                ASSERT_GE(k, 0) << "a solution the exhaustive search does not have";
+                c[size_t(k)] += sol.count;
+                found[size_t(k)] = true;
+            }
+            per_run(c, found);
+        }
+    };
     // The estimator: which path one trial finds, and N for it.
     std::vector<Mean> counts(exact.size());
-    const int runs = 20000;
-    for (int run = 0; run < runs; ++run) {
-        IndependentSampler s(41);
-        s.start_pixel_sample(run, 0, 0);
-        std::vector<ManifoldVertex> none;
-        const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false, false};
-        for (const ManifoldSolution& sol : ManifoldTechnique(scene, st).solve(q, light, 1.0, lp, none, s).solutions) {
-            const int k = which(sol.chain);
-            ASSERT_GE(k, 0) << "a solution the exhaustive search does not have";
-            counts[size_t(k)].add(sol.count);
-        }
-    }
+    estimate(st, 41, [&](const std::vector<double>& c, const std::vector<bool>& found) {
+        for (size_t k = 0; k < c.size(); ++k)
+            if (found[k]) counts[k].add(c[k]);
+    });
     // Rounds of M = 3 first trials: path k is found in the first round with probability
     // q_k = 1 - (1 - p_k)^3 and then counts ceil(N / 3), of mean 1 / q_k; so its count (0 when
     // not found) has mean 1. Counting N / 3 instead would give (1 / (3 p_k)) q_k: 0.85, 0.82 and
@@ -616,20 +630,9 @@ TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
     MneeSettings rounds = st;
     rounds.trials = 3;
     std::vector<Mean> per_path(exact.size());
-    for (int run = 0; run < runs; ++run) {
-        IndependentSampler s(43);
-        s.start_pixel_sample(run, 0, 0);
-        std::vector<ManifoldVertex> none;
-        const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false, false};
-        std::vector<double> c(exact.size(), 0.0);
-        for (const ManifoldSolution& sol :
-             ManifoldTechnique(scene, rounds).solve(q, light, 1.0, lp, none, s).solutions) {
-            const int k = which(sol.chain);
-            ASSERT_GE(k, 0);
-            c[size_t(k)] += sol.count;
-        }
-        for (size_t k = 0; k < exact.size(); ++k) per_path[k].add(c[k]);
-    }
+    estimate(rounds, 43, [&](const std::vector<double>& c, const std::vector<bool>&) {
+        for (size_t k = 0; k < c.size(); ++k) per_path[k].add(c[k]);
+    });
     for (size_t k = 0; k < exact.size(); ++k) {
         std::cout << "[basins] M = 3, path " << k << ": mean count " << per_path[k].mean() << " +- "
                   << per_path[k].stderr_() << "\n";
@@ -662,18 +665,10 @@ TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
         closer += a;
     }
     std::vector<Mean> best_counts(exact.size());
-    for (int run = 0; run < runs; ++run) {
-        IndependentSampler s(47);
-        s.start_pixel_sample(run, 0, 0);
-        std::vector<ManifoldVertex> none;
-        const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false, false};
-        for (const ManifoldSolution& sol :
-             ManifoldTechnique(scene, best_of).solve(q, light, 1.0, lp, none, s).solutions) {
-            const int k = which(sol.chain);
-            ASSERT_GE(k, 0);
-            best_counts[size_t(k)].add(sol.count);
-        }
-    }
+    estimate(best_of, 47, [&](const std::vector<double>& c, const std::vector<bool>& found) {
+        for (size_t k = 0; k < c.size(); ++k)
+            if (found[k]) best_counts[k].add(c[k]);
+    });
     for (size_t k = 0; k < exact.size(); ++k) {
         std::cout << "[basins] best of 4, path " << k << ": p " << pk[k] << " (one seed: " << p[k] << "; found in "
                   << double(best_counts[k].n) / runs << " of trials), mean N " << best_counts[k].mean() << " +- "

@@ -35,14 +35,6 @@ const char* kBox = R"(<scene version="3.0.0">
   </shape>
 </scene>)";
 
-std::vector<float> render_rgb(const LoadedScene& ls, int spp, uint64_t seed) {
-    RenderOptions opt;
-    opt.spp = spp;
-    opt.seed = seed;
-    opt.progress = false;
-    return render(*ls.scene, *ls.integrator, ls.film, opt).film.to_linear_srgb();
-}
-
 }  // namespace
 
 // Roulette from the first bounce against (practically) no roulette: same expectation.

@@ -1,13 +1,31 @@
 #pragma once
 // Helpers shared by the geometry tests.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <vector>
 
 #include "core/mesh_data.h"
 #include "core/rng.h"
 #include "core/vector.h"
+#include "geometry/interaction.h"
 
 namespace snell::test {
+
+/// The interaction's dp/du, dp/dv, dn/du, dn/dv against central differences of p and n from the
+/// interactions at (u +- h, v) and (u, v +- h), within `tol_p` and `tol_n`; n unit and normal
+/// to both tangents.
+inline void expect_differential_geometry(const SurfaceInteraction& si, const SurfaceInteraction& up,
+                                         const SurfaceInteraction& um, const SurfaceInteraction& vp,
+                                         const SurfaceInteraction& vm, double h, double tol_p, double tol_n) {
+    EXPECT_LT(length((up.p - um.p) / (2 * h) - si.dpdu), tol_p);
+    EXPECT_LT(length((vp.p - vm.p) / (2 * h) - si.dpdv), tol_p);
+    EXPECT_LT(length((up.n - um.n) / (2 * h) - si.dndu), tol_n);
+    EXPECT_LT(length((vp.n - vm.n) / (2 * h) - si.dndv), tol_n);
+    EXPECT_NEAR(length(si.n), 1.0, 1e-14);
+    EXPECT_NEAR(dot(si.n, si.dpdu), 0.0, 1e-12);
+    EXPECT_NEAR(dot(si.n, si.dpdv), 0.0, 1e-12);
+}
 
 /// Upper-tail probability of a chi-square statistic with k degrees of freedom, through the
 /// Wilson-Hilferty cube-root normal approximation (accurate to ~1e-3 relative for k >= 30,

@@ -75,14 +75,7 @@ SampledSpectrum DirectIntegrator::li(const Ray& ray, const Scene& scene, Sampler
         const Light* light = nullptr;
         double pmf = 0;
         const auto ls = sample_light(scene, si, wl, sampler, &light, &pmf);
-        if (!ls) continue;
-        const SampledSpectrum f = bsdf->eval(ctx, wo, si.to_local(ls->wi));
-        if (f.is_zero()) continue;
-        const Ray shadow = std::isinf(ls->dist) ? scene.spawn_ray(si, ls->wi) : scene.spawn_ray_to(si, ls->p);
-        if (scene.occluded(shadow)) continue;
-        const double w =
-            ls->delta ? 1.0 : power_heuristic(frac_e * pmf * ls->pdf, frac_b * bsdf->pdf(ctx, wo, si.to_local(ls->wi)));
-        add(Technique::Nee, nee_estimate(si, *bsdf, ctx, none, *ls, f, pmf, w) / double(ne));
+        if (ls) add(Technique::Nee, nee_connect(scene, si, *bsdf, ctx, none, *ls, pmf, frac_e, frac_b) / double(ne));
     }
 
     for (int j = 0; j < nb; ++j) {
