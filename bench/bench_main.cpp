@@ -165,7 +165,7 @@ const std::vector<Ray>& renderer_rays() {
     static const std::vector<Ray> rays = [] {
         const LoadedScene& ls = demo_scene("pt");
         const Scene& scene = *ls.scene;
-        const PerspectiveCamera& cam = *scene.camera();
+        const PerspectiveCamera& cam = *scene.camera()->pinhole();
         const int max_depth = 12, rr_depth = 5, spp = 4, tile = 16;
         PCG32 rng(2, 11);
         std::vector<Ray> out;

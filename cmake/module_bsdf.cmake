@@ -1,5 +1,6 @@
 # BSDFs: one file per model, microfacet distributions, Fresnel (owner: bsdf).
 snell_library(snell_bsdf
+  src/bsdf/bsdf.cpp
   src/bsdf/fresnel.cpp
   src/bsdf/microfacet.cpp
   src/bsdf/conductor_data.cpp
@@ -13,9 +14,11 @@ snell_library(snell_bsdf
   src/bsdf/roughplastic.cpp
   src/bsdf/blend.cpp
   src/bsdf/twosided.cpp
+  src/bsdf/perturbed_frame.cpp
+  src/bsdf/bumpmap.cpp
   src/bsdf/factory.cpp
 )
-target_link_libraries(snell_bsdf PUBLIC snell_core)
+target_link_libraries(snell_bsdf PUBLIC snell_core snell_texture)
 
 snell_test(test_bsdf_chi2
   SOURCES tests/stat/test_bsdf_chi2.cpp

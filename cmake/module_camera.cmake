@@ -1,6 +1,8 @@
-# Perspective camera, film, pixel filters and the filter factory (owner: camera).
+# Cameras (perspective, thinlens, orthographic), film, pixel filters and the filter factory (owner: camera).
 snell_library(snell_camera
   src/camera/camera.cpp
+  src/camera/thinlens.cpp
+  src/camera/orthographic.cpp
   src/camera/filter.cpp
   src/camera/film.cpp
   src/camera/factory.cpp
@@ -8,5 +10,5 @@ snell_library(snell_camera
 target_link_libraries(snell_camera PUBLIC snell_core)
 
 snell_test(test_film
-  SOURCES tests/unit/test_film.cpp
+  SOURCES tests/unit/test_film.cpp tests/unit/test_camera.cpp
   LIBS snell_camera)

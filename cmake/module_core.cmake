@@ -4,6 +4,7 @@ snell_library(snell_core
   src/core/transform.cpp
   src/core/stats.cpp
   src/core/spectrum.cpp
+  src/core/rgb_to_spectrum_table.cpp
   src/core/progress.cpp
   src/core/props.cpp
   src/core/mesh_data.cpp

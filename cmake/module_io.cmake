@@ -1,4 +1,4 @@
-# File formats only (owner: io): EXR/PNG images, OBJ/PLY/serialized meshes, render statistics JSON. Nothing
+# File formats only (owner: io): EXR/PNG images, texture images (OpenImageIO), OBJ/PLY/serialized meshes, render statistics JSON. Nothing
 # here knows the film, shapes or scenes; callers convert to and from plain buffers and MeshData.
 snell_library(snell_io
   src/io/image.cpp
@@ -6,9 +6,10 @@ snell_library(snell_io
   src/io/mesh_obj.cpp
   src/io/mesh_ply.cpp
   src/io/mesh_serialized.cpp
+  src/io/texture_image.cpp
 )
 target_link_libraries(snell_io PUBLIC snell_core nlohmann_json::nlohmann_json
-                      PRIVATE OpenEXR::OpenEXR tinyobjloader::tinyobjloader ZLIB::ZLIB ${STB_LIBRARY})
+                      PRIVATE OpenEXR::OpenEXR PkgConfig::OIIO tinyobjloader::tinyobjloader ZLIB::ZLIB ${STB_LIBRARY})
 target_include_directories(snell_io PRIVATE ${STB_INCLUDE_DIR})
 
 snell_test(test_image

@@ -23,6 +23,12 @@ snell_test(test_scene_loader_full
   SOURCES tests/unit/test_scene_loader_full.cpp
   LIBS snell_loader snell_integrators)
 
+# Scenes with textures: the loader's forms and errors, and renders by every integrator against
+# the albedo a plane under a constant environment shows.
+snell_test(test_texture_scenes
+  SOURCES tests/texture/test_texture_scenes.cpp
+  LIBS snell_loader snell_integrators PkgConfig::OIIO)
+
 # Reconstruction filters: chi-square of filter importance sampling, normalisation, splat
 # support, and <rfilter> loading.
 snell_test(test_filters

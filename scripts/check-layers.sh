@@ -16,6 +16,7 @@ LAYERS=(
   "core"
   "io"                     # file formats only: images, meshes, stats JSON
   "sampler camera geometry"
+  "texture"                # Mitsuba's textures, looked up at a SurfaceInteraction
   "bsdf light"
   "scene"                  # Scene: shapes, Embree, lights, camera (no integrator)
   "manifold"

@@ -13,6 +13,7 @@ PACKAGES=(
   libpugixml-dev       # Mitsuba-style XML scenes
   libtinyobjloader-dev # OBJ meshes
   zlib1g-dev           # Mitsuba's serialized meshes
+  libopenimageio-dev   # texture images (PNG, JPEG, EXR, HDR, TIFF)
   libcli11-dev         # command line
   libstb-dev           # PNG output
   nlohmann-json3-dev   # stats JSON

@@ -6,13 +6,14 @@
 #include <memory>
 
 #include "bsdf/bsdf.h"
+#include "bsdf/param.h"
 
 namespace snell {
 
 class BlendBSDF final : public BSDF {
 public:
-    /// `weight` in [0, 1]: the share of `second`.
-    BlendBSDF(double weight, std::shared_ptr<const BSDF> first, std::shared_ptr<const BSDF> second);
+    /// `weight` in [0, 1] (a texture or a constant): the share of `second`.
+    BlendBSDF(FloatParam weight, std::shared_ptr<const BSDF> first, std::shared_ptr<const BSDF> second);
 
     SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
@@ -22,7 +23,7 @@ public:
     double pdf_delta(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
 
 private:
-    double m_weight;
+    FloatParam m_weight;
     std::shared_ptr<const BSDF> m_first, m_second;
 };
 

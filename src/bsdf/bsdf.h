@@ -9,13 +9,13 @@
 #include <cstdint>
 #include <optional>
 
+#include "bsdf/microfacet.h"
 #include "core/object.h"
 #include "core/spectrum.h"
 #include "core/vector.h"
+#include "geometry/interaction.h"
 
 namespace snell {
-
-class MicrofacetDistribution;
 
 enum class TransportMode { Radiance, Importance };
 
@@ -31,7 +31,21 @@ enum BSDFFlags : uint32_t {
 struct BSDFContext {
     SampledWavelengths wl = SampledWavelengths::single(550.0);  ///< the path's wavelengths (nm)
     TransportMode mode = TransportMode::Radiance;
+    /// The surface point the BSDF is evaluated at: its textures are read there (a material gives
+    /// the BSDF at the hit, as in pbrt-v4). Set per vertex with at(); the manifold walk sets it
+    /// to every projected vertex, so a texture is read where the converged vertex lies.
+    const SurfaceInteraction* si = nullptr;
+
     double hero() const { return wl.hero(); }
+    BSDFContext at(const SurfaceInteraction& p) const {
+        BSDFContext c = *this;
+        c.si = &p;
+        return c;
+    }
+    /// The point for texture lookups. A textured BSDF evaluated without one is a bug of the
+    /// caller: counted (bsdf.lookups_without_point, which the tests require to stay 0), and read
+    /// at uv = (0, 0).
+    const SurfaceInteraction& point() const;
 };
 
 struct BSDFSample {
@@ -72,9 +86,11 @@ public:
     }
     /// Discrete probability with which sample() picks the delta lobe connecting wo to wi (hero).
     virtual double pdf_delta(const BSDFContext& /*ctx*/, const Vec3& /*wo*/, const Vec3& /*wi*/) const { return 0; }
-    /// The microfacet distribution of a rough interface (MNEE samples its half vectors from
-    /// it, paper Sec. 3.2), or nullptr.
-    virtual const MicrofacetDistribution* microfacet() const { return nullptr; }
+    /// A rough interface with a microfacet distribution (MNEE samples its half vectors from it,
+    /// paper Sec. 3.2).
+    virtual bool has_microfacet() const { return false; }
+    /// That distribution at ctx's point (a roughness texture is read there), or none.
+    virtual std::optional<MicrofacetDistribution> microfacet(const BSDFContext& /*ctx*/) const { return std::nullopt; }
 
     /// Interior over exterior IOR at lambda (1 for non-dielectrics). Used by MNEE's constraints.
     virtual double eta(double /*lambda*/) const { return 1.0; }

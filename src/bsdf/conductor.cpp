@@ -4,18 +4,19 @@
 
 namespace snell {
 
-ConductorBSDF::ConductorBSDF(std::optional<ConductorIOR> ior, Spectrum specular_reflectance)
+ConductorBSDF::ConductorBSDF(std::optional<ConductorIOR> ior, SpectrumParam specular_reflectance)
     : m_ior(std::move(ior)), m_specular_reflectance(std::move(specular_reflectance)) {}
 
 SampledSpectrum ConductorBSDF::eval(const BSDFContext&, const Vec3&, const Vec3&) const { return {}; }
 double ConductorBSDF::pdf(const BSDFContext&, const Vec3&, const Vec3&) const { return 0; }
 
-SampledSpectrum ConductorBSDF::reflectance(const SampledWavelengths& wl, double cos_theta) const {
+SampledSpectrum ConductorBSDF::reflectance(const BSDFContext& ctx, double cos_theta) const {
+    const SampledWavelengths& wl = ctx.wl;
     SampledSpectrum F(1.0);
     if (m_ior)
         for (int i = 0; i < kSpectrumSamples; ++i)
             F[i] = fresnel_conductor(cos_theta, m_ior->eta(wl[i]), m_ior->k(wl[i]));
-    return F * m_specular_reflectance.eval(wl);
+    return F * m_specular_reflectance.eval(ctx);
 }
 
 std::optional<BSDFSample> ConductorBSDF::sample(const BSDFContext& ctx, const Vec3& wo, double, const Vec2&) const {
@@ -23,7 +24,7 @@ std::optional<BSDFSample> ConductorBSDF::sample(const BSDFContext& ctx, const Ve
     BSDFSample s;
     s.wi = reflect(wo);
     s.pdf = 1;
-    s.weight = reflectance(ctx.wl, wo.z);
+    s.weight = reflectance(ctx, wo.z);
     s.lobe = kReflection | kSpecular;
     return s;
 }

@@ -4,8 +4,8 @@
 
 namespace snell {
 
-DielectricBSDF::DielectricBSDF(Spectrum int_ior, Spectrum ext_ior, Spectrum specular_reflectance,
-                               Spectrum specular_transmittance, std::optional<Spectrum> sigma_a)
+DielectricBSDF::DielectricBSDF(Spectrum int_ior, Spectrum ext_ior, SpectrumParam specular_reflectance,
+                               SpectrumParam specular_transmittance, std::optional<Spectrum> sigma_a)
     : m_int_ior(std::move(int_ior)),
       m_ext_ior(std::move(ext_ior)),
       m_specular_reflectance(std::move(specular_reflectance)),
@@ -58,7 +58,7 @@ SampledSpectrum DielectricBSDF::eval_delta(const BSDFContext& ctx, const Vec3& w
     } else {
         k[0] = kappa(ctx.hero());
     }
-    return k * (reflection ? m_specular_reflectance : m_specular_transmittance).eval(ctx.wl);
+    return k * (reflection ? m_specular_reflectance : m_specular_transmittance).eval(ctx);
 }
 
 double DielectricBSDF::pdf_delta(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "bsdf/bsdf.h"
+#include "bsdf/param.h"
 
 namespace snell {
 
@@ -13,8 +14,8 @@ public:
     /// `int_ior`/`ext_ior`: IOR inside (below, -z) and outside (+z) as functions of
     /// wavelength; `specular_*`: Mitsuba's non-physical scale factors; `sigma_a`: absorption
     /// coefficient of the interior in 1/scene unit (none when empty).
-    DielectricBSDF(Spectrum int_ior, Spectrum ext_ior, Spectrum specular_reflectance = Spectrum::constant(1.0),
-                   Spectrum specular_transmittance = Spectrum::constant(1.0),
+    DielectricBSDF(Spectrum int_ior, Spectrum ext_ior, SpectrumParam specular_reflectance = Spectrum::constant(1.0),
+                   SpectrumParam specular_transmittance = Spectrum::constant(1.0),
                    std::optional<Spectrum> sigma_a = std::nullopt);
 
     /// Deltas only: eval and pdf are 0.
@@ -34,7 +35,8 @@ public:
     const Spectrum* interior_absorption() const override { return m_sigma_a ? &*m_sigma_a : nullptr; }
 
 private:
-    Spectrum m_int_ior, m_ext_ior, m_specular_reflectance, m_specular_transmittance;
+    Spectrum m_int_ior, m_ext_ior;
+    SpectrumParam m_specular_reflectance, m_specular_transmittance;
     std::optional<Spectrum> m_sigma_a;
 };
 

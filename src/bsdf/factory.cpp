@@ -7,9 +7,11 @@
 #include <cmath>
 
 #include "bsdf/blend.h"
+#include "bsdf/bumpmap.h"
 #include "bsdf/conductor.h"
 #include "bsdf/dielectric.h"
 #include "bsdf/diffuse.h"
+#include "bsdf/normalmap.h"
 #include "bsdf/null_bsdf.h"
 #include "bsdf/plastic.h"
 #include "bsdf/roughconductor.h"
@@ -17,6 +19,8 @@
 #include "bsdf/roughplastic.h"
 #include "bsdf/thindielectric.h"
 #include "bsdf/twosided.h"
+#include "texture/constant.h"
+#include "texture/factory.h"
 
 namespace snell {
 
@@ -40,8 +44,14 @@ double read_ior(const Props& p, const std::string& name, const std::string& def)
     return v;
 }
 
+/// A colour parameter (reflectance-like, default grey `def`): constant or textured.
+SpectrumParam colour(const Props& p, const char* name, double def) {
+    return get_texture(p, name, SpectrumUse::Reflectance, Spectrum::constant(def));
+}
+
 struct DielectricParams {
-    Spectrum int_ior, ext_ior, specular_reflectance, specular_transmittance;
+    Spectrum int_ior, ext_ior;
+    SpectrumParam specular_reflectance = Spectrum::constant(1.0), specular_transmittance = Spectrum::constant(1.0);
     std::optional<Spectrum> sigma_a;
 };
 
@@ -58,13 +68,14 @@ DielectricParams read_dielectric(const Props& p, bool extensions) {
     }
     d.int_ior = Spectrum::from_ior_abbe(int_ior, abbe);
     d.ext_ior = Spectrum::constant(ext_ior);
-    d.specular_reflectance = p.get_spectrum("specular_reflectance", SpectrumUse::Reflectance, Spectrum::constant(1.0));
-    d.specular_transmittance =
-        p.get_spectrum("specular_transmittance", SpectrumUse::Reflectance, Spectrum::constant(1.0));
+    d.specular_reflectance = colour(p, "specular_reflectance", 1.0);
+    d.specular_transmittance = colour(p, "specular_transmittance", 1.0);
     return d;
 }
 
-MicrofacetDistribution read_distribution(const Props& p) {
+/// The distribution with its constant alphas; textured alphas (roughconductor, roughdielectric,
+/// as Mitsuba allows) in *alpha_u / *alpha_v when those are given.
+MicrofacetParam read_distribution(const Props& p, bool textures) {
     const std::string name = p.get_string("distribution", "beckmann");
     MicrofacetDistribution::Type type;
     if (name == "beckmann")
@@ -73,18 +84,30 @@ MicrofacetDistribution read_distribution(const Props& p) {
         type = MicrofacetDistribution::Type::GGX;
     else
         p.raise_param("distribution", "unknown distribution '" + name + "' (expected beckmann or ggx)");
-    double au, av;
-    if (p.has("alpha_u") || p.has("alpha_v")) {
-        if (p.has("alpha")) p.raise_param("alpha", "give either 'alpha' or 'alpha_u'/'alpha_v', not both");
-        au = p.get_float("alpha_u");
-        av = p.get_float("alpha_v");
+    auto given = [&](const char* n) { return p.has(n) || (textures && p.named_child<const Texture>(n)); };
+    auto read = [&](const char* n, double def) -> TextureRef {
+        if (textures) return get_float_texture(p, n, def, 0.0, kInfinity);
+        const double v = p.get_float(n, def);
+        if (!(v >= 0) || !std::isfinite(v)) p.raise_param(n, "roughness must be a finite non-negative number");
+        return ConstantTexture::make(v);
+    };
+    TextureRef au, av;
+    if (given("alpha_u") || given("alpha_v")) {
+        if (given("alpha")) p.raise_param("alpha", "give either 'alpha' or 'alpha_u'/'alpha_v', not both");
+        if (!given("alpha_u") || !given("alpha_v")) p.raise("give both 'alpha_u' and 'alpha_v'");
+        au = read("alpha_u", 0.1);
+        av = read("alpha_v", 0.1);
     } else {
-        au = av = p.get_float("alpha", 0.1);
+        au = av = read("alpha", 0.1);
     }
-    for (auto [v, n] : {std::pair{au, "alpha_u"}, std::pair{av, "alpha_v"}})
-        if (!(v >= 0) || !std::isfinite(v))
-            p.raise_param(p.has(n) ? n : "alpha", "roughness must be a finite non-negative number");
-    return MicrofacetDistribution(type, au, av, p.get_bool("sample_visible", true));
+    // The constant alphas; a texture's are its mean (only where untextured do they count).
+    const MicrofacetDistribution base(type, au->mean(), av->mean(), p.get_bool("sample_visible", true));
+    return MicrofacetParam(base, au->is_constant() ? nullptr : au, av->is_constant() ? nullptr : av);
+}
+
+/// Below this roughness everywhere a rough model is built as the smooth one.
+bool effectively_smooth(const MicrofacetParam& d) {
+    return d.is_constant() && std::max(d.base().alpha_u(), d.base().alpha_v()) < kEffectivelySmoothAlpha;
 }
 
 /// Mitsuba: `material` names a tabulated metal, or eta/k are given directly.
@@ -102,11 +125,25 @@ std::optional<ConductorIOR> read_conductor(const Props& p) {
     return ior;
 }
 
+/// The SMS code's normalmap form: `filename` (the normals as stored, EXR or PNG), `tiles` (uv
+/// scale); `use_slopes` and the LEAN fallback settings are accepted (docs/scene-format.md).
+TextureRef sms_normal_map(const Props& p) {
+    Props t("texture", "bitmap", p.loc());
+    t.set("filename", p.get_string("filename"), p.loc());
+    t.set("__base_dir", p.get_string("__base_dir", ""), p.loc());
+    t.set("raw", true, p.loc());
+    const double tiles = p.get_float("tiles", 1.0);
+    if (!(tiles > 0) || !std::isfinite(tiles)) p.raise_param("tiles", "tiles must be positive");
+    t.set("to_uv", Transform::scale(Vec3(tiles, tiles, 1)), p.loc());
+    for (const char* n : {"use_slopes", "lean_fallback", "lean_fallback_alpha", "lean_fallback_material"})
+        p.mark_used(n);
+    return create_texture(t);
+}
+
 std::shared_ptr<BSDF> build(const Props& p) {
     const std::string& type = p.type();
     if (type == "diffuse") {
-        return std::make_shared<DiffuseBSDF>(
-            p.get_spectrum("reflectance", SpectrumUse::Reflectance, Spectrum::constant(0.5)));
+        return std::make_shared<DiffuseBSDF>(colour(p, "reflectance", 0.5));
     }
     if (type == "dielectric") {
         auto d = read_dielectric(p, true);
@@ -119,12 +156,12 @@ std::shared_ptr<BSDF> build(const Props& p) {
                                                     d.specular_transmittance);
     }
     if (type == "roughdielectric") {
-        auto distr = read_distribution(p);
+        auto distr = read_distribution(p, true);
         auto d = read_dielectric(p, true);
         // Effectively smooth (pbrt-v4's rule): a microfacet lobe this narrow is a delta lobe that
         // the rough model can only evaluate badly, so it becomes the smooth interface; a scene
         // switches between smooth and rough glass with its alpha alone (-D alpha=0).
-        if (std::max(distr.alpha_u(), distr.alpha_v()) < kEffectivelySmoothAlpha)
+        if (effectively_smooth(distr))
             return std::make_shared<DielectricBSDF>(d.int_ior, d.ext_ior, d.specular_reflectance,
                                                     d.specular_transmittance, d.sigma_a);
         return std::make_shared<RoughDielectricBSDF>(distr, d.int_ior, d.ext_ior, d.specular_reflectance,
@@ -132,44 +169,40 @@ std::shared_ptr<BSDF> build(const Props& p) {
     }
     if (type == "conductor") {
         auto ior = read_conductor(p);
-        return std::make_shared<ConductorBSDF>(
-            ior, p.get_spectrum("specular_reflectance", SpectrumUse::Reflectance, Spectrum::constant(1.0)));
+        return std::make_shared<ConductorBSDF>(ior, colour(p, "specular_reflectance", 1.0));
     }
     if (type == "roughconductor") {
-        auto distr = read_distribution(p);
+        auto distr = read_distribution(p, true);
         auto ior = read_conductor(p);
-        if (std::max(distr.alpha_u(), distr.alpha_v()) < kEffectivelySmoothAlpha)
-            return std::make_shared<ConductorBSDF>(
-                ior, p.get_spectrum("specular_reflectance", SpectrumUse::Reflectance, Spectrum::constant(1.0)));
-        return std::make_shared<RoughConductorBSDF>(
-            distr, ior, p.get_spectrum("specular_reflectance", SpectrumUse::Reflectance, Spectrum::constant(1.0)));
+        if (effectively_smooth(distr))
+            return std::make_shared<ConductorBSDF>(ior, colour(p, "specular_reflectance", 1.0));
+        return std::make_shared<RoughConductorBSDF>(distr, ior, colour(p, "specular_reflectance", 1.0));
     }
     if (type == "plastic") {
         const double int_ior = read_ior(p, "int_ior", "polypropylene");
         const double ext_ior = read_ior(p, "ext_ior", "air");
-        return std::make_shared<PlasticBSDF>(
-            p.get_spectrum("diffuse_reflectance", SpectrumUse::Reflectance, Spectrum::constant(0.5)),
-            p.get_spectrum("specular_reflectance", SpectrumUse::Reflectance, Spectrum::constant(1.0)), int_ior, ext_ior,
-            p.get_bool("nonlinear", false));
+        return std::make_shared<PlasticBSDF>(colour(p, "diffuse_reflectance", 0.5),
+                                             colour(p, "specular_reflectance", 1.0), int_ior, ext_ior,
+                                             p.get_bool("nonlinear", false));
     }
     if (type == "roughplastic") {
-        auto distr = read_distribution(p);
+        // Mitsuba's roughplastic takes a constant alpha (its tables depend on it).
+        auto distr = read_distribution(p, false);
         const double int_ior = read_ior(p, "int_ior", "polypropylene");
         const double ext_ior = read_ior(p, "ext_ior", "air");
-        auto diffuse = p.get_spectrum("diffuse_reflectance", SpectrumUse::Reflectance, Spectrum::constant(0.5));
-        auto specular = p.get_spectrum("specular_reflectance", SpectrumUse::Reflectance, Spectrum::constant(1.0));
+        auto diffuse = colour(p, "diffuse_reflectance", 0.5);
+        auto specular = colour(p, "specular_reflectance", 1.0);
         const bool nonlinear = p.get_bool("nonlinear", false);
-        if (std::max(distr.alpha_u(), distr.alpha_v()) < kEffectivelySmoothAlpha)
+        if (effectively_smooth(distr))
             return std::make_shared<PlasticBSDF>(diffuse, specular, int_ior, ext_ior, nonlinear);
-        return std::make_shared<RoughPlasticBSDF>(distr, diffuse, specular, int_ior, ext_ior, nonlinear);
+        return std::make_shared<RoughPlasticBSDF>(distr.base(), diffuse, specular, int_ior, ext_ior, nonlinear);
     }
     if (type == "null") return std::make_shared<NullBSDF>();
     if (type == "blendbsdf" || type == "mask") {
         // blendbsdf: (1 - weight) first + weight second; mask: opacity times the nested BSDF,
         // the rest passes through (null).
         const char* param = type == "mask" ? "opacity" : "weight";
-        const double w = p.get_float(param, 0.5);
-        if (!(w >= 0 && w <= 1)) p.raise_param(param, std::string(param) + " must lie in [0, 1]");
+        const TextureRef w = get_float_texture(p, param, 0.5, 0.0, 1.0);
         auto kids = p.children<BSDF>();
         if (type == "mask") {
             if (kids.size() != 1) p.raise("mask needs exactly one nested BSDF");
@@ -177,6 +210,25 @@ std::shared_ptr<BSDF> build(const Props& p) {
         }
         if (kids.size() != 2) p.raise("blendbsdf needs exactly two nested BSDFs");
         return std::make_shared<BlendBSDF>(w, kids[0], kids[1]);
+    }
+    if (type == "normalmap" || type == "bumpmap") {
+        auto kids = p.children<BSDF>();
+        if (kids.size() != 1) p.raise(type + " needs exactly one nested BSDF");
+        if (type == "normalmap") {
+            auto normals = p.named_child<const Texture>("normalmap");
+            if (!normals && p.has("filename")) normals = sms_normal_map(p);
+            if (!normals)
+                p.raise(
+                    "normalmap needs a nested <texture name=\"normalmap\"> (a raw bitmap, usually) or, as in the "
+                    "SMS code, a 'filename'");
+            return std::make_shared<NormalMapBSDF>(normals, kids[0]);
+        }
+        // Mitsuba's bumpmap takes its one nested texture whatever its name.
+        auto heights = p.children<const Texture>();
+        if (heights.size() != 1) p.raise("bumpmap needs exactly one nested texture (the height field)");
+        const double scale = p.get_float("scale", 1.0);
+        if (!std::isfinite(scale)) p.raise_param("scale", "scale must be finite");
+        return std::make_shared<BumpMapBSDF>(heights[0], scale, kids[0]);
     }
     if (type == "twosided") {
         auto kids = p.children<BSDF>();
@@ -187,7 +239,7 @@ std::shared_ptr<BSDF> build(const Props& p) {
     }
     p.raise("unknown BSDF type '" + type +
             "' (known: diffuse, dielectric, thindielectric, roughdielectric, conductor, "
-            "roughconductor, plastic, roughplastic, twosided, blendbsdf, mask, null)");
+            "roughconductor, plastic, roughplastic, twosided, blendbsdf, mask, null, normalmap, bumpmap)");
 }
 
 }  // namespace

@@ -5,8 +5,8 @@
 
 namespace snell {
 
-PlasticBSDF::PlasticBSDF(Spectrum diffuse_reflectance, Spectrum specular_reflectance, double int_ior, double ext_ior,
-                         bool nonlinear)
+PlasticBSDF::PlasticBSDF(SpectrumParam diffuse_reflectance, SpectrumParam specular_reflectance, double int_ior,
+                         double ext_ior, bool nonlinear)
     : m_diffuse_reflectance(std::move(diffuse_reflectance)),
       m_specular_reflectance(std::move(specular_reflectance)),
       m_eta(int_ior / ext_ior),
@@ -27,7 +27,7 @@ double PlasticBSDF::specular_probability(double F) const {
 SampledSpectrum PlasticBSDF::eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
     if (wo.z <= 0 || wi.z <= 0) return {};
     const double Fo = fresnel_dielectric(wo.z, m_eta).R, Fi = fresnel_dielectric(wi.z, m_eta).R;
-    SampledSpectrum diff = m_diffuse_reflectance.eval(ctx.wl);
+    SampledSpectrum diff = m_diffuse_reflectance.eval(ctx);
     // Internal bounces between base and coating: geometric series in rho * R_dr.
     for (int i = 0; i < kSpectrumSamples; ++i) diff[i] /= m_nonlinear ? 1 - diff[i] * m_fdr_int : 1 - m_fdr_int;
     // Radiance crossing the coating twice, compressed by 1/eta^2 inside.
@@ -48,7 +48,7 @@ std::optional<BSDFSample> PlasticBSDF::sample(const BSDFContext& ctx, const Vec3
     if (uc < ps) {
         s.wi = reflect(wo);
         s.pdf = ps;
-        s.weight = m_specular_reflectance.eval(ctx.wl) * (F / ps);
+        s.weight = m_specular_reflectance.eval(ctx) * (F / ps);
         s.lobe = kReflection | kSpecular;
         return s;
     }

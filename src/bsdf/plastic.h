@@ -3,6 +3,7 @@
 // off the coating (delta) plus a diffuse lobe attenuated by the two coating transmissions and
 // boosted by the internal inter-reflections (the 1 - R_dr denominators).
 #include "bsdf/bsdf.h"
+#include "bsdf/param.h"
 
 namespace snell {
 
@@ -10,7 +11,7 @@ class PlasticBSDF final : public BSDF {
 public:
     /// `int_ior`/`ext_ior`: coating and exterior IOR (Mitsuba: polypropylene 1.49 / air);
     /// `nonlinear`: account for colour shifts of the inter-reflections (Mitsuba's flag).
-    PlasticBSDF(Spectrum diffuse_reflectance, Spectrum specular_reflectance, double int_ior, double ext_ior,
+    PlasticBSDF(SpectrumParam diffuse_reflectance, SpectrumParam specular_reflectance, double int_ior, double ext_ior,
                 bool nonlinear = false);
 
     /// The diffuse part only (the coating's mirror reflection is a delta).
@@ -24,7 +25,7 @@ private:
     /// Probability of picking the specular lobe given the coating's reflectance F at wo.
     double specular_probability(double F) const;
 
-    Spectrum m_diffuse_reflectance, m_specular_reflectance;
+    SpectrumParam m_diffuse_reflectance, m_specular_reflectance;
     double m_eta, m_inv_eta2;
     double m_fdr_int;  ///< diffuse reflectance of the coating seen from inside
     double m_specular_sampling_weight;

@@ -6,6 +6,7 @@
 #include "bsdf/bsdf.h"
 #include "bsdf/conductor_data.h"
 #include "bsdf/microfacet.h"
+#include "bsdf/param.h"
 
 namespace snell {
 
@@ -13,8 +14,8 @@ class RoughConductorBSDF final : public BSDF {
 public:
     /// `ior` as for ConductorBSDF (std::nullopt: F = 1); the distribution carries the
     /// roughness and `sample_visible`.
-    RoughConductorBSDF(MicrofacetDistribution distribution, std::optional<ConductorIOR> ior,
-                       Spectrum specular_reflectance = Spectrum::constant(1.0));
+    RoughConductorBSDF(MicrofacetParam distribution, std::optional<ConductorIOR> ior,
+                       SpectrumParam specular_reflectance = Spectrum::constant(1.0));
 
     SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     /// Density of m times the reflection Jacobian 1 / (4 |wi.m|), in solid angle of wi.
@@ -22,12 +23,13 @@ public:
     std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc, const Vec2& u) const override;
     uint32_t flags() const override { return kReflection | kGlossy; }
 
-    const MicrofacetDistribution& distribution() const { return m_distr; }
+    /// The distribution with its constant alphas (textured ones are read per point).
+    const MicrofacetDistribution& distribution() const { return m_distr.base(); }
 
 private:
-    MicrofacetDistribution m_distr;
+    MicrofacetParam m_distr;
     std::optional<ConductorIOR> m_ior;
-    Spectrum m_specular_reflectance;
+    SpectrumParam m_specular_reflectance;
 };
 
 }  // namespace snell

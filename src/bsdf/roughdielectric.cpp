@@ -4,8 +4,8 @@
 
 namespace snell {
 
-RoughDielectricBSDF::RoughDielectricBSDF(MicrofacetDistribution distribution, Spectrum int_ior, Spectrum ext_ior,
-                                         Spectrum specular_reflectance, Spectrum specular_transmittance,
+RoughDielectricBSDF::RoughDielectricBSDF(MicrofacetParam distribution, Spectrum int_ior, Spectrum ext_ior,
+                                         SpectrumParam specular_reflectance, SpectrumParam specular_transmittance,
                                          std::optional<Spectrum> sigma_a)
     : m_distr(distribution),
       m_int_ior(std::move(int_ior)),
@@ -30,24 +30,26 @@ SampledSpectrum RoughDielectricBSDF::eval(const BSDFContext& ctx, const Vec3& wo
     if (wo.z == 0 || wi.z == 0) return {};
     const bool reflection = wo.z * wi.z > 0;
     SampledSpectrum f;
+    const MicrofacetDistribution distr = m_distr.eval(ctx);
     if (!dispersive()) {
-        f = SampledSpectrum(eval_scalar(eta(ctx.hero()), ctx.mode, wo, wi));
+        f = SampledSpectrum(eval_scalar(distr, eta(ctx.hero()), ctx.mode, wo, wi));
     } else {
         // Each wavelength has its own half vector for the same pair of directions.
-        for (int i = 0; i < kSpectrumSamples; ++i) f[i] = eval_scalar(eta(ctx.wl[i]), ctx.mode, wo, wi);
+        for (int i = 0; i < kSpectrumSamples; ++i) f[i] = eval_scalar(distr, eta(ctx.wl[i]), ctx.mode, wo, wi);
     }
-    return f * (reflection ? m_specular_reflectance : m_specular_transmittance).eval(ctx.wl);
+    return f * (reflection ? m_specular_reflectance : m_specular_transmittance).eval(ctx);
 }
 
-double RoughDielectricBSDF::eval_scalar(double eta, TransportMode mode, const Vec3& wo, const Vec3& wi) const {
+double RoughDielectricBSDF::eval_scalar(const MicrofacetDistribution& distr, double eta, TransportMode mode,
+                                        const Vec3& wo, const Vec3& wi) const {
     const double cos_o = wo.z, cos_i = wi.z;
     Vec3 m;
     if (!half_vector(eta, wo, wi, m)) return 0;
     // Both directions must see the microfacet from their own side of the macro surface.
     if (dot(wo, m) * cos_o <= 0 || dot(wi, m) * cos_i <= 0) return 0;
-    const double D = m_distr.D(m);
+    const double D = distr.D(m);
     if (D == 0) return 0;
-    const double G = m_distr.G(wo, wi, m);
+    const double G = distr.G(wo, wi, m);
     const double F = fresnel_dielectric(dot(wo, m), eta).R;
     if (cos_o * cos_i > 0) {
         // Walter et al. Eq. 20.
@@ -80,7 +82,7 @@ double RoughDielectricBSDF::pdf(const BSDFContext& ctx, const Vec3& wo, const Ve
     }
     // The microfacet sampler always sees wo from above.
     const Vec3 wo_up = cos_o > 0 ? wo : -wo;
-    const double pm = m_distr.pdf(wo_up, m);
+    const double pm = m_distr.eval(ctx).pdf(wo_up, m);
     const double F = fresnel_dielectric(dot(wo, m), eta).R;
     return pm * (reflect ? F : 1 - F) * dm_dwi;
 }
@@ -90,7 +92,8 @@ std::optional<BSDFSample> RoughDielectricBSDF::sample(const BSDFContext& ctx, co
     if (wo.z == 0) return std::nullopt;
     const double eta = this->eta(ctx.hero());
     const Vec3 wo_up = wo.z > 0 ? wo : -wo;
-    const auto [m, pm] = m_distr.sample(wo_up, u);
+    const MicrofacetDistribution distr = m_distr.eval(ctx);
+    const auto [m, pm] = distr.sample(wo_up, u);
     if (!(pm > 0)) return std::nullopt;
     const DielectricFresnel f = fresnel_dielectric(dot(wo, m), eta);
     BSDFSample s;
@@ -123,12 +126,12 @@ std::optional<BSDFSample> RoughDielectricBSDF::sample(const BSDFContext& ctx, co
     s.pdf = pm * (reflected ? f.R : 1 - f.R) * c;
     if (!(s.pdf > 0)) return std::nullopt;
     if (!dispersive() || s.hero_only) {
-        double w = m_distr.D(m) * m_distr.G(wo, s.wi, m) * std::abs(wo_m) / (std::abs(cos_o) * pm);
+        double w = distr.D(m) * distr.G(wo, s.wi, m) * std::abs(wo_m) / (std::abs(cos_o) * pm);
         if (!reflected && ctx.mode == TransportMode::Radiance) w /= sqr(eta_it);
         if (s.hero_only) {
-            s.weight[0] = w * m_specular_transmittance(ctx.hero());
+            s.weight[0] = w * m_specular_transmittance.eval(ctx)[0];
         } else {
-            s.weight = w * (reflected ? m_specular_reflectance : m_specular_transmittance).eval(ctx.wl);
+            s.weight = w * (reflected ? m_specular_reflectance : m_specular_transmittance).eval(ctx);
         }
         return s;
     }

@@ -6,6 +6,7 @@
 
 #include "bsdf/bsdf.h"
 #include "bsdf/microfacet.h"
+#include "bsdf/param.h"
 
 namespace snell {
 
@@ -13,9 +14,9 @@ class RoughDielectricBSDF final : public BSDF {
 public:
     /// `distribution` carries alpha(s) and `sample_visible`; IORs and factors as for
     /// DielectricBSDF.
-    RoughDielectricBSDF(MicrofacetDistribution distribution, Spectrum int_ior, Spectrum ext_ior,
-                        Spectrum specular_reflectance = Spectrum::constant(1.0),
-                        Spectrum specular_transmittance = Spectrum::constant(1.0),
+    RoughDielectricBSDF(MicrofacetParam distribution, Spectrum int_ior, Spectrum ext_ior,
+                        SpectrumParam specular_reflectance = Spectrum::constant(1.0),
+                        SpectrumParam specular_transmittance = Spectrum::constant(1.0),
                         std::optional<Spectrum> sigma_a = std::nullopt);
 
     /// f(wo, wi) without cosine; wo and wi on either side. Transmission is scaled by
@@ -30,17 +31,23 @@ public:
     double eta(double lambda) const override { return m_int_ior(lambda) / m_ext_ior(lambda); }
     bool dispersive() const override { return !m_int_ior.is_constant() || !m_ext_ior.is_constant(); }
     const Spectrum* interior_absorption() const override { return m_sigma_a ? &*m_sigma_a : nullptr; }
-    const MicrofacetDistribution& distribution() const { return m_distr; }
-    const MicrofacetDistribution* microfacet() const override { return &m_distr; }
+    /// The distribution with its constant alphas (textured ones are read per point).
+    const MicrofacetDistribution& distribution() const { return m_distr.base(); }
+    bool has_microfacet() const override { return true; }
+    std::optional<MicrofacetDistribution> microfacet(const BSDFContext& ctx) const override {
+        return m_distr.eval(ctx);
+    }
 
 private:
     /// Walter et al.'s f(wo, wi) for the relative IOR eta, without the specular_* factors.
-    double eval_scalar(double eta, TransportMode mode, const Vec3& wo, const Vec3& wi) const;
+    double eval_scalar(const MicrofacetDistribution& distr, double eta, TransportMode mode, const Vec3& wo,
+                       const Vec3& wi) const;
     /// Generalised half vector of (wo, wi), oriented to +z; false when degenerate.
     bool half_vector(double eta, const Vec3& wo, const Vec3& wi, Vec3& m) const;
 
-    MicrofacetDistribution m_distr;
-    Spectrum m_int_ior, m_ext_ior, m_specular_reflectance, m_specular_transmittance;
+    MicrofacetParam m_distr;
+    Spectrum m_int_ior, m_ext_ior;
+    SpectrumParam m_specular_reflectance, m_specular_transmittance;
     std::optional<Spectrum> m_sigma_a;
 };
 

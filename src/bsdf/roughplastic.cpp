@@ -38,8 +38,8 @@ double specular_albedo(const MicrofacetDistribution& distr, double mu, double et
 
 }  // namespace
 
-RoughPlasticBSDF::RoughPlasticBSDF(MicrofacetDistribution distribution, Spectrum diffuse_reflectance,
-                                   Spectrum specular_reflectance, double int_ior, double ext_ior, bool nonlinear)
+RoughPlasticBSDF::RoughPlasticBSDF(MicrofacetDistribution distribution, SpectrumParam diffuse_reflectance,
+                                   SpectrumParam specular_reflectance, double int_ior, double ext_ior, bool nonlinear)
     : m_distr(distribution),
       m_diffuse_reflectance(std::move(diffuse_reflectance)),
       m_specular_reflectance(std::move(specular_reflectance)),
@@ -80,9 +80,9 @@ SampledSpectrum RoughPlasticBSDF::eval(const BSDFContext& ctx, const Vec3& wo, c
     const double D = m_distr.D(m);
     if (D > 0) {
         const double F = fresnel_dielectric(dot(wo, m), m_eta).R;
-        out = m_specular_reflectance.eval(ctx.wl) * (F * D * m_distr.G(wo, wi, m) / (4 * wo.z * wi.z));
+        out = m_specular_reflectance.eval(ctx) * (F * D * m_distr.G(wo, wi, m) / (4 * wo.z * wi.z));
     }
-    SampledSpectrum diff = m_diffuse_reflectance.eval(ctx.wl);
+    SampledSpectrum diff = m_diffuse_reflectance.eval(ctx);
     for (int i = 0; i < kSpectrumSamples; ++i)
         diff[i] /= 1 - (m_nonlinear ? diff[i] * m_internal_reflectance : m_internal_reflectance);
     return out + diff * (m_inv_eta2 * external_transmittance(wo.z) * external_transmittance(wi.z) * kInvPi);

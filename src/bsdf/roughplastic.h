@@ -9,13 +9,14 @@
 
 #include "bsdf/bsdf.h"
 #include "bsdf/microfacet.h"
+#include "bsdf/param.h"
 
 namespace snell {
 
 class RoughPlasticBSDF final : public BSDF {
 public:
-    RoughPlasticBSDF(MicrofacetDistribution distribution, Spectrum diffuse_reflectance, Spectrum specular_reflectance,
-                     double int_ior, double ext_ior, bool nonlinear = false);
+    RoughPlasticBSDF(MicrofacetDistribution distribution, SpectrumParam diffuse_reflectance,
+                     SpectrumParam specular_reflectance, double int_ior, double ext_ior, bool nonlinear = false);
 
     SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
@@ -32,7 +33,7 @@ private:
     double specular_probability(double t_o) const;
 
     MicrofacetDistribution m_distr;
-    Spectrum m_diffuse_reflectance, m_specular_reflectance;
+    SpectrumParam m_diffuse_reflectance, m_specular_reflectance;
     double m_eta, m_inv_eta2;
     bool m_nonlinear;
     double m_specular_sampling_weight;

@@ -4,8 +4,8 @@
 
 namespace snell {
 
-ThinDielectricBSDF::ThinDielectricBSDF(Spectrum int_ior, Spectrum ext_ior, Spectrum specular_reflectance,
-                                       Spectrum specular_transmittance)
+ThinDielectricBSDF::ThinDielectricBSDF(Spectrum int_ior, Spectrum ext_ior, SpectrumParam specular_reflectance,
+                                       SpectrumParam specular_transmittance)
     : m_int_ior(std::move(int_ior)),
       m_ext_ior(std::move(ext_ior)),
       m_specular_reflectance(std::move(specular_reflectance)),
@@ -39,12 +39,12 @@ std::optional<BSDFSample> ThinDielectricBSDF::sample(const BSDFContext& ctx, con
     if (uc < R[0]) {
         s.wi = reflect(wo);
         s.pdf = R[0];
-        s.weight = m_specular_reflectance.eval(ctx.wl) * R / R[0];
+        s.weight = m_specular_reflectance.eval(ctx) * R / R[0];
         s.lobe = kReflection | kSpecular;
     } else {
         s.wi = -wo;
         s.pdf = 1 - R[0];
-        s.weight = m_specular_transmittance.eval(ctx.wl) * (SampledSpectrum(1.0) - R) / s.pdf;
+        s.weight = m_specular_transmittance.eval(ctx) * (SampledSpectrum(1.0) - R) / s.pdf;
         s.lobe = kTransmission | kSpecular;
     }
     if (!(s.pdf > 0)) return std::nullopt;

@@ -2,14 +2,15 @@
 // Mitsuba's `thindielectric`: a thin slab with two parallel smooth interfaces; inter-reflections
 // are summed in closed form and transmission does not bend the ray.
 #include "bsdf/bsdf.h"
+#include "bsdf/param.h"
 
 namespace snell {
 
 class ThinDielectricBSDF final : public BSDF {
 public:
     /// IORs as for DielectricBSDF; transmitted rays leave along -wo.
-    ThinDielectricBSDF(Spectrum int_ior, Spectrum ext_ior, Spectrum specular_reflectance = Spectrum::constant(1.0),
-                       Spectrum specular_transmittance = Spectrum::constant(1.0));
+    ThinDielectricBSDF(Spectrum int_ior, Spectrum ext_ior, SpectrumParam specular_reflectance = Spectrum::constant(1.0),
+                       SpectrumParam specular_transmittance = Spectrum::constant(1.0));
 
     SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
@@ -23,7 +24,8 @@ public:
     SampledSpectrum slab_reflectance(const SampledWavelengths& wl, double cos_theta) const;
 
 private:
-    Spectrum m_int_ior, m_ext_ior, m_specular_reflectance, m_specular_transmittance;
+    Spectrum m_int_ior, m_ext_ior;
+    SpectrumParam m_specular_reflectance, m_specular_transmittance;
 };
 
 }  // namespace snell

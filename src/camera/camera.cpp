@@ -7,7 +7,7 @@ namespace snell {
 
 PerspectiveCamera::PerspectiveCamera(const Transform& to_world, double fov_deg, const std::string& fov_axis,
                                      const FilmSpec& film, double near_clip, double far_clip)
-    : m_to_world(to_world), m_to_camera(to_world.inverse()), m_film(film), m_near(near_clip), m_far(far_clip) {
+    : Camera(to_world, film), m_to_camera(to_world.inverse()), m_near(near_clip), m_far(far_clip) {
     const double aspect = double(film.width) / double(film.height);
     const double t = std::tan(0.5 * fov_deg * kPi / 180.0);
     std::string axis = fov_axis;
@@ -30,9 +30,7 @@ PerspectiveCamera::PerspectiveCamera(const Transform& to_world, double fov_deg, 
 
 Ray PerspectiveCamera::generate_ray(const Vec2& raster) const {
     // Camera space: +z forward, +x left, +y up (Mitsuba); raster x grows to the right.
-    const double sx = 1.0 - 2.0 * raster.x / m_film.width;   // +1 at the left edge
-    const double sy = 1.0 - 2.0 * raster.y / m_film.height;  // +1 at the top edge
-    const Vec3 d_cam = normalize(Vec3(sx * m_tx, sy * m_ty, 1.0));
+    const Vec3 d_cam = normalize(image_plane_point(raster));
     Ray r;
     r.o = m_to_world.point(Vec3(0, 0, 0));
     r.d = normalize(m_to_world.vector(d_cam));

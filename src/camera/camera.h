@@ -34,16 +34,38 @@ struct FilmSpec {
     }
 };
 
+/// A sensor: primary rays through the film. Cameras with a lens read a 2D lens sample; light
+/// paths can be connected to pinhole cameras only (BDPT's t = 1 strategies, light tracing).
+class Camera : public Object {
+public:
+    /// Primary ray through continuous full-film raster position (x right, y down, pixels);
+    /// `u_lens` in [0, 1)^2 picks the point on the aperture (ignored without a lens).
+    virtual Ray generate_ray(const Vec2& raster, const Vec2& u_lens) const = 0;
+    /// generate_ray reads u_lens: callers draw one only then, so pinhole renders keep their
+    /// sample streams.
+    virtual bool has_lens() const { return false; }
+    /// This camera as a pinhole light paths can connect to, or nullptr.
+    virtual const class PerspectiveCamera* pinhole() const { return nullptr; }
+    const FilmSpec& film() const { return m_film; }
+    const Transform& to_world() const { return m_to_world; }
+
+protected:
+    Camera(const Transform& to_world, const FilmSpec& film) : m_to_world(to_world), m_film(film) {}
+
+    Transform m_to_world;
+    FilmSpec m_film;
+};
+
 /// Mitsuba's `perspective` sensor: pinhole camera looking down +z in camera space,
 /// +x to the left, +y up; `fov` along `fov_axis` (x, y, smaller, larger, diagonal).
-class PerspectiveCamera : public Object {
+class PerspectiveCamera : public Camera {
 public:
     PerspectiveCamera(const Transform& to_world, double fov_deg, const std::string& fov_axis, const FilmSpec& film,
                       double near_clip = 1e-2, double far_clip = 1e4);
     /// Primary ray through continuous full-film raster position (x right, y down, pixels).
     Ray generate_ray(const Vec2& raster) const;
-    const FilmSpec& film() const { return m_film; }
-    const Transform& to_world() const { return m_to_world; }
+    Ray generate_ray(const Vec2& raster, const Vec2& /*u_lens*/) const override { return generate_ray(raster); }
+    const PerspectiveCamera* pinhole() const override { return this; }
     Vec3 position() const { return m_to_world.point(Vec3(0, 0, 0)); }
     /// Unit optical axis in world space.
     Vec3 forward() const { return normalize(m_to_world.vector(Vec3(0, 0, 1))); }
@@ -58,9 +80,13 @@ public:
     double tan_half_x() const { return m_tx; }
     double tan_half_y() const { return m_ty; }
 
-private:
-    Transform m_to_world, m_to_camera;  // to_world and its inverse (light tracing projects points)
-    FilmSpec m_film;
+protected:
+    /// Camera-space direction (z = 1 plane) through a raster position.
+    Vec3 image_plane_point(const Vec2& raster) const {
+        return Vec3((1.0 - 2.0 * raster.x / m_film.width) * m_tx, (1.0 - 2.0 * raster.y / m_film.height) * m_ty, 1.0);
+    }
+
+    Transform m_to_camera;  // the inverse of to_world (light tracing projects points)
     double m_tx, m_ty, m_near, m_far;
 };
 

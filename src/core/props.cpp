@@ -180,6 +180,11 @@ bool Props::is_string(const std::string& name) const {
     return e && std::holds_alternative<std::string>(e->value);
 }
 
+bool Props::is_rgb(const std::string& name) const {
+    const Entry* e = find(name);
+    return e && std::holds_alternative<RGB>(e->value);
+}
+
 bool Props::mark_used(const std::string& name) const {
     const Entry* e = find(name);
     if (e) e->used = true;

@@ -79,6 +79,8 @@ public:
     RGB get_rgb(const std::string& name, const RGB& def) const;
     /// True when the parameter holds a string (e.g. a named IOR like "water").
     bool is_string(const std::string& name) const;
+    /// True when the parameter was given as <rgb>.
+    bool is_rgb(const std::string& name) const;
 
     /// Nested/referenced children of type T, in file order; marks them used.
     template <typename T>
@@ -97,6 +99,25 @@ public:
         auto v = children<T>();
         if (v.size() > 1) raise(std::string("expected at most one nested ") + what);
         return v.empty() ? nullptr : v[0];
+    }
+
+    /// The nested or referenced child named `name` if it is a T (nullptr otherwise); marks it used.
+    template <typename T>
+    std::shared_ptr<T> named_child(const std::string& name) const {
+        m_queried.push_back(name);
+        for (auto& c : m_children)
+            if (c.name == name)
+                if (auto p = std::dynamic_pointer_cast<T>(c.obj)) {
+                    c.used = true;
+                    return p;
+                }
+        return nullptr;
+    }
+    /// Where the child named `name` was given (the element's location if there is none).
+    SourceLoc child_loc(const std::string& name) const {
+        for (auto& c : m_children)
+            if (c.name == name) return c.loc;
+        return m_loc;
     }
 
     /// Marks the parameter used whatever its type (a value that is accepted and has no effect);

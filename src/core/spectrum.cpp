@@ -52,13 +52,14 @@ struct Weighting {
     std::array<double, kGrid> w;
     double y_norm;
 };
-Vec3 fit_rgb(const double c[3], const Weighting& wt) {
+// `stride` > 1 integrates on every stride-th nanometre (the texture table's coarser fits).
+Vec3 fit_rgb(const double c[3], const Weighting& wt, int stride = 1) {
     Vec3 xyz;
-    for (int i = 0; i < kGrid; ++i) {
+    for (int i = 0; i < kGrid; i += stride) {
         const double l = grid_lambda(i);
         xyz += cie_xyz(l) * (sigmoid_poly(c, l) * wt.w[i] * grid_weight(i));
     }
-    return mat3(kXyzToSrgb, xyz / wt.y_norm);
+    return mat3(kXyzToSrgb, xyz * double(stride) / wt.y_norm);
 }
 
 bool solve3(double a[3][3], double b[3], double x[3]) {
@@ -78,19 +79,12 @@ bool solve3(double a[3][3], double b[3], double x[3]) {
     return true;
 }
 
-// Levenberg-Marquardt fit of the three coefficients so that the sigmoid spectrum reproduces
-// `target` (linear sRGB, components in (0,1)) under weighting wt. Continuation from grey
-// towards the target keeps the solver in the basin of the smooth solution (as in the paper's
-// table construction).
-void fit_sigmoid(const RGB& target, const Weighting& wt, double c[3]) {
-    c[0] = c[1] = c[2] = 0.0;  // sigmoid(0) = 0.5: grey
-    const int kSteps = 8;
-    for (int step = 1; step <= kSteps; ++step) {
-        const double s = double(step) / kSteps;
-        const Vec3 goal(0.5 + s * (target.r - 0.5), 0.5 + s * (target.g - 0.5), 0.5 + s * (target.b - 0.5));
+// One Levenberg-Marquardt solve from the coefficients in c towards `goal`.
+void lm_fit(const Vec3& goal, const Weighting& wt, int stride, double c[3]) {
+    {
         double lambda_lm = 1e-3;
         for (int it = 0; it < 60; ++it) {
-            const Vec3 r = fit_rgb(c, wt) - goal;
+            const Vec3 r = fit_rgb(c, wt, stride) - goal;
             const double err = length_squared(r);
             if (err < 1e-14) break;
             double J[3][3];
@@ -98,7 +92,7 @@ void fit_sigmoid(const RGB& target, const Weighting& wt, double c[3]) {
                 double cp[3] = {c[0], c[1], c[2]};
                 const double h = 1e-6 * std::max(1.0, std::abs(c[k]));
                 cp[k] += h;
-                const Vec3 d = (fit_rgb(cp, wt) - goal - r) / h;
+                const Vec3 d = (fit_rgb(cp, wt, stride) - goal - r) / h;
                 for (int i = 0; i < 3; ++i) J[i][k] = d[i];
             }
             // Normal equations (J^T J + mu diag) dx = -J^T r
@@ -121,7 +115,7 @@ void fit_sigmoid(const RGB& target, const Weighting& wt, double c[3]) {
                     continue;
                 }
                 const double cn[3] = {c[0] + dx[0], c[1] + dx[1], c[2] + dx[2]};
-                if (length_squared(fit_rgb(cn, wt) - goal) < err) {
+                if (length_squared(fit_rgb(cn, wt, stride) - goal) < err) {
                     c[0] = cn[0], c[1] = cn[1], c[2] = cn[2];
                     lambda_lm = std::max(1e-9, lambda_lm * 0.3);
                     improved = true;
@@ -131,6 +125,19 @@ void fit_sigmoid(const RGB& target, const Weighting& wt, double c[3]) {
             }
             if (!improved) break;
         }
+    }
+}
+
+// Levenberg-Marquardt fit of the three coefficients so that the sigmoid spectrum reproduces
+// `target` (linear sRGB, components in (0,1)) under weighting wt. Continuation from grey
+// towards the target keeps the solver in the basin of the smooth solution (as in the paper's
+// table construction).
+void fit_sigmoid(const RGB& target, const Weighting& wt, double c[3], int stride = 1) {
+    c[0] = c[1] = c[2] = 0.0;  // sigmoid(0) = 0.5: grey
+    const int kSteps = 8;
+    for (int step = 1; step <= kSteps; ++step) {
+        const double s = double(step) / kSteps;
+        lm_fit(Vec3(0.5 + s * (target.r - 0.5), 0.5 + s * (target.g - 0.5), 0.5 + s * (target.b - 0.5)), wt, stride, c);
     }
 }
 
@@ -468,6 +475,16 @@ double named_ior(const std::string& name) {
         throw std::invalid_argument("unknown named IOR '" + name + "' (known: " + known + ")");
     }
     return it->second;
+}
+
+double sigmoid_polynomial(const std::array<double, 3>& c, double lambda) { return sigmoid_poly(c.data(), lambda); }
+
+void fit_reflectance_sigmoid(const RGB& rgb, std::array<double, 3>& c, bool warm_start, int stride) {
+    const RGB t = clamp_rgb(rgb, 1e-4, 1 - 1e-4);
+    if (warm_start)
+        lm_fit(Vec3(t.r, t.g, t.b), white_weighting(), stride, c.data());
+    else
+        fit_sigmoid(t, white_weighting(), c.data(), stride);
 }
 
 }  // namespace snell

@@ -1,6 +1,7 @@
 #pragma once
 // Spectral quantities: functions of wavelength (Spectrum), evaluated at the wavelengths a path
 // carries (SampledWavelengths, core/sampled_spectrum.h) to SampledSpectrum values.
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -89,5 +90,13 @@ double visible_wavelength_pdf(double lambda);
 
 /// Named IOR of a dielectric ("water", "bk7", "air", ...) at the d line; throws on unknown.
 double named_ior(const std::string& name);
+
+/// Jakob & Hanika's sigmoid(c0 x^2 + c1 x + c2), x the wavelength normalised to [0, 1] over
+/// [kLambdaMin, kLambdaMax]: the reflectance spectra of from_rgb_reflectance.
+double sigmoid_polynomial(const std::array<double, 3>& c, double lambda);
+/// Fits c so that sigmoid_polynomial(c) reproduces the reflectance `rgb` (clamped into (0, 1))
+/// under the renderer's white: from grey by continuation, or (`warm_start`) from c as given, a
+/// neighbour's coefficients. `stride` > 1 integrates on every stride-th nm (faster, for tables).
+void fit_reflectance_sigmoid(const RGB& rgb, std::array<double, 3>& c, bool warm_start, int stride = 1);
 
 }  // namespace snell

@@ -15,16 +15,21 @@ MeshData make_rectangle(const Transform& to_world) {
 
 MeshData make_disk(const Transform& to_world, int segments) {
     if (segments < 3) throw std::runtime_error("disk: needs at least 3 segments");
+    // Mitsuba's disk parametrisation: uv = (r, phi / 2 pi). A fan of triangles, each with its own
+    // centre vertex (at phi of the triangle's middle) and the rim vertex at phi = 2 pi repeated
+    // with v = 1, so that v never wraps inside a triangle.
     MeshData m;
-    m.positions.push_back({0, 0, 0});
-    m.uvs.push_back({0.5, 0.5});
-    for (int i = 0; i < segments; ++i) {
+    for (int i = 0; i <= segments; ++i) {
         const double phi = 2 * kPi * i / segments;
-        const double x = std::cos(phi), y = std::sin(phi);
-        m.positions.push_back({x, y, 0});
-        m.uvs.push_back({0.5 * (x + 1), 0.5 * (y + 1)});
+        m.positions.push_back({std::cos(phi), std::sin(phi), 0});
+        m.uvs.push_back({1.0, double(i) / segments});
     }
-    for (int i = 0; i < segments; ++i) m.triangles.push_back({0, uint32_t(1 + i), uint32_t(1 + (i + 1) % segments)});
+    for (int i = 0; i < segments; ++i) {
+        const uint32_t centre = uint32_t(m.positions.size());
+        m.positions.push_back({0, 0, 0});
+        m.uvs.push_back({0.0, (i + 0.5) / segments});
+        m.triangles.push_back({centre, uint32_t(i), uint32_t(i + 1)});
+    }
     transform_mesh(m, to_world);
     return m;
 }

@@ -24,6 +24,9 @@ public:
                                 const std::atomic<bool>* cancel = nullptr) const = 0;
     /// The scene-file name of this technique ("path", "nee", ...).
     virtual std::string name() const = 0;
+    /// Connects light paths to the camera (light tracing): needs a pinhole camera
+    /// (Camera::pinhole()); the loader says so at the sensor otherwise.
+    virtual bool needs_pinhole_camera() const { return false; }
     /// Wavelengths each path carries (`spectral_samples`; 1 is the paper's set-up).
     int spectral_samples() const { return m_spectral_samples; }
     void set_spectral_samples(int n) { m_spectral_samples = n; }

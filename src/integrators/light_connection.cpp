@@ -36,13 +36,13 @@ double nee_weight(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFCont
     // Delta lights cannot be hit by BSDF sampling.
     if (ls.delta) return 1.0;
     return power_heuristic(light_share * pmf * ls.pdf,
-                           bsdf_share * bsdf.pdf(ctx, si.to_local(si.wo), si.to_local(ls.wi)));
+                           bsdf_share * bsdf.pdf(ctx.at(si), si.to_local(si.wo), si.to_local(ls.wi)));
 }
 
 SampledSpectrum nee_connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
                             const MediumStack& media, const LightSample& ls, double pmf, double light_share,
                             double bsdf_share) {
-    const SampledSpectrum f = bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls.wi));
+    const SampledSpectrum f = bsdf.eval(ctx.at(si), si.to_local(si.wo), si.to_local(ls.wi));
     if (f.is_zero()) return {};
     const Ray shadow = std::isinf(ls.dist) ? scene.spawn_ray(si, ls.wi) : scene.spawn_ray_to(si, ls.p);
     if (scene.occluded(shadow)) return {};

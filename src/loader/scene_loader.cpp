@@ -4,17 +4,21 @@
 #include "loader/scene_loader.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <set>
 
 #include "bsdf/factory.h"
 #include "camera/factory.h"
+#include "camera/orthographic.h"
+#include "camera/thinlens.h"
 #include "integrators/integrator.h"
 #include "light/factory.h"
 #include "loader/mitsuba_integrators.h"
 #include "loader/shape_factory.h"
 #include "loader/unsupported.h"
 #include "loader/xml_scene.h"
+#include "texture/factory.h"
 
 namespace snell {
 
@@ -55,6 +59,8 @@ public:
                 integrator = &o;
             } else if (o.tag == "bsdf") {
                 bsdf(o);  // instantiated even if unused, so its errors are reported
+            } else if (o.tag == "texture") {
+                texture(o);  // likewise
             } else if (o.tag == "shape") {
                 add_shape(o, *scene);
             } else if (o.tag == "film" || o.tag == "sampler" || o.tag == "rfilter") {
@@ -87,6 +93,11 @@ public:
             p.mark_used("samples_per_pass");
             auto integ = located(*integrator, [&] { return create_integrator(p); });
             p.check_unused();
+            if (integ->needs_pinhole_camera() && !scene->camera()->pinhole())
+                throw SceneError(sensor->loc, "sensor",
+                                 "<sensor type=\"" + sensor->type + "\">: " + integ->name() +
+                                     " connects light paths to the camera and needs a perspective (pinhole) sensor; "
+                                     "render this one with path, pt, nee, mnee, direct, pssmlt or erpt");
             m_out.integrator = integ;
         } else {  // Mitsuba's default integrator
             Props p("integrator", "path", root.loc);
@@ -99,6 +110,7 @@ public:
 private:
     LoadedScene& m_out;
     std::map<const XmlObject*, std::shared_ptr<BSDF>> m_bsdfs;  // one instance per element (refs share)
+    std::map<const XmlObject*, TextureRef> m_textures;
 
     // The SMS code's caustic flags on shapes and emitters: accepted, one notice per scene.
     void sms_flags(const Props& p) {
@@ -115,12 +127,29 @@ private:
     std::shared_ptr<BSDF> bsdf(const XmlObject& o) {
         if (auto it = m_bsdfs.find(&o); it != m_bsdfs.end()) return it->second;
         Props p = props(o);
-        for (const auto& c : o.children) p.add_child(c.name, bsdf(*c.obj), c.loc);  // twosided's nested bsdf
+        if (o.param("filename")) p.set("__base_dir", o.base_dir, o.loc);  // the SMS code's normalmap image
+        for (const auto& c : o.children)                                  // twosided's nested bsdf, textured parameters
+            if (c.obj->tag == "texture")
+                p.add_child(c.name, std::const_pointer_cast<Texture>(texture(*c.obj)), c.loc);
+            else
+                p.add_child(c.name, bsdf(*c.obj), c.loc);
         auto b = located(o, [&] { return create_bsdf(p); });
         p.check_unused();
         b->set_id(o.id);
         m_bsdfs[&o] = b;
         return b;
+    }
+
+    TextureRef texture(const XmlObject& o) {
+        if (auto it = m_textures.find(&o); it != m_textures.end()) return it->second;
+        Props p = props(o);
+        if (o.param("filename")) p.set("__base_dir", o.base_dir, o.loc);  // the image
+        for (const auto& c : o.children)
+            p.add_child(c.name, std::const_pointer_cast<Texture>(texture(*c.obj)), c.loc);  // checkerboard colours
+        auto t = located(o, [&] { return create_texture(p); });
+        std::const_pointer_cast<Texture>(t)->set_id(o.id);
+        m_textures[&o] = t;
+        return t;
     }
 
     void add_shape(const XmlObject& o, Scene& scene) {
@@ -156,22 +185,38 @@ private:
         scene.add_shape(shape);
     }
 
-    std::shared_ptr<PerspectiveCamera> camera(const XmlObject& o) {
+    std::shared_ptr<Camera> camera(const XmlObject& o) {
         Props p = props(o);
-        if (o.type != "perspective") p.raise("unknown sensor type '" + o.type + "' (supported: perspective)");
-        // Mitsuba's default is a 50 mm lens on 35 mm film (36 mm wide): fov_x = 39.6 degrees.
-        const double fov = p.get_float("fov", 2.0 * std::atan(36.0 / (2.0 * 50.0)) * 180.0 / kPi);
-        if (!(fov > 0 && fov < 180)) p.raise_param("fov", "fov must lie in (0, 180) degrees");
-        const std::string axis = p.get_string("fov_axis", "x");
-        static const std::set<std::string> axes = {"x", "y", "smaller", "larger", "diagonal"};
-        if (!axes.count(axis)) p.raise_param("fov_axis", "fov_axis must be x, y, smaller, larger or diagonal");
+        static const std::set<std::string> types = {"perspective", "thinlens", "orthographic"};
+        if (!types.count(o.type))
+            p.raise("unknown sensor type '" + o.type + "' (supported: perspective, thinlens, orthographic)");
         const double near_clip = p.get_float("near_clip", 1e-2), far_clip = p.get_float("far_clip", 1e4);
-        // Mitsuba's exporters write focus_distance on every perspective sensor; a pinhole keeps
-        // everything in focus, so the value is checked and has no effect.
-        if (p.has("focus_distance") && !(p.get_float("focus_distance") > 0))
-            p.raise_param("focus_distance", "focus_distance must be > 0");
-        if (!(near_clip > 0 && far_clip > near_clip)) p.raise_param("near_clip", "need 0 < near_clip < far_clip");
+        if (!(near_clip > 0 && far_clip > near_clip && std::isfinite(far_clip)))
+            p.raise_param("near_clip", "need 0 < near_clip < far_clip");
         const Transform to_world = p.get_transform("to_world");
+        double fov = 0, aperture = 0, focus = 0;
+        std::string axis;
+        if (o.type != "orthographic") {
+            // Mitsuba's default is a 50 mm lens on 35 mm film (36 mm wide): fov_x = 39.6 degrees.
+            fov = p.get_float("fov", 2.0 * std::atan(36.0 / (2.0 * 50.0)) * 180.0 / kPi);
+            if (!(fov > 0 && fov < 180)) p.raise_param("fov", "fov must lie in (0, 180) degrees");
+            axis = p.get_string("fov_axis", "x");
+            static const std::set<std::string> axes = {"x", "y", "smaller", "larger", "diagonal"};
+            if (!axes.count(axis)) p.raise_param("fov_axis", "fov_axis must be x, y, smaller, larger or diagonal");
+        }
+        if (o.type == "thinlens") {
+            // Mitsuba's thinlens takes both, without defaults.
+            aperture = p.get_float("aperture_radius");
+            focus = p.get_float("focus_distance");
+            if (!(aperture > 0) || !std::isfinite(aperture))
+                p.raise_param("aperture_radius", "aperture_radius must be > 0 (a pinhole is type=\"perspective\")");
+            if (!(focus > 0) || !std::isfinite(focus)) p.raise_param("focus_distance", "focus_distance must be > 0");
+        } else if (o.type == "perspective") {
+            // Mitsuba's exporters write focus_distance on every perspective sensor; a pinhole keeps
+            // everything in focus, so the value is checked and has no effect.
+            if (p.has("focus_distance") && !(p.get_float("focus_distance") > 0))
+                p.raise_param("focus_distance", "focus_distance must be > 0");
+        }
 
         FilmSpec film;
         film.filter = default_filter();  // a sensor without <film> gets Mitsuba's default hdrfilm
@@ -185,8 +230,14 @@ private:
         if (sampler_obj) read_sampler(*sampler_obj);
         p.check_unused();
         m_out.film = film;
-        return located(
-            o, [&] { return std::make_shared<PerspectiveCamera>(to_world, fov, axis, film, near_clip, far_clip); });
+        return located(o, [&]() -> std::shared_ptr<Camera> {
+            if (o.type == "orthographic")
+                return std::make_shared<OrthographicCamera>(to_world, film, near_clip, far_clip);
+            if (o.type == "thinlens")
+                return std::make_shared<ThinLensCamera>(to_world, fov, axis, film, aperture, focus, near_clip,
+                                                        far_clip);
+            return std::make_shared<PerspectiveCamera>(to_world, fov, axis, film, near_clip, far_clip);
+        });
     }
 
     static FilmSpec read_film(const XmlObject& o) {

@@ -26,8 +26,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::set<std::string> kObjectTags = {"integrator", "sensor", "film",  "sampler",
-                                           "rfilter",    "bsdf",   "shape", "emitter"};
+const std::set<std::string> kObjectTags = {"integrator", "sensor", "film",    "sampler", "rfilter",
+                                           "bsdf",       "shape",  "emitter", "texture"};
 const std::set<std::string> kValueTags = {"float",  "integer", "boolean",  "string",   "point",
                                           "vector", "rgb",     "spectrum", "transform"};
 const std::set<std::string> kTransformOps = {"lookat", "translate", "rotate", "scale", "matrix"};
@@ -36,11 +36,12 @@ const std::set<std::string> kTransformOps = {"lookat", "translate", "rotate", "s
 const std::set<std::string>& allowed_children(const std::string& parent) {
     static const std::map<std::string, std::set<std::string>> table = {
         // film, sampler and rfilter only as declarations with an id, used by <ref> (Mitsuba 3)
-        {"scene", {"integrator", "sensor", "bsdf", "shape", "emitter", "film", "sampler", "rfilter"}},
+        {"scene", {"integrator", "sensor", "bsdf", "shape", "emitter", "film", "sampler", "rfilter", "texture"}},
         {"integrator", {"integrator"}},  // Mitsuba's moment and aov wrappers
         {"sensor", {"film", "sampler"}},
         {"film", {"rfilter"}},
-        {"bsdf", {"bsdf"}},
+        {"bsdf", {"bsdf", "texture"}},
+        {"texture", {"texture"}},  // checkerboard's color0/color1
         {"shape", {"bsdf", "emitter"}},
     };
     static const std::set<std::string> none;
@@ -236,6 +237,15 @@ private:
                 check_name(name, loc, tag);
                 obj.children.push_back({name, nullptr, loc});
                 m_refs.push_back({&obj, obj.children.size() - 1, id, loc});
+            } else if ((tag == "spectrum" || tag == "rgb") && c.attribute("type")) {
+                // Mitsuba 2's texture-valued parameter, <spectrum type="bitmap" name="...">: a
+                // <texture> by another name.
+                if (!allowed_children(obj.tag).count("texture"))
+                    throw SceneError(loc, tag, "a texture cannot be nested inside <" + obj.tag + ">");
+                std::string name;
+                auto child = parse_object(c, f, &name);
+                child->tag = "texture";
+                obj.children.push_back({name, child, loc});
             } else if (kValueTags.count(tag)) {
                 if (obj.tag == "scene")
                     throw SceneError(loc, tag, "parameters must be nested in an object, not directly in <scene>");
@@ -259,9 +269,6 @@ private:
                 throw SceneError(loc, tag,
                                  "participating media are not supported; for absorbing glass give the "
                                  "dielectric BSDF a 'sigma_a' (see docs/scene-format.md)");
-            } else if (tag == "texture") {
-                throw SceneError(loc, tag,
-                                 "textures are not supported; give the parameter as <float>, <rgb> or <spectrum>");
             } else if (kTransformOps.count(tag)) {
                 throw SceneError(loc, tag, "<" + tag + "> must be inside <transform>");
             } else if (tag == "scene") {
@@ -354,11 +361,6 @@ private:
         const SourceLoc loc = f.at(n);
         XmlParam p;
         p.loc = loc;
-        // Mitsuba 2's texture-valued parameters: <spectrum type="bitmap">, <rgb type=...>.
-        if (pugi::xml_attribute t = n.attribute("type"); t && (tag == "spectrum" || tag == "rgb"))
-            throw SceneError(loc, tag,
-                             std::string("texture-valued parameters (type=\"") + t.value() +
-                                 "\") are not supported yet; give a constant <rgb>, <spectrum> or <float>");
         Attrs a;
         if (tag == "point" || tag == "vector")
             a = attrs(n, f, {"name", "value", "x", "y", "z"});

@@ -1,6 +1,8 @@
 #include "manifold/half_vectors.h"
 
+#include <algorithm>
 #include <cassert>
+#include <cmath>
 
 #include "bsdf/bsdf.h"
 #include "bsdf/microfacet.h"
@@ -13,11 +15,33 @@ Vec2 HalfVectorDraws::slot(int i) {
     return m_u[size_t(i)];
 }
 
-Vec2 target_half_vector(const ManifoldVertex& v, int i, HalfVectorDraws& draws) {
-    const MicrofacetDistribution* d = v.bsdf->microfacet();
-    if (!d) return Vec2(0, 0);
-    const Vec3 m = d->sample_m(draws.slot(i));  // (s, t, n) components
+namespace {
+std::pair<double, double> alphas_at(const ManifoldVertex& v) {
+    const auto d = v.bsdf->microfacet(BSDFContext{}.at(v.si));
+    return {d->alpha_u(), d->alpha_v()};
+}
+}  // namespace
+
+Vec2 target_from_unit_slope(const ManifoldVertex& v, const Vec2& unit_slope) {
+    const auto [au, av] = alphas_at(v);
+    const Vec3 m = normalize(Vec3(au * unit_slope.x, av * unit_slope.y, 1.0));  // (s, t, n) components
     return Vec2(m.x, m.y);
+}
+
+Vec2 unit_slope_of(const ManifoldVertex& v, const Vec2& h) {
+    const auto [au, av] = alphas_at(v);
+    const double cos_m = std::sqrt(std::max(0.0, 1 - h.x * h.x - h.y * h.y));
+    if (!(cos_m > 0)) return Vec2(kInfinity, kInfinity);
+    return Vec2(h.x / (cos_m * au), h.y / (cos_m * av));
+}
+
+Vec2 target_half_vector(ManifoldVertex& v, int i, HalfVectorDraws& draws) {
+    const auto d = v.bsdf->microfacet(BSDFContext{}.at(v.si));
+    if (!d) return Vec2(0, 0);
+    const Vec3 m = MicrofacetDistribution(d->type(), 1.0, 1.0).sample_m(draws.slot(i));
+    v.unit_slope = Vec2(m.x / m.z, m.y / m.z);
+    v.has_unit_slope = true;
+    return target_from_unit_slope(v, v.unit_slope);
 }
 
 void set_half_vectors(std::vector<ManifoldVertex>& chain, HalfVectorDraws& draws) {

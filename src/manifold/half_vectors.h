@@ -27,8 +27,21 @@ private:
     int m_drawn = 0;
 };
 
-/// The target of vertex v in slot i: (0, 0) if specular, else the (s, t) part of sample_m(u_i).
-Vec2 target_half_vector(const ManifoldVertex& v, int i, HalfVectorDraws& draws);
+/// The target of vertex v in slot i: (0, 0) if specular, else the (s, t) part of sample_m(u_i)
+/// with the distribution where v lies. Records the draw in v.unit_slope.
+///
+/// Spatially varying roughness (a texture): Beckmann and GGX are stretch-invariant (Heitz 2014),
+/// so sample_m(u) with (alpha_u, alpha_v) is the unit-roughness sample's slope stretched by
+/// (alpha_u, alpha_v). The walk keeps the unit slope and re-stretches it with the roughness at
+/// each projected point; a converged vertex x then has h = stretch(slope, alpha(x)), whose
+/// density is D at x. Exact where alpha is locally constant (checkerboards, nearest texels);
+/// bilinear roughness adds a term in grad alpha that is left out (docs/scene-format.md).
+Vec2 target_half_vector(ManifoldVertex& v, int i, HalfVectorDraws& draws);
+/// h_target for a unit-roughness slope at v's point (v rough).
+Vec2 target_from_unit_slope(const ManifoldVertex& v, const Vec2& unit_slope);
+/// The inverse: the unit slope whose target at v is the tangential half vector h (Alg. 2 walks
+/// a given path's half vectors the way the estimator would have drawn them).
+Vec2 unit_slope_of(const ManifoldVertex& v, const Vec2& h);
 
 /// Sets every vertex's h_target: (0, 0) for specular vertices; for rough ones the tangential part
 /// (m.s, m.t) of m = sample_m(u_i), D(m) cos(theta_m) sampled in the constraint frame. The

@@ -27,7 +27,13 @@ struct ManifoldVertex {
     Vec3 ds_ds, ds_dt, dt_ds, dt_dt;  ///< frame derivatives along dp_ds and dp_dt
     double eta = 1;                   ///< IOR inside / outside at the path's wavelength (1: reflection only)
     Vec2 h_target;                    ///< target tangential half vector (0,0) for specular vertices
-    bool reflect = false;             ///< the chain asks this vertex to reflect (else to refract)
+    /// Rough vertices (has_unit_slope): the drawn microfacet normal as a slope of the unit
+    /// roughness distribution. h_target is that slope stretched by the roughness where the vertex
+    /// lies, re-read at every projection, so a roughness texture acts where the converged vertex
+    /// lies (issue 11) and p_dH(h) = D(h) holds with that vertex's D (see half_vectors.h).
+    Vec2 unit_slope;
+    bool has_unit_slope = false;
+    bool reflect = false;  ///< the chain asks this vertex to reflect (else to refract)
     const Shape* shape = nullptr;
     const BSDF* bsdf = nullptr;
     SurfaceInteraction si;  ///< full hit record at p

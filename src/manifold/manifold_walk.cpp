@@ -1,5 +1,7 @@
 #include "manifold/manifold_walk.h"
 
+#include "manifold/half_vectors.h"
+
 #include <array>
 #include <cmath>
 
@@ -62,9 +64,12 @@ bool project_vertex(const Scene* scene, const ManifoldVertex& from, const Vec3& 
         if (length(si.p - displaced) > 4.0 * step + scene->ray_epsilon()) return false;
     }
     ManifoldVertex v = ManifoldVertex::from_interaction(si, from.eta);
-    v.h_target = from.h_target;
     v.reflect = from.reflect;
     v.bsdf = from.bsdf;
+    v.unit_slope = from.unit_slope;
+    v.has_unit_slope = from.has_unit_slope;
+    // The target is re-read with the roughness at the new point (half_vectors.h).
+    v.h_target = from.has_unit_slope ? target_from_unit_slope(v, from.unit_slope) : from.h_target;
     *out = v;
     return true;
 }

@@ -19,7 +19,7 @@ namespace {
 
 namespace wc = walk_counters;
 
-bool is_specular(const ManifoldVertex& v) { return !v.bsdf->microfacet(); }
+bool is_specular(const ManifoldVertex& v) { return !v.bsdf->has_microfacet(); }
 
 /// IOR of the side of v that direction w points into (1 outside, eta inside).
 double side_ior(const ManifoldVertex& v, const Vec3& w) { return dot(w, v.ng) >= 0 ? 1.0 : v.eta; }
@@ -80,10 +80,13 @@ double half_vector_jacobian(const ManifoldVertex& v, const Vec3& wi, const Vec3&
 double half_vector_density(const ManifoldVertex& v, const Vec3& h) {
     if (is_specular(v)) return 1.0;
     const Vec3 hl = v.si.to_local(h);
-    return hl.z > 0 ? v.bsdf->microfacet()->D(hl) : 0.0;
+    // D where the vertex lies (a roughness texture is read at the converged point).
+    return hl.z > 0 ? v.bsdf->microfacet(BSDFContext{}.at(v.si))->D(hl) : 0.0;
 }
 
-SampledSpectrum vertex_throughput(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const BSDFContext& ctx) {
+SampledSpectrum vertex_throughput(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo,
+                                  const BSDFContext& path_ctx) {
+    const BSDFContext ctx = path_ctx.at(v.si);
     const Vec3 wi_l = v.si.to_local(wi), wo_l = v.si.to_local(wo);
     // BSDF convention: its wo is our camera-side wi, its wi our light-side wo.
     if (is_specular(v)) return v.bsdf->eval_delta(ctx, wi_l, wo_l);  // Eq. 9: kappa
@@ -95,7 +98,8 @@ SampledSpectrum vertex_throughput(const ManifoldVertex& v, const Vec3& wi, const
     return v.bsdf->eval(ctx, wi_l, wo_l) * (std::abs(wo_l.z) * half_vector_jacobian(v, wi, wo, h) / (cos_h * D));
 }
 
-double vertex_bsdf_density(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const BSDFContext& ctx) {
+double vertex_bsdf_density(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const BSDFContext& path_ctx) {
+    const BSDFContext ctx = path_ctx.at(v.si);
     const Vec3 wi_l = v.si.to_local(wi), wo_l = v.si.to_local(wo);
     if (!is_specular(v)) return v.bsdf->pdf(ctx, wi_l, wo_l);
     // A delta lobe: its discrete probability, with delta(o) rewritten as delta(h) / |do/dh|.
@@ -191,7 +195,7 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     // Measurement in half-vector space (Eq. 6): f_r(x_b) |cos| |do_b/dx_c| prod(vertex) Le.
     const Vec3 o_b = normalize(chain[0].p - xb.p);
     const Vec3 wo_b = xb.to_local(xb.wo), o_b_l = xb.to_local(o_b);
-    const SampledSpectrum f_b = bsdf_b.eval(ctx, wo_b, o_b_l) * std::abs(o_b_l.z);
+    const SampledSpectrum f_b = bsdf_b.eval(ctx.at(xb), wo_b, o_b_l) * std::abs(o_b_l.z);
     const Vec3 from_light = normalize(chain[k - 1].p - xc);
     const SampledSpectrum Le = light_point_emission(light, xc, lp.n, from_light, xb.p, ctx.wl);
     if (f_b.is_zero() || Le.is_zero()) {
@@ -211,7 +215,8 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     MediumStack m = media;
     SampledSpectrum tr = m.transmittance(length(chain[0].p - xb.p), ctx.wl);
     // BSDF-sampling density of the same path (area measure), and its prefix up to x_k.
-    double p_bsdf = bsdf_b.pdf(ctx, wo_b, o_b_l) * std::abs(dot(chain[0].ng, o_b)) / length_squared(chain[0].p - xb.p);
+    double p_bsdf =
+        bsdf_b.pdf(ctx.at(xb), wo_b, o_b_l) * std::abs(dot(chain[0].ng, o_b)) / length_squared(chain[0].p - xb.p);
     double p_prefix_k = p_bsdf;
     for (size_t i = 0; i < k; ++i) {
         Vec3 wi, wo;
@@ -329,7 +334,14 @@ double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInterac
         // Line 3: p_dH on the input path's half vectors (consistent MIS weights).
         p_dH *= half_vector_density(input[size_t(i)], h);
         input[size_t(i)].h_target = is_specular(input[size_t(i)]) ? Vec2(0, 0) : tangential(input[size_t(i)], h);
-        seed[size_t(i)].h_target = input[size_t(i)].h_target;
+        // The walk re-reads the target as the estimator's does: the unit slope that gives h at
+        // the input vertex, stretched by the roughness wherever the walk goes.
+        seed[size_t(i)].has_unit_slope = !is_specular(input[size_t(i)]);
+        if (seed[size_t(i)].has_unit_slope)
+            seed[size_t(i)].unit_slope = unit_slope_of(input[size_t(i)], input[size_t(i)].h_target);
+        seed[size_t(i)].h_target = seed[size_t(i)].has_unit_slope
+                                       ? target_from_unit_slope(seed[size_t(i)], seed[size_t(i)].unit_slope)
+                                       : input[size_t(i)].h_target;
     }
     if (!(p_dH > 0)) return 0;
 

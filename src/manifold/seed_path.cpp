@@ -6,7 +6,7 @@
 namespace snell {
 
 bool is_manifold_interface(const BSDF* bsdf, double lambda) {
-    return bsdf && bsdf->is_transmissive() && (bsdf->has_delta() || bsdf->microfacet()) && bsdf->eta(lambda) != 1.0;
+    return bsdf && bsdf->is_transmissive() && (bsdf->has_delta() || bsdf->has_microfacet()) && bsdf->eta(lambda) != 1.0;
 }
 
 SeedStatus trace_seed_path(const Scene& scene, const SurfaceInteraction& xb, const Vec3& xc, double lambda,

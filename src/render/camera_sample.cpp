@@ -39,7 +39,7 @@ bool is_valid_radiance(const SampledSpectrum& L) {
     return true;
 }
 
-TracedSample trace_camera_sample(const Scene& scene, const PerspectiveCamera& camera, const SampleTracer& tracer,
+TracedSample trace_camera_sample(const Scene& scene, const Camera& camera, const SampleTracer& tracer,
                                  int spectral_samples, const Vec2& pixel_centre, const Vec2& raster,
                                  const Vec2& u_lambda, Sampler& sampler, SplatList& splats) {
     TracedSample t;
@@ -47,7 +47,7 @@ TracedSample trace_camera_sample(const Scene& scene, const PerspectiveCamera& ca
     t.cs.pixel_centre = pixel_centre;
     t.cs.u_lambda = u_lambda;
     t.cs.wl = SampledWavelengths::sample_visible(u_lambda, spectral_samples);
-    const Ray ray = camera.generate_ray(raster);
+    const Ray ray = camera.generate_ray(raster, camera.has_lens() ? sampler.next_2d() : Vec2(0.5, 0.5));
     t.L = sanitize(tracer.li_splat(t.cs, ray, scene, sampler, splats));
     t.xyz = t.cs.wl.to_xyz(t.L);
     return t;

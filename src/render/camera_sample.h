@@ -33,7 +33,7 @@ struct TracedSample {
 /// Draws the path's `spectral_samples` wavelengths from the pair `u_lambda`, traces the
 /// camera ray through the full-film raster position `raster` (a sample of the pixel centred at
 /// `pixel_centre`), and returns the sanitised estimate of tracer.li_splat() with its XYZ.
-TracedSample trace_camera_sample(const Scene& scene, const PerspectiveCamera& camera, const SampleTracer& tracer,
+TracedSample trace_camera_sample(const Scene& scene, const Camera& camera, const SampleTracer& tracer,
                                  int spectral_samples, const Vec2& pixel_centre, const Vec2& raster,
                                  const Vec2& u_lambda, Sampler& sampler, SplatList& splats);
 

@@ -40,7 +40,7 @@ uint64_t pass_size(int pass) { return pass < 1 ? 1 : std::min<uint64_t>(16, uint
 RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int spectral_samples, const FilmSpec& spec,
                           const RenderOptions& opt, const std::atomic<bool>* cancel) {
     using Clock = std::chrono::steady_clock;
-    const PerspectiveCamera* camera = scene.camera();
+    const Camera* camera = scene.camera();
     if (!camera) throw std::runtime_error("scene has no sensor");
     const auto start = Clock::now();
     const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };

@@ -31,7 +31,7 @@ public:
 
     void add_shape(std::shared_ptr<Shape> shape);
     void add_light(std::shared_ptr<Light> light);
-    void set_camera(std::shared_ptr<PerspectiveCamera> cam) { m_camera = std::move(cam); }
+    void set_camera(std::shared_ptr<Camera> cam) { m_camera = std::move(cam); }
     /// Builds the BVH, preprocesses lights, builds the light sampler. Call once after adding.
     void build();
 
@@ -59,7 +59,7 @@ public:
     /// Lights with a direction-only domain (envmap, constant, directional) reached by escaping rays.
     const std::vector<const Light*>& infinite_lights() const { return m_infinite; }
     const LightSampler& light_sampler() const { return m_light_sampler; }
-    const PerspectiveCamera* camera() const { return m_camera.get(); }
+    const Camera* camera() const { return m_camera.get(); }
     RTCDevice device() const { return m_device; }
     /// The committed Embree scene (for benchmarks that measure Embree's raw rate).
     RTCScene rtc_scene() const { return m_scene; }
@@ -72,7 +72,7 @@ private:
     std::vector<std::shared_ptr<Light>> m_lights;
     std::vector<const Light*> m_infinite;
     LightSampler m_light_sampler;
-    std::shared_ptr<PerspectiveCamera> m_camera;
+    std::shared_ptr<Camera> m_camera;
     Bounds3 m_bounds;
     double m_radius = 1, m_eps = 1e-5;
 };

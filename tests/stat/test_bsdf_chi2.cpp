@@ -7,17 +7,20 @@
 #include <tuple>
 
 #include "bsdf/blend.h"
+#include "bsdf/bumpmap.h"
 #include "bsdf/conductor_data.h"
 #include "bsdf/diffuse.h"
 #include "bsdf/microfacet.h"
+#include "bsdf/normalmap.h"
 #include "bsdf/null_bsdf.h"
-
 #include "bsdf/plastic.h"
 #include "bsdf/roughconductor.h"
 #include "bsdf/roughdielectric.h"
 #include "bsdf/roughplastic.h"
 #include "bsdf/twosided.h"
 #include "stat/chi2.h"
+#include "texture/bitmap.h"
+#include "texture/constant.h"
 
 using namespace snell;
 using snell::test::Chi2Options;
@@ -39,13 +42,14 @@ struct Case {
     std::shared_ptr<const MD> distr;  // microfacet cases
     bool visible = false;             // microfacet case: visible-normal sampler
     TransportMode mode = TransportMode::Radiance;
+    std::shared_ptr<const SurfaceInteraction> si;  // the surface point textured BSDFs read
 };
 
 // Readable parameter names in gtest output.
 void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
 
 Case bsdf_case(std::string name, std::shared_ptr<const BSDF> bsdf, Vec3 wo) {
-    return {std::move(name), std::move(bsdf), wo, nullptr, false, TransportMode::Radiance};
+    return {std::move(name), std::move(bsdf), wo, nullptr, false, TransportMode::Radiance, nullptr};
 }
 
 std::shared_ptr<const BSDF> rough_dielectric(MD::Type t, double au, double av, bool vis = true) {
@@ -103,6 +107,40 @@ std::vector<Case> make_cases() {
     c.push_back(
         bsdf_case("mask_diffuse", std::make_shared<BlendBSDF>(0.4, std::make_shared<NullBSDF>(), diffuse), dir(25)));
     c.push_back(bsdf_case("twosided_diffuse_below", std::make_shared<TwoSidedBSDF>(diffuse), dir(120)));
+    // Perturbed shading frames at a point of a plane (dp/du = 2 x, dp/dv = 2 y): a normal map
+    // tilted by 35 degrees, and a bump map whose height rises along u and v. Grazing directions
+    // come from the side each normal leans to (the bumps lean towards -u): from the other side
+    // they lie below the perturbed surface, where both BSDFs are zero.
+    auto point = std::make_shared<SurfaceInteraction>();
+    point->n = point->ng = Vec3(0, 0, 1);
+    point->dpdu = Vec3(2, 0, 0);
+    point->dpdv = Vec3(0, 2, 0);
+    point->uv = Vec2(0.4, 0.45);
+    point->shading = Frame::from_normal_tangent(point->n, point->dpdu);
+    const Vec3 tilted(std::sin(0.61), 0.1, std::cos(0.61));
+    auto normals = ConstantTexture::make(Spectrum::constant(0.5), 0.5,
+                                         RGB(0.5 * (tilted.x + 1), 0.5 * (tilted.y + 1), 0.5 * (tilted.z + 1)));
+    TextureImage heights;
+    heights.width = heights.height = 2;
+    heights.channels = 1;
+    heights.texels = {0.0f, 0.3f, 0.2f, 0.6f};
+    auto bumps = std::make_shared<BitmapTexture>(heights, BitmapTexture::Filter::Bilinear, BitmapTexture::Wrap::Repeat,
+                                                 true, Transform());
+    for (auto [name, nested] :
+         {std::pair{"diffuse", std::shared_ptr<const BSDF>(diffuse)},
+          std::pair{"roughconductor",
+                    std::shared_ptr<const BSDF>(std::make_shared<RoughConductorBSDF>(MD(G, 0.2), au))}}) {
+        for (double theta : {20.0, 70.0}) {
+            Case nm = bsdf_case(std::string("normalmap_") + name + "_" + std::to_string(int(theta)),
+                                std::make_shared<NormalMapBSDF>(normals, nested), dir(theta, theta > 45 ? 20 : 200));
+            nm.si = point;
+            c.push_back(nm);
+            Case bm = bsdf_case(std::string("bumpmap_") + name + "_" + std::to_string(int(theta)),
+                                std::make_shared<BumpMapBSDF>(bumps, 1.5, nested), dir(theta, 200));
+            bm.si = point;
+            c.push_back(bm);
+        }
+    }
     c.push_back(bsdf_case("twosided_two_below",
                           std::make_shared<TwoSidedBSDF>(diffuse, std::make_shared<RoughConductorBSDF>(MD(G, 0.3), au)),
                           dir(130)));
@@ -112,8 +150,8 @@ std::vector<Case> make_cases() {
             const std::string n = std::string(t == B ? "beckmann" : "ggx") + "_" + std::to_string(int(au_ * 100)) +
                                   "_" + std::to_string(int(av_ * 100));
             auto d = std::make_shared<const MD>(t, au_, av_);
-            c.push_back({"microfacet_global_" + n, nullptr, dir(0), d, false, TransportMode::Radiance});
-            c.push_back({"microfacet_visible_" + n, nullptr, dir(65, 40), d, true, TransportMode::Radiance});
+            c.push_back({"microfacet_global_" + n, nullptr, dir(0), d, false, TransportMode::Radiance, nullptr});
+            c.push_back({"microfacet_visible_" + n, nullptr, dir(65, 40), d, true, TransportMode::Radiance, nullptr});
         }
     return c;
 }
@@ -140,6 +178,7 @@ TEST_P(BsdfChi2, SamplesFollowPdf) {
         BSDFContext ctx;
         ctx.wl = SampledWavelengths::sample_visible(Vec2(0.3, 0.6));  // four distinct wavelengths
         ctx.mode = c.mode;
+        if (c.si) ctx = ctx.at(*c.si);
         const BSDF& b = *c.bsdf;
         r = snell::test::chi2_sphere_test(
             [&](PCG32& rng) -> std::optional<Vec3> {

@@ -103,7 +103,7 @@ TEST(PrimarySampleSampler, SetStateStartsAChainThere) {
 TEST(Erpt, RecordedSeedReplaysThroughEvaluate) {
     const LoadedScene ls = load_erpt();
     const auto inner = std::make_shared<PathTracer>(PathSettings{6, 5, false}, true);
-    const PerspectiveCamera& camera = *ls.scene->camera();
+    const Camera& camera = *ls.scene->camera();
     const int w = ls.film.out_width(), h = ls.film.out_height();
     IndependentSampler sampler(3);
     int lit = 0, matched = 0;
@@ -117,7 +117,7 @@ TEST(Erpt, RecordedSeedReplaysThroughEvaluate) {
         const Vec2 o = ls.film.sample_origin(), e = ls.film.sample_extent();
         std::vector<double> state = {(raster.x - o.x) / e.x, (raster.y - o.y) / e.y, u_lambda.x, u_lambda.y};
         RecordingSampler rec(sampler, state);
-        const SampledSpectrum L = inner->li(camera.generate_ray(raster), *ls.scene, rec, wl);
+        const SampledSpectrum L = inner->li(camera.generate_ray(raster, Vec2(0.5, 0.5)), *ls.scene, rec, wl);
         PrimarySampleSampler replay(1, 2, 0.0);
         replay.set_state(state);
         const PathSample p = evaluate(*ls.scene, camera, *inner, kSpectrumSamples, ls.film, replay);

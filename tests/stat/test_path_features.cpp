@@ -110,7 +110,7 @@ TEST(BeerLambert, AbsorptionInsideADielectricFollowsPathLength) {
     const LoadedScene absorbing = load_xml(xml, {{"sigma", "0.5"}});
     const auto a = render_rgb(clear, 16, 9);
     const auto b = render_rgb(absorbing, 16, 9);
-    const PerspectiveCamera& cam = *clear.scene->camera();
+    const PerspectiveCamera& cam = *clear.scene->camera()->pinhole();
     const int w = clear.film.out_width();
     for (size_t i = 0; i < a.size(); i += 3) {
         const int px = int(i / 3) % w, py = int(i / 3) / w;

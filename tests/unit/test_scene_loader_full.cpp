@@ -47,8 +47,8 @@ TEST(SceneLoaderFull, LoadsEverySection) {
     EXPECT_EQ(s.film.crop_h, 24);
     EXPECT_EQ(s.film.out_width(), 16);
     ASSERT_NE(s.scene->camera(), nullptr);
-    EXPECT_NEAR(s.scene->camera()->tan_half_x(), std::tan(20.0 * kPi / 180.0), 1e-12);
-    const Vec3 eye = s.scene->camera()->position();
+    EXPECT_NEAR(s.scene->camera()->pinhole()->tan_half_x(), std::tan(20.0 * kPi / 180.0), 1e-12);
+    const Vec3 eye = s.scene->camera()->pinhole()->position();
     EXPECT_NEAR(eye.z, -4.0, 1e-12);
     ASSERT_TRUE(s.integrator);
     EXPECT_EQ(s.integrator->name(), "path");
@@ -115,8 +115,16 @@ TEST(SceneLoaderFull, UnusedAndUnknownParametersNameTheirLine) {
 
 TEST(SceneLoaderFull, SensorFilmSamplerErrors) {
     expect_error("<scene version=\"3.0.0\">\n<shape type=\"sphere\"/>\n</scene>", "test.xml:1: <scene>", "no <sensor");
-    expect_error("<scene version=\"3.0.0\">\n<sensor type=\"orthographic\"/>\n</scene>", "test.xml:2: <sensor>",
-                 "orthographic");
+    expect_error("<scene version=\"3.0.0\">\n<sensor type=\"fisheye\"/>\n</scene>", "test.xml:2: <sensor>",
+                 "unknown sensor type 'fisheye' (supported: perspective, thinlens, orthographic)");
+    expect_error(
+        "<scene version=\"3.0.0\">\n<sensor type=\"orthographic\"><float name=\"fov\" value=\"30\"/></sensor>\n"
+        "</scene>",
+        "test.xml:2: <sensor>", "unused parameter 'fov' for type 'orthographic'");
+    expect_error(
+        "<scene version=\"3.0.0\">\n<sensor type=\"thinlens\"><float name=\"aperture_radius\" value=\"0\"/>"
+        "<float name=\"focus_distance\" value=\"1\"/></sensor>\n</scene>",
+        "test.xml:2: <sensor>", "aperture_radius must be > 0");
     expect_error(
         "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n"
         "<film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"crop_width\" "

@@ -404,11 +404,19 @@ TEST(SceneParser, VersionsAndMitsuba06) {
     EXPECT_NE(old->children[1].obj->param("int_ior"), nullptr);
     EXPECT_NE(old->children[1].obj->param("specular_reflectance"), nullptr);
     expect_error(R"(<scene version="1.0.0"/>)", 1, "scene", "not supported (0.x, 2.x and 3.x are)");
-    // Mitsuba 2's texture-valued spectra are named as such.
-    expect_error(R"(<scene version="2.0.0">
-    <bsdf type="diffuse"><spectrum name="reflectance" type="bitmap"/></bsdf>
+    // Mitsuba 2's texture-valued spectra are textures by another name.
+    auto m2 = parse_scene_xml_string(R"(<scene version="2.0.0">
+    <bsdf type="diffuse"><spectrum name="reflectance" type="bitmap"><string name="filename" value="a.png"/></spectrum></bsdf>
 </scene>)",
-                 2, "spectrum", "texture-valued parameters (type=\"bitmap\") are not supported yet");
+                                     "test.xml", ".");
+    const XmlObject::Child& tex = m2->children[0].obj->children[0];
+    EXPECT_EQ(tex.name, "reflectance");
+    EXPECT_EQ(tex.obj->tag, "texture");
+    EXPECT_EQ(tex.obj->type, "bitmap");
+    expect_error(R"(<scene version="2.0.0">
+    <shape type="sphere"><spectrum name="reflectance" type="bitmap"/></shape>
+</scene>)",
+                 2, "spectrum", "a texture cannot be nested inside <shape>");
     expect_error(R"(<scene/>)", 1, "scene", "missing attribute 'version'");
     expect_error(R"(<scene version="3.0.0">
     <shape type="sphere">
@@ -427,11 +435,11 @@ TEST(SceneParser, UnsupportedFeaturesAreClearErrors) {
 </scene>)",
                  3, "medium", "sigma_a");
     expect_error(R"(<scene version="3.0.0">
-    <bsdf type="diffuse">
+    <shape type="sphere">
         <texture type="bitmap" name="reflectance"/>
-    </bsdf>
+    </shape>
 </scene>)",
-                 3, "texture", "not supported");
+                 3, "texture", "cannot be nested inside <shape>");
 }
 
 TEST(SceneParser, DamagedInputIsAlwaysASceneError) {

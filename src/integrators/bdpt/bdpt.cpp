@@ -81,7 +81,7 @@ SampledSpectrum BdptTracer::li_splat(const CameraSample& cs, const Ray& ray, con
     ++render_stats::paths;
     const SampledWavelengths& wl = cs.wl;
     const int md = m_settings.max_depth;
-    const PerspectiveCamera& camera = *scene.camera();
+    const PerspectiveCamera& camera = *scene.camera()->pinhole();  // the loader checked
     const Pinhole pinhole(camera, m_window);
     // Debug layers: each strategy's weighted contribution, at the pixel it reaches.
     // Camera strategies (t >= 2) belong to the sample's own pixel, as in the image; light
@@ -168,8 +168,12 @@ SampledSpectrum BdptTracer::li_splat(const CameraSample& cs, const Ray& ray, con
 
 }  // namespace
 
-std::unique_ptr<SampleTracer> BdptIntegrator::prepare(const Scene& /*scene*/, const FilmSpec& film,
+std::unique_ptr<SampleTracer> BdptIntegrator::prepare(const Scene& scene, const FilmSpec& film,
                                                       const RenderOptions& options) const {
+    if (!scene.camera() || !scene.camera()->pinhole())
+        throw std::runtime_error(
+            "bdpt connects light paths to the camera and needs a perspective (pinhole) sensor; render thinlens "
+            "and orthographic sensors with path, pt, nee, mnee, direct, pssmlt or erpt");
     return std::make_unique<BdptTracer>(m_settings, film, options.debug_layers);
 }
 

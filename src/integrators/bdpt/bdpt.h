@@ -27,6 +27,7 @@ public:
     std::unique_ptr<SampleTracer> prepare(const Scene& scene, const FilmSpec& film,
                                           const RenderOptions& options) const override;
     std::string name() const override { return "bdpt"; }
+    bool needs_pinhole_camera() const override { return true; }
     const PathSettings& settings() const { return m_settings; }
 
 private:

@@ -12,7 +12,7 @@ namespace {
 // Light-subpath vertex y scattering towards unit direction d: the adjoint BSDF times the
 // shading cosine, with the shading-normal correction of Importance transport.
 SampledSpectrum adjoint_f(const Vertex& y, const Vec3& d, const SampledWavelengths& wl) {
-    return y.bsdf->eval({wl, TransportMode::Importance}, y.si.to_local(y.si.wo), y.si.to_local(d)) *
+    return y.bsdf->eval(BSDFContext{wl, TransportMode::Importance}.at(y.si), y.si.to_local(y.si.wo), y.si.to_local(d)) *
            (std::abs(dot(y.si.n, d)) * shading_correction(y.si, y.si.wo, d));
 }
 
@@ -39,9 +39,9 @@ SampledSpectrum connect(const Scene& scene, const std::vector<Vertex>& cam, cons
         // A light at infinity: the "edge" is the direction y.dir; its geometry term is the
         // cosine at z alone. The shadow ray must escape; a camera vertex inside an absorbing
         // medium cannot see the sky without crossing the medium's boundary, which occludes it.
-        const SampledSpectrum fz =
-            z.bsdf->eval({wl, TransportMode::Radiance}, z.si.to_local(z.si.wo), z.si.to_local(y.dir)) *
-            std::abs(dot(z.si.n, y.dir));
+        const SampledSpectrum fz = z.bsdf->eval(BSDFContext{wl, TransportMode::Radiance}.at(z.si),
+                                                z.si.to_local(z.si.wo), z.si.to_local(y.dir)) *
+                                   std::abs(dot(z.si.n, y.dir));
         const SampledSpectrum c = z.beta * fz * y.light->emitted(Vec3(), Vec3(), -y.dir, wl) * y.beta;
         if (c.is_zero() || scene.occluded(scene.spawn_ray(z.si, y.dir))) return {};
         return joined(c, z, y, wl);
@@ -51,8 +51,9 @@ SampledSpectrum connect(const Scene& scene, const std::vector<Vertex>& cam, cons
     if (!(d2 > 0)) return {};
     const double dist = std::sqrt(d2);
     d /= dist;
-    const SampledSpectrum fz = z.bsdf->eval({wl, TransportMode::Radiance}, z.si.to_local(z.si.wo), z.si.to_local(d)) *
-                               std::abs(dot(z.si.n, d));
+    const SampledSpectrum fz =
+        z.bsdf->eval(BSDFContext{wl, TransportMode::Radiance}.at(z.si), z.si.to_local(z.si.wo), z.si.to_local(d)) *
+        std::abs(dot(z.si.n, d));
     if (fz.is_zero()) return {};
     SampledSpectrum fy;
     if (s == 1) {

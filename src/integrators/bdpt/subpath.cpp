@@ -49,7 +49,7 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, const SampledWav
 
         Vertex& cur = path.back();
         const Vec3 wo = si.to_local(si.wo);
-        const auto bs = cur.bsdf->sample(ctx, wo, sampler.next_1d(), sampler.next_2d());
+        const auto bs = cur.bsdf->sample(ctx.at(cur.si), wo, sampler.next_1d(), sampler.next_2d());
         if (!bs || bs->weight.is_zero()) break;
         const Vec3 wi = si.to_world(bs->wi);
         double pdf_rev_dir = 0;
@@ -58,7 +58,7 @@ void random_walk(const Scene& scene, Ray ray, Sampler& sampler, const SampledWav
             pdf_dir = 0;
         } else {
             pdf_dir = bs->pdf;
-            pdf_rev_dir = cur.bsdf->pdf(ctx_rev, bs->wi, wo);
+            pdf_rev_dir = cur.bsdf->pdf(ctx_rev.at(cur.si), bs->wi, wo);
         }
         tp.scatter(*bs, wl, mode);
         if (mode == TransportMode::Importance) tp.beta *= shading_correction(si, si.wo, wi);

@@ -23,7 +23,7 @@ double pdf_area(const Vertex& v, const Vertex* prev, const Vertex& next, Transpo
     }
     if (v.type != VertexType::Surface || !v.bsdf || !prev) return 0;
     const Vec3 wo = direction(v, *prev);
-    const BSDFContext ctx{wl, mode};
+    const BSDFContext ctx = BSDFContext{wl, mode}.at(v.si);
     return to_area(v.bsdf->pdf(ctx, v.si.to_local(wo), v.si.to_local(wi)), v, next);
 }
 

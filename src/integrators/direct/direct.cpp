@@ -75,11 +75,12 @@ SampledSpectrum DirectIntegrator::li(const Ray& ray, const Scene& scene, Sampler
         const Light* light = nullptr;
         double pmf = 0;
         const auto ls = sample_light(scene, si, wl, sampler, &light, &pmf);
-        if (ls) add(Technique::Nee, nee_connect(scene, si, *bsdf, ctx, none, *ls, pmf, frac_e, frac_b) / double(ne));
+        if (ls)
+            add(Technique::Nee, nee_connect(scene, si, *bsdf, ctx.at(si), none, *ls, pmf, frac_e, frac_b) / double(ne));
     }
 
     for (int j = 0; j < nb; ++j) {
-        const auto bs = bsdf->sample(ctx, wo, sampler.next_1d(), sampler.next_2d());
+        const auto bs = bsdf->sample(ctx.at(si), wo, sampler.next_1d(), sampler.next_2d());
         if (!bs || bs->weight.is_zero()) continue;
         Throughput tp;
         tp.scatter(*bs, wl, TransportMode::Radiance);

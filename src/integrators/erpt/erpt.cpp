@@ -59,7 +59,7 @@ std::unique_ptr<ErptTracer> ErptIntegrator::prepare_erpt(const Scene& scene, con
     const int n_lambda = spectral_samples();
     if (m_settings.deposition_energy > 0)
         return std::make_unique<ErptTracer>(m_settings, inner, film, n_lambda, m_settings.deposition_energy, 0.0);
-    const PerspectiveCamera* camera = scene.camera();
+    const Camera* camera = scene.camera();
     if (!camera) throw std::runtime_error("scene has no sensor");
 
     // Bootstrap: the mean luminance per pixel sample of the seeds that will start chains,
@@ -171,7 +171,7 @@ SampledSpectrum ErptTracer::li_splat(const CameraSample& cs, const Ray& ray, con
     seed.y = std::clamp(int(std::floor(cs.raster.y)) - film.crop_y, 0, h - 1);
     seed.raster = cs.raster;
     seed.xyz = xyz;
-    const PerspectiveCamera& camera = *scene.camera();
+    const Camera& camera = *scene.camera();
     Deposits deposits(film);
     redistribute_energy(
         state, seed, plan, m_settings.mutations, stream_bits, m_settings.s1, m_settings.s2,

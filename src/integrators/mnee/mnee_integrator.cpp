@@ -175,15 +175,16 @@ SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const S
     if (!ls) return {};
     if (!s.has_xb || s.k == 0) return nee_connect(scene, si, bsdf, ctx, state.media, *ls, pmf);
     const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls->wi);
-    const SampledSpectrum f = bsdf.eval(ctx, wo, wi);
+    const SampledSpectrum f = bsdf.eval(ctx.at(si), wo, wi);
     if (f.is_zero()) return {};
     const Ray shadow = std::isinf(ls->dist) ? scene.spawn_ray(si, ls->wi) : scene.spawn_ray_to(si, ls->p);
     if (scene.occluded(shadow)) return {};
     // The path x_b, x_1..x_k = si, x_c in area measure (lights at infinity on MNEE's far sphere).
     const LightPoint lp = light_point_hit(scene, *light, ls->p, ls->n, ls->wi, s.xb.p);
     const double p_nee = s.p_prefix * pmf * light_point_pdf(scene, *light, si.p, lp.p, lp.n);
-    const double p_bsdf =
-        lp.delta ? 0.0 : s.p_prefix * bsdf.pdf(ctx, wo, wi) * std::abs(dot(lp.n, ls->wi)) / length_squared(lp.p - si.p);
+    const double p_bsdf = lp.delta ? 0.0
+                                   : s.p_prefix * bsdf.pdf(ctx.at(si), wo, wi) * std::abs(dot(lp.n, ls->wi)) /
+                                         length_squared(lp.p - si.p);
     const bool refracts = dot(si.wo, si.ng) * dot(ls->wi, si.ng) < 0;
     const double p_mnee =
         covers(s, refracts) ? ManifoldTechnique(scene, m_mnee)
@@ -226,7 +227,7 @@ void MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteracti
         case SeedStatus::Clear:
             // Nothing refracts in between: MNEE is NEE (same sample, same weight).
             {
-                const SampledSpectrum f = bsdf.eval(ctx, si.to_local(si.wo), si.to_local(ls->wi));
+                const SampledSpectrum f = bsdf.eval(ctx.at(si), si.to_local(si.wo), si.to_local(ls->wi));
                 if (f.is_nonzero())
                     out.add(Technique::Nee,
                             nee_estimate(si, bsdf, ctx, state.media, *ls, f, pmf, nee_weight(si, bsdf, ctx, *ls, pmf)));

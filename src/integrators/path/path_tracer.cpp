@@ -91,25 +91,26 @@ SampledSpectrum PathTracer::trace(const Ray& camera_ray, const Scene& scene, Sam
                     tp.beta * le * emitter_hit_weight(scene, state, *em, si.p, si.n, ray.d, ctx));
         }
         on_arrival(state, si, ray, ctx);
+        const BSDFContext sctx = ctx.at(si);  // textures are read at this vertex
         if (m_settings.max_depth >= 0 && depth + 1 >= m_settings.max_depth) break;
         const BSDF* bsdf = si.bsdf();
         if (!bsdf) break;
 
         if (m_nee && bsdf->is_smooth_sampled()) {
             LightConnection c;
-            connect_to_light(scene, si, *bsdf, ctx, state, sampler, c);
+            connect_to_light(scene, si, *bsdf, sctx, state, sampler, c);
             for (int t = 0; t < kTechniqueCount; ++t)
                 if (c.by[size_t(t)].is_nonzero()) add(Technique(t), tp.beta * c.by[size_t(t)]);
         }
 
         const Vec3 wo = si.to_local(si.wo);
-        const auto bs = bsdf->sample(ctx, wo, sampler.next_1d(), sampler.next_2d());
+        const auto bs = bsdf->sample(sctx, wo, sampler.next_1d(), sampler.next_2d());
         if (!bs || bs->weight.is_zero()) break;
         BSDFSample bs_world = *bs;
         bs_world.wi = si.to_world(bs->wi);
         tp.scatter(*bs, wl, TransportMode::Radiance);
         state.hero_only = tp.hero_only;  // the light connections of derived integrators read it
-        on_scatter(state, si, *bsdf, bs_world, ctx);
+        on_scatter(state, si, *bsdf, bs_world, sctx);
         ray = scene.spawn_ray(si, bs_world.wi);
         if (depth + 1 >= m_settings.rr_depth && !tp.survives_roulette(sampler.next_1d())) break;
     }

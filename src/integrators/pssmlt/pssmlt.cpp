@@ -55,7 +55,7 @@ uint64_t chain_seed(uint64_t seed, uint64_t c) { return mix_bits(mix_bits(seed +
 RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, int spectral_samples,
                            const FilmSpec& spec, const RenderOptions& opt, const std::atomic<bool>* cancel) {
     using Clock = std::chrono::steady_clock;
-    const PerspectiveCamera* camera = scene.camera();
+    const Camera* camera = scene.camera();
     if (!camera) throw std::runtime_error("scene has no sensor");
     const auto start = Clock::now();
     const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };

@@ -1,0 +1,41 @@
+#include "io/texture_image.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <filesystem>
+#include <stdexcept>
+
+namespace snell {
+
+TextureImage read_texture_image(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) throw std::runtime_error("cannot open image '" + path + "'");
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) throw std::runtime_error("cannot read image '" + path + "': " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1)
+        throw std::runtime_error("image '" + path + "' has no 2D pixels");
+    const int nc = spec.nchannels;
+    std::vector<float> all(size_t(spec.width) * size_t(spec.height) * size_t(nc));
+    if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, all.data()))
+        throw std::runtime_error("cannot read image '" + path + "': " + in->geterror());
+
+    TextureImage img;
+    img.width = spec.width;
+    img.height = spec.height;
+    // Grey, grey + alpha -> 1 channel; RGB, RGBA and more -> the first three.
+    img.channels = nc <= 2 ? 1 : 3;
+    const size_t n = size_t(img.width) * size_t(img.height);
+    img.texels.resize(n * size_t(img.channels));
+    for (size_t i = 0; i < n; ++i)
+        for (int c = 0; c < img.channels; ++c)
+            img.texels[i * size_t(img.channels) + size_t(c)] = all[i * size_t(nc) + size_t(c)];
+    const std::string space = spec.get_string_attribute("oiio:ColorSpace");
+    const bool integer = spec.format.basetype != OIIO::TypeDesc::FLOAT &&
+                         spec.format.basetype != OIIO::TypeDesc::HALF && spec.format.basetype != OIIO::TypeDesc::DOUBLE;
+    img.srgb_encoded = integer && space != "Linear" && space != "linear";
+    in->close();
+    return img;
+}
+
+}  // namespace snell

@@ -1,0 +1,102 @@
+#include "texture/factory.h"
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "io/texture_image.h"
+#include "texture/bitmap.h"
+#include "texture/checkerboard.h"
+#include "texture/constant.h"
+
+namespace snell {
+
+namespace {
+
+TextureRef make_bitmap(const Props& p) {
+    std::filesystem::path file = p.get_string("filename");
+    const std::string base = p.get_string("__base_dir", "");
+    if (file.is_relative() && !base.empty()) file = std::filesystem::path(base) / file;
+    const std::string filter = p.get_string("filter_type", "bilinear");
+    BitmapTexture::Filter f;
+    if (filter == "bilinear")
+        f = BitmapTexture::Filter::Bilinear;
+    else if (filter == "nearest")
+        f = BitmapTexture::Filter::Nearest;
+    else
+        p.raise_param("filter_type", "unknown filter_type '" + filter +
+                                         "' (expected bilinear or nearest; snell does not MIP-map, see "
+                                         "docs/scene-format.md)");
+    const std::string wrap = p.get_string("wrap_mode", "repeat");
+    BitmapTexture::Wrap w;
+    if (wrap == "repeat")
+        w = BitmapTexture::Wrap::Repeat;
+    else if (wrap == "mirror")
+        w = BitmapTexture::Wrap::Mirror;
+    else if (wrap == "clamp")
+        w = BitmapTexture::Wrap::Clamp;
+    else
+        p.raise_param("wrap_mode", "unknown wrap_mode '" + wrap + "' (expected repeat, mirror or clamp)");
+    const bool raw = p.get_bool("raw", false);
+    const Transform to_uv = p.get_transform("to_uv");
+    TextureImage img;
+    try {
+        img = read_texture_image(file.string());
+    } catch (const std::exception& e) {
+        p.raise_param("filename", e.what());
+    }
+    for (float v : img.texels)
+        if (!std::isfinite(v)) p.raise_param("filename", "image '" + file.string() + "' holds NaN or infinite values");
+    return std::make_shared<BitmapTexture>(std::move(img), f, w, raw, to_uv);
+}
+
+TextureRef make_checkerboard(const Props& p) {
+    // Mitsuba's defaults: color0 0.4, color1 0.2.
+    auto c0 = get_texture(p, "color0", SpectrumUse::Reflectance, Spectrum::constant(0.4));
+    auto c1 = get_texture(p, "color1", SpectrumUse::Reflectance, Spectrum::constant(0.2));
+    return std::make_shared<CheckerboardTexture>(c0, c1, p.get_transform("to_uv"));
+}
+
+}  // namespace
+
+TextureRef create_texture(const Props& p) {
+    TextureRef t;
+    if (p.type() == "bitmap")
+        t = make_bitmap(p);
+    else if (p.type() == "checkerboard")
+        t = make_checkerboard(p);
+    else
+        p.raise("unknown texture type '" + p.type() + "' (known: bitmap, checkerboard)");
+    p.check_unused();
+    return t;
+}
+
+TextureRef get_texture(const Props& p, const std::string& name, SpectrumUse use, const Spectrum& def) {
+    if (auto t = p.named_child<const Texture>(name)) return t;
+    if (!p.has(name)) return ConstantTexture::make(def, spectrum_to_xyz(def).y);
+    const bool rgb = p.is_rgb(name);
+    const Spectrum s = p.get_spectrum(name, use);
+    const double y = spectrum_to_xyz(s).y;
+    return ConstantTexture::make(s, y, rgb ? p.get_rgb(name, RGB(y)) : RGB(y));
+}
+
+TextureRef get_float_texture(const Props& p, const std::string& name, double def, double lo, double hi) {
+    TextureRef child = p.named_child<const Texture>(name);
+    TextureRef t = child ? child : ConstantTexture::make(p.get_float(name, def));
+    if (!(t->min_value() >= lo && t->max_value() <= hi)) {
+        auto num = [](double v) {
+            std::ostringstream os;
+            os << v;
+            return os.str();
+        };
+        const std::string what =
+            "'" + name + "' must lie in [" + num(lo) + ", " + num(hi) + "]" +
+            (child ? " everywhere (the texture reaches " + num(t->min_value()) + " .. " + num(t->max_value()) + ")"
+                   : "");
+        if (child) throw SceneError(p.child_loc(name), p.tag(), what);
+        p.raise_param(name, what);
+    }
+    return t;
+}
+
+}  // namespace snell
