@@ -90,6 +90,12 @@ double Props::get_float(const std::string& name, double def) const {
         e->used = true;
         return double(*i);
     }
+    // So is a one-value <spectrum> (Mitsuba reads <spectrum name="weight" value="0.5"/> as 0.5).
+    if (const SpectrumData* sd = std::get_if<SpectrumData>(&e->value);
+        sd && sd->lambda.empty() && sd->values.size() == 1) {
+        e->used = true;
+        return sd->values[0];
+    }
     return *get_as<double>(name, "float");
 }
 

@@ -16,7 +16,12 @@ const std::set<std::string> kSmsIntegrators = {"path_sms_ss",      "path_sms_ms"
 // default) is solutions=unbiased; biased=true with max_trials M counts the distinct solutions of
 // M trials, which is solutions=all with trials=M; mnee_init=true with max_trials=1 is the
 // paper's MNEE (solutions=one), biased_mnee its outlier removal.
-Props sms_as_mnee(const XmlObject& o, std::vector<std::string>* notices) {
+Props sms_as_mnee(const XmlObject& o_in, std::vector<std::string>* notices) {
+    // The teaser integrators prefix the caustic settings with "caustics_" (and have glint ones
+    // beside them): read caustics_X as X.
+    XmlObject o = o_in;
+    for (XmlParam& q : o.params)
+        if (q.name.rfind("caustics_", 0) == 0 && !o_in.param(q.name.substr(9))) q.name = q.name.substr(9);
     Props in = object_props(o);
     Props out(o.tag, "mnee", o.loc);
     out.set_id(o.id);
@@ -48,10 +53,32 @@ Props sms_as_mnee(const XmlObject& o, std::vector<std::string>* notices) {
     // What snell does its own way: always half-vector constraints (Hanika et al.), its own
     // convergence test and step control, every refractive shape a caster.
     std::string ignored;
-    for (const char* name :
-         {"halfvector_constraints", "twostage", "step_scale", "solver_threshold", "uniqueness_threshold",
-          "disable_reflected_emitters", "biased_mnee", "bounces", "max_glints", "caustics_filtered", "glints",
-          "caustics", "glints_filtered", "non_sms_paths", "crop_caustic", "filter_radius"})
+    for (const char* name : {"halfvector_constraints",
+                             "twostage",
+                             "step_scale",
+                             "solver_threshold",
+                             "uniqueness_threshold",
+                             "disable_reflected_emitters",
+                             "biased_mnee",
+                             "bounces",
+                             "max_glints",
+                             "caustics_filtered",
+                             "glints",
+                             "caustics",
+                             "glints_filtered",
+                             "non_sms_paths",
+                             "crop_caustic",
+                             "filter_radius",
+                             "enabled",
+                             "glints_enabled",
+                             "glints_biased",
+                             "glints_max_iterations",
+                             "glints_max_trials",
+                             "glints_solver_threshold",
+                             "glints_uniqueness_threshold",
+                             "glint_diff_scale_factor_clamp",
+                             "non_sms_paths_enabled",
+                             "multi_caustic_bounces"})
         if ((!mnee_init || std::string(name) != "biased_mnee") && in.mark_used(name))
             ignored += (ignored.empty() ? "" : ", ") + std::string(name);
     in.check_unused();

@@ -31,7 +31,9 @@ TEST(Props, TypedGettersAndDefaults) {
     p.set("eta", 1.5, at(6));
     p.set("name", std::string("water"), at(7));
     p.set("pos", Vec3(1, 2, 3), at(8));
+    p.set("weight", SpectrumData{{}, {0.5}}, at(9));
     EXPECT_TRUE(p.get_bool("flag"));
+    EXPECT_DOUBLE_EQ(p.get_float("weight"), 0.5);  // a one-value <spectrum> is a float, as in Mitsuba
     EXPECT_EQ(p.get_int("count"), 7);
     EXPECT_DOUBLE_EQ(p.get_float("eta"), 1.5);
     EXPECT_DOUBLE_EQ(p.get_float("count"), 7.0);  // integers are floats too

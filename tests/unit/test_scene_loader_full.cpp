@@ -264,6 +264,16 @@ TEST(SceneLoaderFull, SmsIntegratorsMapToMnee) {
     EXPECT_TRUE(solutions(mnee).biased);
     EXPECT_EQ(mnee.integrator->name(), "mnee-biased");
 
+    // The teaser integrators prefix the caustic settings: caustics_biased, caustics_max_trials, ...
+    const LoadedScene teaser = load_string(scene_with(R"(<integrator type="path_sms_teaser">
+<boolean name="caustics_enabled" value="true"/><boolean name="caustics_biased" value="true"/>
+<integer name="caustics_max_trials" value="12"/><integer name="caustics_max_iterations" value="20"/>
+<boolean name="glints_enabled" value="true"/><integer name="glints_max_trials" value="3"/>
+<boolean name="non_sms_paths_enabled" value="true"/></integrator>)"));
+    EXPECT_EQ(solutions(teaser).solutions, MneeSolutions::All);
+    EXPECT_EQ(solutions(teaser).trials, 12);
+    EXPECT_TRUE(has_notice(teaser, "ignored: enabled, glints_enabled, glints_max_trials, non_sms_paths_enabled"));
+
     // A parameter neither SMS nor snell knows is still an error at its line.
     expect_error(scene_with("<integrator type=\"path_sms_ss\">\n<float name=\"nope\" value=\"1\"/>\n</integrator>"),
                  "test.xml:4: <integrator>", "unused parameter 'nope'");
