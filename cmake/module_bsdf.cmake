@@ -12,6 +12,7 @@ snell_library(snell_bsdf
   src/bsdf/roughconductor.cpp
   src/bsdf/plastic.cpp
   src/bsdf/roughplastic.cpp
+  src/bsdf/principled.cpp
   src/bsdf/blend.cpp
   src/bsdf/twosided.cpp
   src/bsdf/perturbed_frame.cpp

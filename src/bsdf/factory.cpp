@@ -14,6 +14,7 @@
 #include "bsdf/normalmap.h"
 #include "bsdf/null_bsdf.h"
 #include "bsdf/plastic.h"
+#include "bsdf/principled.h"
 #include "bsdf/roughconductor.h"
 #include "bsdf/roughdielectric.h"
 #include "bsdf/roughplastic.h"
@@ -211,6 +212,45 @@ std::shared_ptr<BSDF> build(const Props& p) {
         if (kids.size() != 2) p.raise("blendbsdf needs exactly two nested BSDFs");
         return std::make_shared<BlendBSDF>(w, kids[0], kids[1]);
     }
+    if (type == "principled") {
+        PrincipledBSDF::Params q;
+        q.base_color = get_texture(p, "base_color", SpectrumUse::Reflectance, Spectrum::constant(0.5));
+        auto given = [&](const char* n) { return p.has(n) || p.named_child<const Texture>(n); };
+        // Mitsuba turns a lobe on when its parameter is given and not the float 0.
+        auto on = [&](const char* n) { return p.named_child<const Texture>(n) || (p.has(n) && p.get_float(n) != 0.0); };
+        auto unit = [&](const char* n, double def) { return get_float_texture(p, n, def, 0.0, 1.0); };
+        q.roughness = unit("roughness", 0.5);
+        q.anisotropic = unit("anisotropic", 0.0);
+        q.metallic = unit("metallic", 0.0);
+        q.spec_trans = unit("spec_trans", 0.0);
+        q.spec_tint = unit("spec_tint", 0.0);
+        q.sheen = unit("sheen", 0.0);
+        q.sheen_tint = unit("sheen_tint", 0.0);
+        q.flatness = unit("flatness", 0.0);
+        q.clearcoat = unit("clearcoat", 0.0);
+        q.clearcoat_gloss = unit("clearcoat_gloss", 0.0);
+        q.anisotropic_on = on("anisotropic");
+        q.spec_trans_on = on("spec_trans");
+        q.clearcoat_on = on("clearcoat");
+        if (given("eta") && given("specular")) p.raise_param("specular", "give either 'eta' or 'specular', not both");
+        if (p.has("eta")) {
+            q.eta = p.get_float("eta");
+            if (!(q.eta > 0) || !std::isfinite(q.eta)) p.raise_param("eta", "eta must be positive");
+            if (q.spec_trans_on && q.eta == 1.0) q.eta = 1.001;  // Mitsuba: no transmission at eta 1
+        } else {
+            double specular = p.get_float("specular", 0.5);
+            if (!(specular >= 0 && specular < 12.5)) p.raise_param("specular", "specular must lie in [0, 12.5)");
+            if (q.spec_trans_on && specular == 0) specular = 1e-3;
+            q.eta = PrincipledBSDF::eta_from_specular(specular);
+        }
+        for (auto [n, slot] : {std::pair{"main_specular_sampling_rate", &q.spec_srate},
+                               std::pair{"clearcoat_sampling_rate", &q.clearcoat_srate},
+                               std::pair{"diffuse_reflectance_sampling_rate", &q.diffuse_srate}}) {
+            *slot = p.get_float(n, 1.0);
+            if (!(*slot >= 0) || !std::isfinite(*slot)) p.raise_param(n, std::string(n) + " must be >= 0");
+        }
+        return std::make_shared<PrincipledBSDF>(std::move(q));
+    }
     if (type == "normalmap" || type == "bumpmap") {
         auto kids = p.children<BSDF>();
         if (kids.size() != 1) p.raise(type + " needs exactly one nested BSDF");
@@ -239,7 +279,7 @@ std::shared_ptr<BSDF> build(const Props& p) {
     }
     p.raise("unknown BSDF type '" + type +
             "' (known: diffuse, dielectric, thindielectric, roughdielectric, conductor, "
-            "roughconductor, plastic, roughplastic, twosided, blendbsdf, mask, null, normalmap, bumpmap)");
+            "roughconductor, plastic, roughplastic, twosided, blendbsdf, mask, null, normalmap, bumpmap, principled)");
 }
 
 }  // namespace

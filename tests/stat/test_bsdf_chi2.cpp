@@ -14,6 +14,7 @@
 #include "bsdf/normalmap.h"
 #include "bsdf/null_bsdf.h"
 #include "bsdf/plastic.h"
+#include "bsdf/principled.h"
 #include "bsdf/roughconductor.h"
 #include "bsdf/roughdielectric.h"
 #include "bsdf/roughplastic.h"
@@ -107,6 +108,58 @@ std::vector<Case> make_cases() {
     c.push_back(
         bsdf_case("mask_diffuse", std::make_shared<BlendBSDF>(0.4, std::make_shared<NullBSDF>(), diffuse), dir(25)));
     c.push_back(bsdf_case("twosided_diffuse_below", std::make_shared<TwoSidedBSDF>(diffuse), dir(120)));
+    // Mitsuba's principled BSDF: its default, every lobe at once (anisotropic), transmission
+    // from both sides, the fake subsurface.
+    {
+        const RGB rgb(0.8, 0.4, 0.2);
+        const auto base = ConstantTexture::make(Spectrum::from_rgb_reflectance(rgb), rgb.luminance(), rgb);
+        auto principled = [&](auto tweak) {
+            PrincipledBSDF::Params q;
+            q.base_color = base;
+            tweak(q);
+            return std::make_shared<PrincipledBSDF>(q);
+        };
+        c.push_back(bsdf_case("principled_default", principled([](auto&) {}), dir(30)));
+        c.push_back(bsdf_case("principled_all_lobes", principled([](auto& q) {
+                                  q.roughness = 0.3;
+                                  q.metallic = 0.4;
+                                  q.anisotropic = 0.6;
+                                  q.anisotropic_on = true;
+                                  q.spec_tint = 0.5;
+                                  q.sheen = 0.5;
+                                  q.sheen_tint = 0.3;
+                                  q.clearcoat = 0.7;
+                                  q.clearcoat_gloss = 0.4;
+                                  q.clearcoat_on = true;
+                                  q.spec_trans = 0.3;
+                                  q.spec_trans_on = true;
+                              }),
+                              dir(60)));
+        c.push_back(bsdf_case("principled_clearcoat", principled([](auto& q) {
+                                  q.clearcoat = 1.0;
+                                  q.clearcoat_gloss = 0.4;
+                                  q.clearcoat_on = true;
+                              }),
+                              dir(60)));
+        c.push_back(bsdf_case("principled_anisotropic", principled([](auto& q) {
+                                  q.roughness = 0.3;
+                                  q.anisotropic = 0.6;
+                                  q.anisotropic_on = true;
+                              }),
+                              dir(60)));
+        auto glassy = [](auto& q) {
+            q.roughness = 0.5;
+            q.spec_trans = 0.8;
+            q.spec_trans_on = true;
+        };
+        c.push_back(bsdf_case("principled_transmission_front", principled(glassy), dir(40)));
+        c.push_back(bsdf_case("principled_transmission_back", principled(glassy), dir(130)));
+        c.push_back(bsdf_case("principled_flatness", principled([](auto& q) {
+                                  q.roughness = 0.8;
+                                  q.flatness = 0.6;
+                              }),
+                              dir(70)));
+    }
     // Perturbed shading frames at a point of a plane (dp/du = 2 x, dp/dv = 2 y): a normal map
     // tilted by 35 degrees, and a bump map whose height rises along u and v. Grazing directions
     // come from the side each normal leans to (the bumps lean towards -u): from the other side

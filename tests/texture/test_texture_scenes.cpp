@@ -72,6 +72,9 @@ TEST(TextureScenes, TopLevelTextureByReference) {
   <shape type="sphere"><bsdf type="diffuse"><ref name="reflectance" id="checks"/></bsdf></shape>
   <shape type="sphere"><transform name="to_world"><translate x="3"/></transform>
     <bsdf type="roughconductor"><ref name="alpha" id="checks"/></bsdf></shape>
+  <shape type="sphere"><transform name="to_world"><translate x="6"/></transform>
+    <bsdf type="principled"><ref name="base_color" id="checks"/><ref name="roughness" id="checks"/>
+      <float name="spec_trans" value="0.5"/><float name="clearcoat" value="0.2"/></bsdf></shape>
 </scene>)";
     EXPECT_EQ(load_error(xml, "."), "");
 }

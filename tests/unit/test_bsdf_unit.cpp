@@ -11,12 +11,15 @@
 #include "bsdf/fresnel.h"
 #include "bsdf/microfacet.h"
 #include "bsdf/plastic.h"
+#include "bsdf/principled.h"
 #include "bsdf/roughconductor.h"
 #include "bsdf/roughdielectric.h"
 #include "bsdf/thindielectric.h"
 #include "bsdf/twosided.h"
 #include "core/frame.h"
+#include "core/rng.h"
 #include "stat/chi2.h"
+#include "texture/constant.h"
 
 using namespace snell;
 using MD = MicrofacetDistribution;
@@ -288,6 +291,118 @@ TEST(BsdfFactory, RejectsBadInput) {
         p.add_child("", std::make_shared<DielectricBSDF>(Spectrum::constant(1.5), Spectrum::constant(1.0)), kLoc);
         throws(p);  // transmissive BSDFs cannot be two-sided
     }
+    {
+        Props p = make("principled");
+        p.set("eta", 1.4, kLoc);
+        p.set("specular", 0.5, kLoc);
+        throws(p);  // one or the other, as in Mitsuba
+    }
+    {
+        Props p = make("principled");
+        p.set("roughness", 1.5, kLoc);
+        throws(p);  // principled parameters lie in [0, 1]
+    }
+    {
+        Props p = make("principled");
+        p.set("spec_trans", 0.5, kLoc);
+        p.set("base_color", RGB(0.8, 0.3, 0.2), kLoc);
+        p.set("clearcoat", 0.3, kLoc);
+        EXPECT_TRUE(create_bsdf(p)->is_transmissive());
+        EXPECT_NEAR(PrincipledBSDF::eta_from_specular(0.5), 1.5, 1e-12);
+    }
 }
 
 }  // namespace
+
+// Two corners of the principled BSDF in closed form. With spec_trans = 1, metallic = 0 and a white
+// base it is the rough dielectric (GGX, alpha = roughness^2) in value and density, from both
+// sides; with metallic = 1 it is a GGX reflector with Schlick's Fresnel of F0 = base colour.
+TEST(Principled, CornersInClosedForm) {
+    using MD = MicrofacetDistribution;
+    PrincipledBSDF::Params glass;
+    glass.base_color = ConstantTexture::make(1.0);
+    glass.roughness = 0.5;
+    glass.spec_trans = 1.0;
+    glass.spec_trans_on = true;
+    glass.eta = 1.5;
+    const PrincipledBSDF p(glass);
+    const RoughDielectricBSDF rd(MD(MD::Type::GGX, 0.25), Spectrum::constant(1.5), Spectrum::constant(1.0));
+    BSDFContext ctx;
+    PCG32 rng(7, 3);
+    auto random_dir = [&] {
+        const double z = 2 * rng.next_double() - 1, phi = 2 * kPi * rng.next_double();
+        const double r = std::sqrt(std::max(0.0, 1 - z * z));
+        return Vec3(r * std::cos(phi), r * std::sin(phi), z);
+    };
+    int compared = 0;
+    for (int k = 0; k < 2000; ++k) {
+        const Vec3 wo = random_dir(), wi = random_dir();
+        const double a = p.eval(ctx, wo, wi)[0], b = rd.eval(ctx, wo, wi)[0];
+        EXPECT_NEAR(a, b, 1e-9 * (1 + b)) << k;
+        EXPECT_NEAR(p.pdf(ctx, wo, wi), rd.pdf(ctx, wo, wi), 1e-9 * (1 + rd.pdf(ctx, wo, wi))) << k;
+        compared += b > 0;
+    }
+    EXPECT_GT(compared, 500);
+
+    PrincipledBSDF::Params metal;
+    metal.base_color = ConstantTexture::make(0.7);
+    metal.roughness = 0.4;
+    metal.metallic = 1.0;
+    const PrincipledBSDF m(metal);
+    const MD ggx(MD::Type::GGX, 0.16);
+    for (int k = 0; k < 200; ++k) {
+        Vec3 wo = random_dir(), wi = random_dir();
+        wo.z = std::abs(wo.z);
+        wi.z = std::abs(wi.z);
+        const Vec3 h = normalize(wo + wi);
+        const double F = 0.7 + 0.3 * std::pow(1 - dot(wo, h), 5);
+        const double want = F * ggx.D(h) * ggx.G(wo, wi, h) / (4 * wo.z * wi.z);
+        EXPECT_NEAR(m.eval(ctx, wo, wi)[0], want, 1e-9 * (1 + want)) << k;
+    }
+}
+
+// Every reflection lobe of the principled BSDF is reciprocal (the Fresnel terms read the half
+// angle, the diffuse and sheen terms are symmetric in the two directions), and a white metal
+// reflects at most all the light (estimated albedo by cosine-weighted quadrature).
+TEST(Principled, ReflectionIsReciprocalAndWhiteMetalConservesEnergy) {
+    PrincipledBSDF::Params q;
+    const RGB rgb(0.8, 0.4, 0.2);
+    q.base_color = ConstantTexture::make(Spectrum::from_rgb_reflectance(rgb), rgb.luminance(), rgb);
+    q.roughness = 0.35;
+    q.metallic = 0.3;
+    q.spec_tint = 0.5;
+    q.sheen = 0.6;
+    q.sheen_tint = 0.4;
+    q.clearcoat = 0.8;
+    q.clearcoat_on = true;
+    q.flatness = 0.3;
+    const PrincipledBSDF p(q);
+    BSDFContext ctx;
+    ctx.wl = SampledWavelengths::sample_visible(Vec2(0.3, 0.6));
+    PCG32 rng(5, 9);
+    for (int k = 0; k < 500; ++k) {
+        const double z1 = rng.next_double(), z2 = rng.next_double();
+        const double p1 = 2 * kPi * rng.next_double(), p2 = 2 * kPi * rng.next_double();
+        const Vec3 a(std::sqrt(1 - z1 * z1) * std::cos(p1), std::sqrt(1 - z1 * z1) * std::sin(p1), z1);
+        const Vec3 b(std::sqrt(1 - z2 * z2) * std::cos(p2), std::sqrt(1 - z2 * z2) * std::sin(p2), z2);
+        const SampledSpectrum ab = p.eval(ctx, a, b), ba = p.eval(ctx, b, a);
+        for (int i = 0; i < kSpectrumSamples; ++i) EXPECT_NEAR(ab[i], ba[i], 1e-9 * (1 + ab[i])) << k;
+    }
+    PrincipledBSDF::Params w;
+    w.base_color = ConstantTexture::make(1.0);
+    w.roughness = 0.3;
+    w.metallic = 1.0;
+    const PrincipledBSDF white(w);
+    for (double theta : {0.2, 0.8, 1.3}) {
+        const Vec3 wo(std::sin(theta), 0, std::cos(theta));
+        double albedo = 0;
+        const int n = 200000;
+        for (int k = 0; k < n; ++k) {
+            const auto s = white.sample(ctx, wo, rng.next_double(), Vec2(rng.next_double(), rng.next_double()));
+            if (s) albedo += s->weight[0];
+        }
+        albedo /= n;
+        EXPECT_LE(albedo, 1.0 + 0.01) << theta;
+        EXPECT_GT(albedo, 0.8) << theta;  // only shadowing is lost at this roughness
+    }
+}
