@@ -17,9 +17,10 @@ target_compile_options(snell PRIVATE ${SNELL_WARNINGS})
 # `make bench` (Google Benchmark); built only with -DSNELL_BUILD_BENCH=ON.
 if(SNELL_BUILD_BENCH)
   find_package(benchmark REQUIRED)
-  add_executable(snell_bench bench/bench_main.cpp ${PROJECT_BINARY_DIR}/generated/builtin_scenes.cpp)
+  add_executable(snell_bench bench/bench_main.cpp bench/bench_textures.cpp
+                             ${PROJECT_BINARY_DIR}/generated/builtin_scenes.cpp)
   target_include_directories(snell_bench PRIVATE ${PROJECT_SOURCE_DIR}/apps)
-  target_link_libraries(snell_bench PRIVATE snell_loader snell_integrators benchmark::benchmark)
+  target_link_libraries(snell_bench PRIVATE snell_loader snell_integrators benchmark::benchmark PkgConfig::OIIO)
 endif()
 
 if(SNELL_BUILD_TESTS)

@@ -8,6 +8,7 @@ snell_library(snell_geometry
   src/geometry/cylinder.cpp
   src/geometry/mesh.cpp
   src/geometry/builders.cpp
+  src/geometry/instance.cpp
 )
 target_link_libraries(snell_geometry PUBLIC snell_core embree TBB::tbb)
 

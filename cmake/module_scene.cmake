@@ -10,5 +10,5 @@ target_link_libraries(snell_scene PUBLIC snell_geometry snell_light snell_camera
 # snell_geometry.
 snell_test(test_geometry
   SOURCES tests/unit/test_geometry_sphere.cpp tests/unit/test_geometry_cylinder.cpp tests/unit/test_geometry_mesh.cpp
-          tests/unit/test_geometry_scene.cpp
+          tests/unit/test_geometry_scene.cpp tests/unit/test_geometry_instance.cpp
   LIBS snell_scene)

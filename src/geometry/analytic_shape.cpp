@@ -18,10 +18,11 @@ void analytic_bounds(const RTCBoundsFunctionArguments* args) {
     args->bounds_o->upper_z = float(b.hi.z);
 }
 
-/// The double ray of the query: from our extended context when present, else the float copy.
+/// The double ray of the query (in the instance's space when the shape is instanced): from our
+/// extended context when present, else the float copy.
 Ray query_ray(const RTCIntersectContext* ctx, const RTCRay& r) {
     if (ctx) {
-        if (const Ray* dr = RayContext::from(ctx)->ray) return *dr;
+        if (RayContext::from(ctx)->ray) return RayContext::from(ctx)->ray_in(ctx->instID[0]);
     }
     Ray out;
     out.o = {r.org_x, r.org_y, r.org_z};
@@ -52,6 +53,7 @@ void analytic_intersect(const RTCIntersectFunctionNArguments* args) {
     if (RayContext* c = RayContext::from(args->context); c->ray) {
         c->t_exact = t;
         c->geom_exact = args->geomID;
+        c->inst_exact = args->context->instID[0];
     }
 }
 

@@ -63,6 +63,7 @@ public:
     }
 
     const BSDF* bsdf() const { return m_bsdf.get(); }
+    const std::shared_ptr<BSDF>& bsdf_ptr() const { return m_bsdf; }
     const Light* emitter() const { return m_emitter; }
     void set_bsdf(std::shared_ptr<BSDF> b) { m_bsdf = std::move(b); }
     void set_emitter(const Light* l) { m_emitter = l; }

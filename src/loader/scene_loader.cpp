@@ -12,6 +12,7 @@
 #include "camera/factory.h"
 #include "camera/orthographic.h"
 #include "camera/thinlens.h"
+#include "geometry/instance.h"
 #include "integrators/integrator.h"
 #include "light/factory.h"
 #include "loader/mitsuba_integrators.h"
@@ -111,6 +112,7 @@ private:
     LoadedScene& m_out;
     std::map<const XmlObject*, std::shared_ptr<BSDF>> m_bsdfs;  // one instance per element (refs share)
     std::map<const XmlObject*, TextureRef> m_textures;
+    std::map<const XmlObject*, std::shared_ptr<ShapeGroup>> m_groups;
 
     // The SMS code's caustic flags on shapes and emitters: accepted, one notice per scene.
     void sms_flags(const Props& p) {
@@ -153,28 +155,27 @@ private:
     }
 
     void add_shape(const XmlObject& o, Scene& scene) {
-        Props p = props(o);
-        // Mesh file names are relative to the file the shape was written in.
-        if (o.param("filename")) p.set("__base_dir", o.base_dir, o.loc);
-        const XmlObject* emitter = nullptr;
-        for (const auto& c : o.children) {
-            if (c.obj->tag == "bsdf") {
-                p.add_child(c.name, bsdf(*c.obj), c.loc);
-            } else {  // emitter (the parser allows nothing else here)
-                if (emitter)
-                    throw SceneError(c.obj->loc, "emitter",
-                                     "a shape has at most one emitter (first at " + emitter->loc.str() + ")");
-                if (c.obj->type != "area")
-                    throw SceneError(
-                        c.obj->loc, "emitter",
-                        "only type=\"area\" emitters can be nested in a <shape>, not '" + c.obj->type + "'");
-                emitter = c.obj.get();
-            }
+        if (o.type == "shapegroup") {
+            group(o);  // a declaration, placed by instances; built now so that its errors are reported
+            return;
         }
-        sms_flags(p);
-        auto shape = located(o, [&] { return create_shape(p); });
-        p.check_unused();
-        shape->set_id(o.id);
+        if (o.type == "instance") {
+            Props p = props(o);
+            const XmlObject* g = nullptr;
+            for (const auto& c : o.children) {
+                if (c.obj->tag != "shape" || c.obj->type != "shapegroup" || g)
+                    throw SceneError(c.loc, c.obj->tag, "an instance takes exactly one <ref> to a shapegroup");
+                g = c.obj.get();
+            }
+            if (!g) p.raise("an instance needs a <ref id=\"...\"/> to a shapegroup");
+            const Transform to_world = p.get_transform("to_world");
+            p.check_unused();
+            if (!(std::abs(to_world.det3()) > 0)) p.raise_param("to_world", "to_world must be invertible");
+            scene.add_instance(std::make_shared<Instance>(group(*g), to_world));
+            return;
+        }
+        const XmlObject* emitter = nullptr;
+        auto shape = make_shape(o, &emitter);
         if (emitter) {
             Props ep = props(*emitter);
             sms_flags(ep);
@@ -183,6 +184,60 @@ private:
             scene.add_light(light);
         }
         scene.add_shape(shape);
+    }
+
+    /// A shape with its BSDF; its nested area emitter, if any, in *emitter.
+    std::shared_ptr<Shape> make_shape(const XmlObject& o, const XmlObject** emitter) {
+        Props p = props(o);
+        // Mesh file names are relative to the file the shape was written in.
+        if (o.param("filename")) p.set("__base_dir", o.base_dir, o.loc);
+        for (const auto& c : o.children) {
+            if (c.obj->tag == "bsdf") {
+                p.add_child(c.name, bsdf(*c.obj), c.loc);
+            } else if (c.obj->tag == "shape") {
+                throw SceneError(c.loc, "shape",
+                                 "only a <shape type=\"shapegroup\"> contains shapes (and only an instance "
+                                 "refers to one)");
+            } else {  // emitter (the parser allows nothing else here)
+                if (*emitter)
+                    throw SceneError(c.obj->loc, "emitter",
+                                     "a shape has at most one emitter (first at " + (*emitter)->loc.str() + ")");
+                if (c.obj->type != "area")
+                    throw SceneError(
+                        c.obj->loc, "emitter",
+                        "only type=\"area\" emitters can be nested in a <shape>, not '" + c.obj->type + "'");
+                *emitter = c.obj.get();
+            }
+        }
+        sms_flags(p);
+        auto shape = located(o, [&] { return create_shape(p); });
+        p.check_unused();
+        shape->set_id(o.id);
+        return shape;
+    }
+
+    /// A shapegroup's shapes, built once however many instances place it.
+    std::shared_ptr<ShapeGroup> group(const XmlObject& o) {
+        if (auto it = m_groups.find(&o); it != m_groups.end()) return it->second;
+        Props p = props(o);
+        std::vector<std::shared_ptr<Shape>> shapes;
+        for (const auto& c : o.children) {
+            if (c.obj->tag != "shape")
+                throw SceneError(c.loc, c.obj->tag, "a shapegroup contains only shapes (with their BSDFs)");
+            if (c.obj->type == "shapegroup" || c.obj->type == "instance")
+                throw SceneError(c.loc, "shape", "shapegroups and instances do not nest");
+            const XmlObject* emitter = nullptr;
+            shapes.push_back(make_shape(*c.obj, &emitter));
+            if (emitter)
+                throw SceneError(emitter->loc, "emitter",
+                                 "a shape in a shapegroup cannot emit (as in Mitsuba): instance the geometry, and "
+                                 "give the emitting shape its own <shape>");
+        }
+        p.check_unused();
+        if (shapes.empty()) p.raise("an empty shapegroup");
+        auto g = std::make_shared<ShapeGroup>(std::move(shapes));
+        m_groups[&o] = g;
+        return g;
     }
 
     std::shared_ptr<Camera> camera(const XmlObject& o) {

@@ -41,8 +41,8 @@ const std::set<std::string>& allowed_children(const std::string& parent) {
         {"sensor", {"film", "sampler"}},
         {"film", {"rfilter"}},
         {"bsdf", {"bsdf", "texture"}},
-        {"texture", {"texture"}},  // checkerboard's color0/color1
-        {"shape", {"bsdf", "emitter"}},
+        {"texture", {"texture"}},                 // checkerboard's color0/color1
+        {"shape", {"bsdf", "emitter", "shape"}},  // shapes only in a shapegroup, refs only in an instance
     };
     static const std::set<std::string> none;
     auto it = table.find(parent);

@@ -62,6 +62,7 @@ Scene::~Scene() {
 }
 
 void Scene::add_shape(std::shared_ptr<Shape> shape) { m_shapes.push_back(std::move(shape)); }
+void Scene::add_instance(std::shared_ptr<Instance> instance) { m_instances.push_back(std::move(instance)); }
 void Scene::add_light(std::shared_ptr<Light> light) { m_lights.push_back(std::move(light)); }
 
 void Scene::build() {
@@ -71,6 +72,20 @@ void Scene::build() {
         if (id >= m_by_geom_id.size()) m_by_geom_id.resize(id + 1, nullptr);
         m_by_geom_id[id] = s.get();
         m_bounds.expand(s->bounds());
+    }
+    // Instances: one Embree instance geometry each; their placed shapes join shapes().
+    for (const auto& inst : m_instances) {
+        const unsigned id = inst->attach(m_device, m_scene);
+        if (id >= m_instance_by_geom_id.size()) {
+            m_instance_by_geom_id.resize(id + 1, nullptr);
+            m_inst_to_local.resize(id + 1, nullptr);
+        }
+        m_instance_by_geom_id[id] = inst.get();
+        m_inst_to_local[id] = &inst->to_local();
+        for (const auto& s : inst->shapes()) {
+            m_shapes.push_back(s);
+            m_bounds.expand(s->bounds());
+        }
     }
     rtcCommitScene(m_scene);
     if (rtcGetDeviceError(m_device) != RTC_ERROR_NONE) throw std::runtime_error("Embree failed to build the scene");
@@ -89,7 +104,7 @@ void Scene::build() {
 }
 
 bool Scene::intersect(const Ray& ray, SurfaceInteraction* si) const {
-    RayContext ctx(ray);
+    RayContext ctx(ray, &m_inst_to_local);
     RTCRayHit rh;
     to_embree(ray, rh.ray);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -98,8 +113,10 @@ bool Scene::intersect(const Ray& ray, SurfaceInteraction* si) const {
     ++scene_stats::rays;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     // Analytic shapes report their exact double t through the context.
-    const double t = ctx.geom_exact == rh.hit.geomID ? ctx.t_exact : double(rh.ray.tfar);
-    const Shape* shape = m_by_geom_id[rh.hit.geomID];
+    const unsigned inst = rh.hit.instID[0];
+    const double t = ctx.geom_exact == rh.hit.geomID && ctx.inst_exact == inst ? ctx.t_exact : double(rh.ray.tfar);
+    const Shape* shape = inst == RTC_INVALID_GEOMETRY_ID ? m_by_geom_id[rh.hit.geomID]
+                                                         : m_instance_by_geom_id[inst]->shape_of(rh.hit.geomID);
     // Fills wo as well (-normalize(ray.d)); normalising it a second time here cost a square
     // root and three divisions per hit.
     shape->compute_interaction(ray, t, rh.hit.primID, Vec2(rh.hit.u, rh.hit.v), si);
@@ -107,7 +124,7 @@ bool Scene::intersect(const Ray& ray, SurfaceInteraction* si) const {
 }
 
 bool Scene::occluded(const Ray& ray) const {
-    RayContext ctx(ray);
+    RayContext ctx(ray, &m_inst_to_local);
     RTCRay r;
     to_embree(ray, r);
     rtcOccluded1(m_scene, &ctx.ctx, &r);

@@ -6,6 +6,7 @@
 
 #include "camera/camera.h"
 #include "core/stats.h"
+#include "geometry/instance.h"
 #include "geometry/interaction.h"
 #include "geometry/shape.h"
 #include "light/light.h"
@@ -30,6 +31,8 @@ public:
     Scene& operator=(const Scene&) = delete;
 
     void add_shape(std::shared_ptr<Shape> shape);
+    /// A placed shape group (Mitsuba's `instance`); its shapes join shapes() at build().
+    void add_instance(std::shared_ptr<Instance> instance);
     void add_light(std::shared_ptr<Light> light);
     void set_camera(std::shared_ptr<Camera> cam) { m_camera = std::move(cam); }
     /// Builds the BVH, preprocesses lights, builds the light sampler. Call once after adding.
@@ -69,6 +72,9 @@ private:
     RTCScene m_scene = nullptr;
     std::vector<std::shared_ptr<Shape>> m_shapes;
     std::vector<const Shape*> m_by_geom_id;
+    std::vector<std::shared_ptr<Instance>> m_instances;
+    std::vector<const Instance*> m_instance_by_geom_id;
+    std::vector<const Transform*> m_inst_to_local;  // per instance geometry id (analytic shapes)
     std::vector<std::shared_ptr<Light>> m_lights;
     std::vector<const Light*> m_infinite;
     LightSampler m_light_sampler;

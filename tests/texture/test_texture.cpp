@@ -173,3 +173,19 @@ TEST(CheckerboardTexture, CellsAndToUv) {
     EXPECT_DOUBLE_EQ(scaled.eval_float(at_uv(0.2, 0.1)), 0.0);  // (0.8, 0.4): mixed, color1
     EXPECT_DOUBLE_EQ(scaled.eval_float(at_uv(0.2, 0.2)), 1.0);  // (0.8, 0.8): both high
 }
+
+TEST(TextureImage, TiffJpegAndHdrRead) {
+    const auto jpg = read_texture_image(write_texture("grey.jpg", 8, 8, 3, std::vector<uint8_t>(192, 128)));
+    EXPECT_EQ(jpg.channels, 3);
+    EXPECT_TRUE(jpg.srgb_encoded);
+    EXPECT_NEAR(jpg.texels[5], 128.0 / 255, 3.0 / 255);  // lossy, but a flat image survives
+    const auto tif = read_texture_image(write_texture("ramp.tif", 4, 2, 1, grey_ramp()));
+    EXPECT_EQ(tif.channels, 1);
+    EXPECT_TRUE(tif.srgb_encoded);
+    EXPECT_NEAR(tif.texels[3], 3.0 / 7, 1.0 / 510);
+    const std::vector<float> px = {0.5f, 2.0f, 0.25f, 4.0f, 0.125f, 1.0f};
+    const auto hdr = read_texture_image(write_texture("two.hdr", 2, 1, 3, px));
+    EXPECT_EQ(hdr.channels, 3);
+    EXPECT_FALSE(hdr.srgb_encoded);
+    for (size_t i = 0; i < px.size(); ++i) EXPECT_NEAR(hdr.texels[i], px[i], 0.01 * px[i]);  // RGBE: 8-bit mantissa
+}

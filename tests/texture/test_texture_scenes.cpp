@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "bsdf/bsdf.h"
 #include "core/stats.h"
 #include "plane_scene.h"
 #include "stat/render_stats.h"
@@ -148,4 +149,64 @@ TEST(TextureScenes, BumpMappedPlaneIrradiance) {
     const double middle = 0.5 * std::cos(5 * M_PI / 12), edge = 0.5 * std::cos(M_PI / 4);
     expect_rgb(mean_over(rgb, 0.3, 0.7, 0.1, 0.9), Vec3(middle, middle, middle), 0.01, "sloped middle");
     expect_rgb(mean_over(rgb, 0.1, 0.2, 0.1, 0.9), Vec3(edge, edge, edge), 0.01, "flat edge");
+}
+
+// A plane seen along its normal (orthographic) under a constant environment of radiance 1 shows
+// its BSDF's directional albedo at normal incidence, which a quadrature of eval() alone computes,
+// independently of the BSDF's sampling and of the integrator: for principled (its base colour a
+// checkerboard of two greys, both cells checked), roughplastic, blendbsdf and roughconductor.
+TEST(TextureScenes, PlanesShowTheirAlbedo) {
+    const std::string ortho = R"(<sensor type="orthographic">
+    <transform name="to_world"><scale x="0.8" y="0.8"/><lookat origin="0, 0, 2" target="0, 0, 0" up="0, 1, 0"/></transform>)";
+    const std::string principled = R"(<float name="roughness" value="0.4"/><float name="metallic" value="0.2"/>
+      <float name="sheen" value="0.5"/><float name="clearcoat" value="0.5"/><float name="spec_tint" value="0.3"/>)";
+    struct Case {
+        std::string name, bsdf;  // the plane's BSDF; `$c` is the grey of the checked cell
+        bool checker;
+    };
+    const std::vector<Case> cases = {
+        {"principled", R"(<bsdf type="principled"><float name="base_color" value="$c"/>)" + principled + "</bsdf>",
+         true},
+        {"roughplastic", R"(<bsdf type="roughplastic"><float name="diffuse_reflectance" value="$c"/>
+           <float name="alpha" value="0.3"/></bsdf>)",
+         false},
+        {"blendbsdf", R"(<bsdf type="blendbsdf"><float name="weight" value="0.35"/>
+           <bsdf type="diffuse"><float name="reflectance" value="$c"/></bsdf>
+           <bsdf type="roughconductor"><float name="alpha" value="0.2"/></bsdf></bsdf>)",
+         false},
+        {"roughconductor", R"(<bsdf type="roughconductor"><string name="distribution" value="ggx"/>
+           <float name="alpha" value="0.25"/><float name="specular_reflectance" value="$c"/></bsdf>)",
+         false},
+    };
+    auto with_grey = [](std::string xml, double grey) {
+        xml.replace(xml.find("$c"), 2, std::to_string(grey));
+        return xml;
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        std::string shown = with_grey(c.bsdf, 0.8);
+        if (c.checker) {
+            const std::string tex = R"(<texture type="checkerboard" name="base_color">
+      <float name="color0" value="0.8"/><float name="color1" value="0.3"/></texture>)";
+            shown = R"(<bsdf type="principled">)" + tex + principled + "</bsdf>";
+        }
+        const auto rgb = render_rgb(load_xml(plane_scene("", "path", shown, "", ortho)), 64, 4);
+        for (double grey : c.checker ? std::vector<double>{0.8, 0.3} : std::vector<double>{0.8}) {
+            const auto one = load_xml(plane_scene("", "path", with_grey(c.bsdf, grey), "", ortho));
+            const BSDF& b = *one.scene->shapes()[0]->bsdf();
+            // 2 pi int f(z, wi(theta)) cos sin dtheta: isotropic, so f depends on theta alone.
+            const int n = 20000;
+            Vec3 albedo;
+            BSDFContext ctx;
+            ctx.wl = SampledWavelengths::single(550);
+            for (int k = 0; k < n; ++k) {
+                const double th = (k + 0.5) / n * (M_PI / 2);
+                albedo += Vec3(1, 1, 1) * (b.eval(ctx, Vec3(0, 0, 1), Vec3(std::sin(th), 0, std::cos(th)))[0] *
+                                           std::cos(th) * std::sin(th));
+            }
+            albedo = albedo * (2 * M_PI * (M_PI / 2) / n);
+            const Vec3 got = grey == 0.8 ? mean_over(rgb, 0.1, 0.5, 0.1, 0.5) : mean_over(rgb, 0.5, 0.9, 0.1, 0.5);
+            expect_rgb(got, albedo, 0.02, c.name + " albedo " + std::to_string(grey));
+        }
+    }
 }

@@ -306,3 +306,21 @@ TEST(GeometryMesh, CachedTriangleParamsAreBitIdentical) {
         }
     }
 }
+
+// Mitsuba's disk parametrisation, uv = (r, phi / 2 pi), on the triangle fan (256 segments): r
+// within the chord's sag, phi / 2 pi within half a segment (towards the centre a fan triangle
+// interpolates v towards its centre vertex's).
+TEST(GeometryMesh, DiskHasMitsubasPolarUv) {
+    auto disk = std::make_shared<TriangleMesh>(make_disk(Transform::scale(Vec3(2, 2, 1))));
+    Scene scene;
+    scene.add_shape(disk);
+    scene.build();
+    for (double r : {0.2, 0.5, 0.9})
+        for (double phi : {0.3, 2.0, 3.5, 6.1}) {
+            const Vec3 target(2 * r * std::cos(phi), 2 * r * std::sin(phi), 0);
+            SurfaceInteraction si;
+            ASSERT_TRUE(scene.intersect(Ray{target + Vec3(0, 0, 1), Vec3(0, 0, -1), 0.0, kInfinity}, &si));
+            EXPECT_NEAR(si.uv.x, r, 1e-4) << r << " " << phi;
+            EXPECT_NEAR(si.uv.y, phi / (2 * kPi), 0.5 / 256) << r << " " << phi;  // half a segment
+        }
+}
