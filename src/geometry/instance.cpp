@@ -101,6 +101,19 @@ bool InstancedShape::closest_point(const Vec3& p, double radius, SurfaceInteract
     return true;
 }
 
+Vec3 InstancedShape::normal_derivative(const SurfaceInteraction& si, const Vec3& tangent) const {
+    // The same point on the group shape, its derivative along the tangent carried back
+    // (M^-1 t is tangent there), then n_w = N n / |N n| differentiated: (I - n_w n_w^T) N dn / |N n|.
+    SurfaceInteraction local;
+    const Vec3 pl = m_to_local.point(si.p);
+    if (!m_base.closest_point(pl, 1e-6 * (1.0 + length(pl)), &local)) return Shape::normal_derivative(si, tangent);
+    const Vec3 dn = m_base.normal_derivative(local, m_to_local.vector(tangent));
+    const Vec3 Nn = m_to_world.normal(local.n);
+    const double len = length(Nn);
+    const Vec3 n = Nn / len, v = m_to_world.normal(dn) / len;
+    return v - n * dot(n, v);
+}
+
 ShapeSample InstancedShape::sample_area(const Vec2& u) const {
     ShapeSample s = m_base.sample_area(u);
     // The density changes by the ratio of the tangent plane's areas, read at the sample.

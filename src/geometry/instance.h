@@ -52,6 +52,8 @@ public:
     /// for rigid motions and uniform scales, a smooth projection onto the surface otherwise.
     bool closest_point(const Vec3& p, double radius, SurfaceInteraction* si) const override;
     ShapeSample sample_area(const Vec2& u) const override;
+    /// The group shape's shape operator (exact at a sphere's poles too), carried by the transform.
+    Vec3 normal_derivative(const SurfaceInteraction& si, const Vec3& tangent) const override;
 
     const Shape& base() const { return m_base; }
     /// Carries a hit or projection on the group shape to world space (si->shape becomes this).

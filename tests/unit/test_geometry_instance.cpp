@@ -51,6 +51,18 @@ TEST(GeometryInstance, DifferentialGeometryCarriedByTheTransform) {
                 // Outward: away from the placed centre, for the mirror too.
                 EXPECT_GT(dot(si.n, si.p - T.point(Vec3(0, 0, 0))), 0.0);
             }
+        // The shape operator along world tangents, at the pole as well (where dp/du vanishes and
+        // the (u, v) route cannot invert the metric): against central differences of n.
+        for (double v : {0.0, 0.3}) {
+            const SurfaceInteraction si = at(0.2, v);
+            for (const Vec3 t : {normalize(cross(si.n, Vec3(1, 0, 0))), normalize(cross(si.n, Vec3(0, 1, 0)))}) {
+                const double hh = 1e-6;
+                SurfaceInteraction a, b;
+                ASSERT_TRUE(placed.closest_point(si.p + t * hh, 1.0, &a));
+                ASSERT_TRUE(placed.closest_point(si.p - t * hh, 1.0, &b));
+                EXPECT_LT(length((a.n - b.n) / (2 * hh) - placed.normal_derivative(si, t)), 1e-4) << "v " << v;
+            }
+        }
     }
 }
 
