@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <set>
 
@@ -252,12 +253,26 @@ private:
         double fov = 0, aperture = 0, focus = 0;
         std::string axis;
         if (o.type != "orthographic") {
-            // Mitsuba's default is a 50 mm lens on 35 mm film (36 mm wide): fov_x = 39.6 degrees.
-            fov = p.get_float("fov", 2.0 * std::atan(36.0 / (2.0 * 50.0)) * 180.0 / kPi);
-            if (!(fov > 0 && fov < 180)) p.raise_param("fov", "fov must lie in (0, 180) degrees");
             axis = p.get_string("fov_axis", "x");
             static const std::set<std::string> axes = {"x", "y", "smaller", "larger", "diagonal"};
             if (!axes.count(axis)) p.raise_param("fov_axis", "fov_axis must be x, y, smaller, larger or diagonal");
+            if (p.has("fov") && p.has("focal_length"))
+                p.raise_param("focal_length", "give either 'fov' or 'focal_length', not both");
+            if (p.has("fov")) {
+                fov = p.get_float("fov");
+            } else {
+                // Mitsuba: a focal length ("50mm" unless given) on 35 mm film, whose diagonal
+                // (sqrt(36^2 + 24^2) mm) it spans: the field of view is along the diagonal.
+                std::string f = p.get_string("focal_length", "50mm");
+                if (f.size() > 2 && f.compare(f.size() - 2, 2, "mm") == 0) f.resize(f.size() - 2);
+                char* end = nullptr;
+                const double mm = std::strtod(f.c_str(), &end);
+                if (f.empty() || *end != '\0' || !(mm > 0) || !std::isfinite(mm))
+                    p.raise_param("focal_length", "focal_length must read like '50mm'");
+                fov = 2.0 * std::atan(std::sqrt(36.0 * 36.0 + 24.0 * 24.0) / (2.0 * mm)) * 180.0 / kPi;
+                axis = "diagonal";
+            }
+            if (!(fov > 0 && fov < 180)) p.raise_param("fov", "fov must lie in (0, 180) degrees");
         }
         if (o.type == "thinlens") {
             // Mitsuba's thinlens takes both, without defaults.

@@ -38,6 +38,12 @@ TextureRef make_bitmap(const Props& p) {
     else
         p.raise_param("wrap_mode", "unknown wrap_mode '" + wrap + "' (expected repeat, mirror or clamp)");
     const bool raw = p.get_bool("raw", false);
+    // Mitsuba's storage precision (auto, variant, fp16): snell keeps texels in float.
+    if (p.has("format")) {
+        const std::string f = p.get_string("format");
+        if (f != "auto" && f != "variant" && f != "fp16")
+            p.raise_param("format", "unknown format '" + f + "' (expected auto, variant or fp16)");
+    }
     const Transform to_uv = p.get_transform("to_uv");
     TextureImage img;
     try {
@@ -57,6 +63,21 @@ TextureRef make_checkerboard(const Props& p) {
     return std::make_shared<CheckerboardTexture>(c0, c1, p.get_transform("to_uv"));
 }
 
+/// Mitsuba's `rawconstant`: a value taken as it is (no spectral upsampling), e.g. the flat normal
+/// (0.5, 0.5, 1) of a normal map.
+TextureRef make_rawconstant(const Props& p) {
+    RGB v(1.0);
+    if (p.has("value")) {
+        try {
+            v = p.get_rgb("value", v);
+        } catch (const SceneError&) {  // Mitsuba's test scenes write it as a <vector>
+            const Vec3 q = p.get_vec3("value");
+            v = RGB(q.x, q.y, q.z);
+        }
+    }
+    return ConstantTexture::make(Spectrum::from_rgb_unbounded(v), v.luminance(), v);
+}
+
 }  // namespace
 
 TextureRef create_texture(const Props& p) {
@@ -65,8 +86,10 @@ TextureRef create_texture(const Props& p) {
         t = make_bitmap(p);
     else if (p.type() == "checkerboard")
         t = make_checkerboard(p);
+    else if (p.type() == "rawconstant")
+        t = make_rawconstant(p);
     else
-        p.raise("unknown texture type '" + p.type() + "' (known: bitmap, checkerboard)");
+        p.raise("unknown texture type '" + p.type() + "' (known: bitmap, checkerboard, rawconstant)");
     p.check_unused();
     return t;
 }

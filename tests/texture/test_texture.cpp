@@ -10,6 +10,7 @@
 #include "texture/bitmap.h"
 #include "texture/checkerboard.h"
 #include "texture/constant.h"
+#include "texture/factory.h"
 #include "texture_files.h"
 
 using namespace snell;
@@ -188,4 +189,29 @@ TEST(TextureImage, TiffJpegAndHdrRead) {
     EXPECT_EQ(hdr.channels, 3);
     EXPECT_FALSE(hdr.srgb_encoded);
     for (size_t i = 0; i < px.size(); ++i) EXPECT_NEAR(hdr.texels[i], px[i], 0.01 * px[i]);  // RGBE: 8-bit mantissa
+}
+
+// Mitsuba's `rawconstant` keeps its value as given (a normal map's flat normal), and a bitmap's
+// storage `format` is accepted (snell stores float) but checked.
+TEST(TextureFactory, RawConstantAndBitmapFormat) {
+    const SourceLoc loc{"test.xml", 3};
+    Props raw("texture", "rawconstant", loc);
+    raw.set("value", RGB(0.5, 0.5, 1.0), loc);
+    const TextureRef t = create_texture(raw);
+    const RGB c = t->eval_rgb(at_uv(0.3, 0.7));
+    EXPECT_DOUBLE_EQ(c.r, 0.5);
+    EXPECT_DOUBLE_EQ(c.b, 1.0);
+    Props vec("texture", "rawconstant", loc);  // Mitsuba's test scenes write a <vector>
+    vec.set("value", Vec3(0.5, 0.25, 1.0), loc);
+    EXPECT_DOUBLE_EQ(create_texture(vec)->eval_rgb(at_uv(0, 0)).g, 0.25);
+    const std::string png = write_texture("ramp.png", 4, 2, 1, grey_ramp());
+    for (const char* f : {"auto", "variant", "fp16", "half"}) {
+        Props b("texture", "bitmap", loc);
+        b.set("filename", png, loc);
+        b.set("format", std::string(f), loc);
+        if (std::string(f) == "half")
+            EXPECT_THROW(create_texture(b), SceneError);
+        else
+            EXPECT_NO_THROW(create_texture(b)) << f;
+    }
 }

@@ -113,6 +113,31 @@ TEST(SceneLoaderFull, UnusedAndUnknownParametersNameTheirLine) {
                  "test.xml:4: <shape>", "expected float, got string");
 }
 
+// Without a fov, Mitsuba's sensors take a focal length (50 mm unless given) on 35 mm film along
+// its diagonal: on a square image the half-width tangent is (43.27 / 2f) / sqrt 2.
+TEST(SceneLoaderFull, FocalLengthAsMitsuba) {
+    auto half_x = [](const std::string& lens) {
+        const LoadedScene ls = load_scene_string(
+            "<scene version=\"3.0.0\"><sensor type=\"perspective\">" + lens +
+                "<film type=\"hdrfilm\"><integer name=\"width\" value=\"48\"/><integer name=\"height\" "
+                "value=\"48\"/></film></sensor></scene>",
+            "test.xml", kDataDir);
+        return ls.scene->camera()->pinhole()->tan_half_x();
+    };
+    const double diag = std::sqrt(36.0 * 36.0 + 24.0 * 24.0);
+    EXPECT_NEAR(half_x(""), diag / (2 * 50) / std::sqrt(2.0), 1e-12);
+    EXPECT_NEAR(half_x(R"(<string name="focal_length" value="35mm"/>)"), diag / (2 * 35) / std::sqrt(2.0), 1e-12);
+    EXPECT_NEAR(half_x(R"(<float name="fov" value="40"/>)"), std::tan(20 * kPi / 180), 1e-12);
+    expect_error(
+        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>"
+        "<string name=\"focal_length\" value=\"35mm\"/></sensor>\n</scene>",
+        "test.xml:2: <sensor>", "either 'fov' or 'focal_length'");
+    expect_error(
+        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\"><string name=\"focal_length\" "
+        "value=\"wide\"/></sensor>\n</scene>",
+        "test.xml:2: <sensor>", "focal_length must read like '50mm'");
+}
+
 TEST(SceneLoaderFull, SensorFilmSamplerErrors) {
     expect_error("<scene version=\"3.0.0\">\n<shape type=\"sphere\"/>\n</scene>", "test.xml:1: <scene>", "no <sensor");
     expect_error("<scene version=\"3.0.0\">\n<sensor type=\"fisheye\"/>\n</scene>", "test.xml:2: <sensor>",
