@@ -109,7 +109,10 @@ void PrincipledBSDF::lobe_probabilities(const Local& l, bool front, double F, do
 
 SampledSpectrum PrincipledBSDF::eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
     if (wo.z == 0 || wi.z == 0) return {};
-    const Local l = at(ctx);
+    return eval_at(ctx, at(ctx), wo, wi);
+}
+
+SampledSpectrum PrincipledBSDF::eval_at(const BSDFContext& ctx, const Local& l, const Vec3& wo, const Vec3& wi) const {
     const bool front = wo.z > 0, reflect = wo.z * wi.z > 0;
     const double eta_path = front ? m_p.eta : 1.0 / m_p.eta;
     Vec3 h = normalize(wo + wi * (reflect ? 1.0 : eta_path));
@@ -185,7 +188,10 @@ SampledSpectrum PrincipledBSDF::eval(const BSDFContext& ctx, const Vec3& wo, con
 
 double PrincipledBSDF::pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
     if (wo.z == 0 || wi.z == 0) return 0;
-    const Local l = at(ctx);
+    return pdf_at(at(ctx), wo, wi);
+}
+
+double PrincipledBSDF::pdf_at(const Local& l, const Vec3& wo, const Vec3& wi) const {
     const bool front = wo.z > 0, reflect = wo.z * wi.z > 0;
     const double eta_path = front ? m_p.eta : 1.0 / m_p.eta;
     Vec3 h = normalize(wo + wi * (reflect ? 1.0 : eta_path));
@@ -241,9 +247,10 @@ std::optional<BSDFSample> PrincipledBSDF::sample(const BSDFContext& ctx, const V
         if (s.wi.z * wo.z <= 0 || !compatible(m, wo, s.wi, true)) return std::nullopt;
     }
     if (s.wi.z == 0) return std::nullopt;
-    s.pdf = pdf(ctx, wo, s.wi);
+    // The parameters read once for the sample, its density and its value.
+    s.pdf = pdf_at(l, wo, s.wi);
     if (!(s.pdf > 0)) return std::nullopt;
-    s.weight = eval(ctx, wo, s.wi) * (std::abs(s.wi.z) / s.pdf);
+    s.weight = eval_at(ctx, l, wo, s.wi) * (std::abs(s.wi.z) / s.pdf);
     return s;
 }
 

@@ -50,6 +50,9 @@ private:
     /// The parameters read at ctx's point, and the quantities every method needs.
     struct Local;
     Local at(const BSDFContext& ctx) const;
+    /// eval() and pdf() with the parameters already read (sample() reads them once).
+    SampledSpectrum eval_at(const BSDFContext& ctx, const Local& l, const Vec3& wo, const Vec3& wi) const;
+    double pdf_at(const Local& l, const Vec3& wo, const Vec3& wi) const;
     /// Probabilities of the diffuse, clearcoat, specular reflection and transmission lobes for
     /// a Fresnel reflectance F at the microfacet (normalised to sum 1).
     void lobe_probabilities(const Local& l, bool front, double F, double p[4]) const;
