@@ -13,13 +13,22 @@ namespace {
 constexpr int kTableSize = 64;   // mu samples of the transmittance table
 constexpr int kQuadrature = 48;  // per dimension: the microfacet lobe's albedo by a stratified grid
 
-// Specular albedo of the rough dielectric coating at cos theta = mu, with relative IOR eta
-// (inside over outside; < 1 seen from inside): E(mu) = int F(wo.m) D G / (4 mu cos_i) cos_i dwi,
-// by a midpoint grid over the sampler's primary square (the lobe's own importance sampling).
-double specular_albedo(const MicrofacetDistribution& distr, double mu, double eta) {
+// Reflected and transmitted albedos of the rough dielectric coating at cos theta = mu, with
+// relative IOR eta (inside over outside; < 1 seen from inside), by a midpoint grid over the
+// sampler's primary square (the lobe's own importance sampling). Each sampled microfacet m
+// contributes F D G (wo.m) / (wo.z p(m)) to R, and (1 - F) D G (wo.m) / (wo.z p(m)) to T along
+// the refracted direction (the half-vector Jacobians cancel against f's denominators).
+// T < 1 - R: Smith shadowing loses energy in both lobes. The coating's transmittance must be T,
+// the transmission lobe's own albedo, as Mitsuba 3 computes it (eval_transmittance); 1 - R
+// over-brightens the base by up to 16 % at alpha 1 against its references.
+struct CoatingAlbedo {
+    double R = 0, T = 0;
+};
+
+CoatingAlbedo coating_albedo(const MicrofacetDistribution& distr, double mu, double eta) {
     mu = std::clamp(mu, 1e-4, 1.0);
     const Vec3 wo(std::sqrt(1 - mu * mu), 0, mu);
-    double sum = 0;
+    CoatingAlbedo a;
     for (int i = 0; i < kQuadrature; ++i)
         for (int j = 0; j < kQuadrature; ++j) {
             const Vec2 u((i + 0.5) / kQuadrature, (j + 0.5) / kQuadrature);
@@ -27,13 +36,17 @@ double specular_albedo(const MicrofacetDistribution& distr, double mu, double et
             if (!(pm > 0)) continue;
             const double om = dot(wo, m);
             if (om <= 0) continue;
-            const Vec3 wi = reflect(wo, m);
-            if (wi.z <= 0) continue;
-            // f cos_i / p(wi), with p(wi) = pm / (4 om).
-            const double f = fresnel_dielectric(om, eta).R * distr.D(m) * distr.G(wo, wi, m) / (4 * wo.z * wi.z);
-            sum += f * wi.z * 4 * om / pm;
+            const double w = distr.D(m) * om / (wo.z * pm);
+            const DielectricFresnel F = fresnel_dielectric(om, eta);
+            const Vec3 wr = reflect(wo, m);
+            if (wr.z > 0) a.R += F.R * distr.G(wo, wr, m) * w;
+            if (F.R < 1) {
+                const Vec3 wt = refract(wo, m, F.cos_t, F.eta_ti);
+                if (wt.z < 0) a.T += (1 - F.R) * distr.G(wo, wt, m) * w;
+            }
         }
-    return std::min(1.0, sum / (kQuadrature * kQuadrature));
+    const double n = kQuadrature * kQuadrature;
+    return {std::min(1.0, a.R / n), std::min(1.0, a.T / n)};
 }
 
 }  // namespace
@@ -53,10 +66,10 @@ RoughPlasticBSDF::RoughPlasticBSDF(MicrofacetDistribution distribution, Spectrum
     double internal = 0;
     for (int i = 0; i < kTableSize; ++i) {
         const double mu = double(i) / (kTableSize - 1);
-        m_external_transmittance[size_t(i)] = 1 - specular_albedo(m_distr, mu, m_eta);
+        m_external_transmittance[size_t(i)] = coating_albedo(m_distr, mu, m_eta).T;
         // Cosine-weighted hemispherical mean from inside: 2 int R(mu) mu dmu (trapezoid rule).
         const double w = (i == 0 || i == kTableSize - 1) ? 0.5 : 1.0;
-        internal += w * specular_albedo(m_distr, mu, 1 / m_eta) * mu;
+        internal += w * coating_albedo(m_distr, mu, 1 / m_eta).R * mu;
     }
     m_internal_reflectance = std::min(1.0, 2 * internal / (kTableSize - 1));
 }

@@ -3,8 +3,9 @@
 // reflects by a microfacet lobe (Walter et al. 2007, the dielectric Fresnel term); light that
 // enters it reaches the base, scatters diffusely and leaves, attenuated by the coating's rough
 // transmittance on the way in and out, and boosted by the internal inter-reflections (the
-// 1 - R_int denominator). The rough transmittances t(mu) = 1 - E_spec(mu) and the internal
-// diffuse reflectance are tabulated at construction by quadrature of the microfacet lobe.
+// 1 - R_int denominator). The rough transmittance t(mu) (the transmission lobe's albedo, less
+// than 1 - E_spec(mu) by what Smith shadowing loses) and the internal diffuse reflectance are
+// tabulated at construction by quadrature of the microfacet lobes, as Mitsuba 3 does.
 #include <vector>
 
 #include "bsdf/bsdf.h"
@@ -23,8 +24,8 @@ public:
     std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc, const Vec2& u) const override;
     uint32_t flags() const override { return kReflection | kGlossy | kDiffuse; }
 
-    /// The coating's rough transmittance seen from outside at cos theta = mu (1 - its
-    /// specular albedo), interpolated from the table.
+    /// The coating's rough transmittance seen from outside at cos theta = mu (the albedo of
+    /// its transmission lobe, energy not radiance), interpolated from the table.
     double external_transmittance(double mu) const;
     /// Diffuse (cosine-weighted) reflectance of the coating seen from inside.
     double internal_reflectance() const { return m_internal_reflectance; }

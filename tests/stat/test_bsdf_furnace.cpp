@@ -132,8 +132,9 @@ TEST(BsdfFurnace, WhitePlasticConservesEnergyExactly) {
 }
 
 // roughplastic: with a white base and no tint, it loses only what the single-scattering coating
-// loses (its microfacet inter-reflections) and never gains energy; the albedo from eval() by
-// uniform sampling equals the sampled one, and a grey base reflects less.
+// loses (Smith shadowing of its reflection, and of its transmission on the way in and out) and
+// never gains energy; the albedo from eval() by uniform sampling equals the sampled one, and a
+// grey base reflects less.
 TEST(BsdfFurnace, WhiteRoughPlasticLosesOnlyShadowedEnergy) {
     const BSDFContext ctx;
     uint64_t seed = 300;
@@ -143,7 +144,7 @@ TEST(BsdfFurnace, WhiteRoughPlasticLosesOnlyShadowedEnergy) {
                 RoughPlasticBSDF p(MD(t, a), Spectrum::constant(1.0), Spectrum::constant(1.0), 1.49, 1.0);
                 const Estimate e = albedo_sampled(p, ctx, dir(th), 100000, ++seed);
                 EXPECT_LE(e.mean, 1 + 3 * e.sigma) << "a=" << a << " th=" << th;
-                EXPECT_GE(e.mean, 1 - 0.8 * a - 0.05) << "a=" << a << " th=" << th;
+                EXPECT_GE(e.mean, 1 - 1.3 * a - 0.05) << "a=" << a << " th=" << th;
                 if (a >= 0.3) {
                     const Estimate u = albedo_uniform(p, ctx, dir(th), 400000, ++seed);
                     EXPECT_NEAR(u.mean, e.mean, 4 * std::hypot(u.sigma, e.sigma)) << "a=" << a << " th=" << th;
@@ -152,6 +153,33 @@ TEST(BsdfFurnace, WhiteRoughPlasticLosesOnlyShadowedEnergy) {
     RoughPlasticBSDF grey(MD(MD::Type::GGX, 0.2), Spectrum::constant(0.5), Spectrum::constant(1.0), 1.49, 1.0, true);
     const Estimate g = albedo_sampled(grey, ctx, dir(30), 100000, 399);
     EXPECT_LT(g.mean + 4 * g.sigma, 0.8);
+}
+
+// The coating's tabulated transmittance is the transmission lobe's albedo, estimated here
+// independently by sampling roughdielectric (energy, so importance transport: no 1/eta^2).
+// Taking 1 - (specular albedo) instead made roughplastic 4-16 % brighter than Mitsuba 3's
+// references at alpha 0.4-1 (docs/scene-format.md); this test fails on that mutation for a >= 0.3.
+TEST(BsdfFurnace, RoughPlasticTransmittanceIsTheTransmissionLobesAlbedo) {
+    BSDFContext ctx;
+    ctx.mode = TransportMode::Importance;
+    uint64_t seed = 500;
+    for (double a : {0.05, 0.3, 1.0})
+        for (double th : {0.0, 45.0, 75.0}) {
+            const RoughPlasticBSDF p(MD(MD::Type::GGX, a), Spectrum::constant(1.0), Spectrum::constant(1.0), 1.5, 1.0);
+            const RoughDielectricBSDF d(MD(MD::Type::GGX, a), Spectrum::constant(1.5), Spectrum::constant(1.0));
+            PCG32 rng(++seed, 3);
+            double s = 0, s2 = 0;
+            const size_t n = 200000;
+            for (size_t i = 0; i < n; ++i) {
+                const auto r = d.sample(ctx, dir(th), rng.next_double(), {rng.next_double(), rng.next_double()});
+                const double w = r && r->wi.z < 0 ? r->weight[0] : 0.0;
+                s += w;
+                s2 += w * w;
+            }
+            const Estimate T = finish(s, s2, n);
+            EXPECT_NEAR(p.external_transmittance(std::cos(th * kPi / 180)), T.mean, 4 * T.sigma + 2e-3)
+                << "alpha " << a << " theta " << th;
+        }
 }
 
 // null passes everything; a mask of a white diffuse BSDF reflects its opacity and passes the
