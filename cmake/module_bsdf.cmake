@@ -4,6 +4,7 @@ snell_library(snell_bsdf
   src/bsdf/fresnel.cpp
   src/bsdf/microfacet.cpp
   src/bsdf/conductor_data.cpp
+  src/bsdf/conductor_table.cpp
   src/bsdf/diffuse.cpp
   src/bsdf/dielectric.cpp
   src/bsdf/thindielectric.cpp

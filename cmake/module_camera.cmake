@@ -1,6 +1,7 @@
 # Cameras (perspective, thinlens, orthographic), film, pixel filters and the filter factory (owner: camera).
 snell_library(snell_camera
   src/camera/camera.cpp
+  src/camera/field_of_view.cpp
   src/camera/thinlens.cpp
   src/camera/orthographic.cpp
   src/camera/filter.cpp

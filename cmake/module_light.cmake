@@ -4,14 +4,16 @@ snell_library(snell_light
   src/light/area.cpp
   src/light/point.cpp
   src/light/spot.cpp
+  src/light/projector.cpp
   src/light/directional.cpp
   src/light/constant.cpp
   src/light/envmap.cpp
   src/light/rgb_illuminant_table.cpp
   src/light/factory.cpp
 )
-# Environment maps are read with io/image.h; area lights use the Shape interface.
-target_link_libraries(snell_light PUBLIC snell_geometry snell_io snell_core TBB::tbb)
+# Environment maps are read with io/image.h; area lights use the Shape interface; textured
+# emission reads texture/; the projector's field of view is the camera's (camera/field_of_view.h).
+target_link_libraries(snell_light PUBLIC snell_texture snell_camera snell_geometry snell_io snell_core TBB::tbb)
 
 snell_test(test_light
   SOURCES tests/unit/test_light.cpp

@@ -1,8 +1,9 @@
-# Pixel samplers (Mitsuba's independent, stratified, multijitter, ldsampler; scrambled Sobol) and
+# Pixel samplers (Mitsuba's independent, stratified, multijitter, orthogonal, ldsampler; scrambled Sobol) and
 # their factory. Every sampler is a pure function of (seed, pixel, sample index).
 snell_library(snell_sampler
   src/sampler/stratified.cpp
   src/sampler/multijitter.cpp
+  src/sampler/orthogonal.cpp
   src/sampler/ldsampler.cpp
   src/sampler/sobol.cpp
   src/sampler/factory.cpp

@@ -12,8 +12,9 @@ struct ConductorIOR {
     Spectrum eta, k;
 };
 
-/// Measured complex IOR of a named conductor ("Au", "Ag", "Cu", "Al"); std::nullopt for an
-/// unknown name. "none" (a perfect mirror) is handled by the BSDFs, not here.
+/// Measured complex IOR of a named conductor, by Mitsuba's names ("Au", "Ag", "Cu", "Al", "a-C",
+/// "W", ...: the files of its ior/ data folder, conductor_table.h); std::nullopt for an unknown
+/// name. "none" (a perfect mirror) is handled by the BSDFs, not here.
 std::optional<ConductorIOR> named_conductor(const std::string& name);
 
 /// Comma-separated list of the accepted names, for error messages.

@@ -1,5 +1,7 @@
 #include "camera/camera.h"
 
+#include "camera/field_of_view.h"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -8,24 +10,9 @@ namespace snell {
 PerspectiveCamera::PerspectiveCamera(const Transform& to_world, double fov_deg, const std::string& fov_axis,
                                      const FilmSpec& film, double near_clip, double far_clip)
     : Camera(to_world, film), m_to_camera(to_world.inverse()), m_near(near_clip), m_far(far_clip) {
-    const double aspect = double(film.width) / double(film.height);
-    const double t = std::tan(0.5 * fov_deg * kPi / 180.0);
-    std::string axis = fov_axis;
-    if (axis == "smaller") axis = aspect >= 1 ? "y" : "x";
-    if (axis == "larger") axis = aspect >= 1 ? "x" : "y";
-    if (axis == "x") {
-        m_tx = t;
-        m_ty = t / aspect;
-    } else if (axis == "y") {
-        m_ty = t;
-        m_tx = t * aspect;
-    } else if (axis == "diagonal") {
-        const double d = std::sqrt(aspect * aspect + 1.0);
-        m_tx = t * aspect / d;
-        m_ty = t / d;
-    } else {
-        throw std::invalid_argument("unknown fov_axis '" + fov_axis + "' (x, y, smaller, larger, diagonal)");
-    }
+    const Vec2 t = fov_tangents({fov_deg, fov_axis}, double(film.width) / double(film.height));
+    m_tx = t.x;
+    m_ty = t.y;
 }
 
 Ray PerspectiveCamera::generate_ray(const Vec2& raster) const {

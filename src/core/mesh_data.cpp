@@ -26,6 +26,12 @@ void validate_mesh(const MeshData& mesh, const std::string& what) {
     if (!mesh.uvs.empty() && mesh.uvs.size() != nv) fail("uv count differs from vertex count");
     for (const Vec3& p : mesh.positions)
         if (!is_finite(p)) fail("non-finite vertex position");
+    for (const MeshAttribute& a : mesh.attributes) {
+        const size_t n = a.per_face ? mesh.triangles.size() : nv;
+        if ((a.channels != 1 && a.channels != 3) || a.values.size() != n * size_t(a.channels))
+            fail("attribute '" + a.name + "' has " + std::to_string(a.values.size()) + " values for " +
+                 std::to_string(n) + (a.per_face ? " faces" : " vertices"));
+    }
     for (size_t i = 0; i < mesh.triangles.size(); ++i)
         for (uint32_t k : mesh.triangles[i])
             if (k >= nv)

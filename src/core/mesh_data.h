@@ -12,6 +12,15 @@
 
 namespace snell {
 
+/// A named per-vertex or per-face value of 1 or 3 channels (Mitsuba's mesh attributes, read
+/// from PLY files: "vertex_color", "face_weight", ...).
+struct MeshAttribute {
+    std::string name;  ///< with its "vertex_" or "face_" prefix, as Mitsuba names it
+    bool per_face = false;
+    int channels = 1;           ///< 1 or 3
+    std::vector<float> values;  ///< channels per vertex, or per triangle
+};
+
 /// Indexed triangle list. `normals` and `uvs` are either empty or one per position.
 /// Winding: counter-clockwise seen from the outside (the side the face normal points to).
 struct MeshData {
@@ -19,6 +28,7 @@ struct MeshData {
     std::vector<Vec3> normals;  ///< per-vertex shading normals (need not be unit length)
     std::vector<Vec2> uvs;      ///< per-vertex texture coordinates
     std::vector<std::array<uint32_t, 3>> triangles;
+    std::vector<MeshAttribute> attributes;  ///< per-face ones have one entry per triangle
 };
 
 /// Applies `xf` to positions (point) and normals (inverse transpose). A transform that flips

@@ -106,6 +106,7 @@ ShapeSample Cylinder::sample_area(const Vec2& u) const {
     ShapeSample s;
     s.p = si.p;
     s.n = si.n;
+    s.uv = si.uv;
     s.pdf = 1.0 / area();
     return s;
 }

@@ -54,6 +54,13 @@ public:
     ShapeSample sample_area(const Vec2& u) const override;
     /// The group shape's shape operator (exact at a sphere's poles too), carried by the transform.
     Vec3 normal_derivative(const SurfaceInteraction& si, const Vec3& tangent) const override;
+    /// The group shape's attribute at the point carried into the group's space.
+    int attribute(const std::string& name, const SurfaceInteraction& si, double* out) const override {
+        SurfaceInteraction local = si;
+        local.p = m_to_local.point(si.p);
+        return m_base.attribute(name, local, out);
+    }
+    std::vector<std::string> attribute_names() const override { return m_base.attribute_names(); }
 
     const Shape& base() const { return m_base; }
     /// Carries a hit or projection on the group shape to world space (si->shape becomes this).

@@ -43,6 +43,7 @@ TriangleMesh::TriangleMesh(MeshData data, bool face_normals, bool flip_normals, 
     m_pos.emplace_back(0.f, 0.f, 0.f);  // padding read by Embree's vector loads
     m_tris = std::move(data.triangles);
     m_uvs = std::move(data.uvs);
+    m_attributes = std::move(data.attributes);
     if (!face_normals && !data.normals.empty()) {
         m_normals = std::move(data.normals);
         for (Vec3& n : m_normals) {
@@ -68,6 +69,35 @@ TriangleMesh::TriangleMesh(MeshData data, bool face_normals, bool flip_normals, 
         m_params.resize(m_tris.size());
         for (uint32_t i = 0; i < m_tris.size(); ++i) m_params[i] = triangle_params(i);
     }
+}
+
+int TriangleMesh::attribute(const std::string& name, const SurfaceInteraction& si, double* out) const {
+    for (const MeshAttribute& a : m_attributes) {
+        if (a.name != name) continue;
+        const size_t c = size_t(a.channels);
+        if (si.prim >= m_tris.size()) return 0;
+        if (a.per_face) {
+            for (size_t k = 0; k < c; ++k) out[k] = a.values[size_t(si.prim) * c + k];
+            return a.channels;
+        }
+        // Vertex attributes: barycentric interpolation at the point (si.uv may be the texture
+        // map's, so the barycentrics are recovered from the position).
+        const auto& t = m_tris[si.prim];
+        const Vec2 b = closest_point_on_triangle(si.p, vertex(t[0]), vertex(t[1]), vertex(t[2]));
+        const double w[3] = {1 - b.x - b.y, b.x, b.y};
+        for (size_t k = 0; k < c; ++k) {
+            out[k] = 0;
+            for (int j = 0; j < 3; ++j) out[k] += w[j] * a.values[size_t(t[size_t(j)]) * c + k];
+        }
+        return a.channels;
+    }
+    return 0;
+}
+
+std::vector<std::string> TriangleMesh::attribute_names() const {
+    std::vector<std::string> names;
+    for (const MeshAttribute& a : m_attributes) names.push_back(a.name);
+    return names;
 }
 
 TriangleMesh::~TriangleMesh() {
@@ -299,6 +329,7 @@ ShapeSample TriangleMesh::sample_area(const Vec2& u) const {
     ShapeSample s;
     s.p = si.p;
     s.n = si.ng;
+    s.uv = si.uv;
     s.pdf = 1.0 / m_area;
     return s;
 }

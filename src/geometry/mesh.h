@@ -54,6 +54,8 @@ public:
     const std::array<uint32_t, 3>& triangle(uint32_t i) const { return m_tris[i]; }
     bool has_vertex_normals() const { return !m_normals.empty(); }
     bool has_uvs() const { return !m_uvs.empty(); }
+    int attribute(const std::string& name, const SurfaceInteraction& si, double* out) const override;
+    std::vector<std::string> attribute_names() const override;
 
     /// Meshes with at most this many triangles keep the per-triangle part of the
     /// differential geometry (TriangleParams, 152 bytes a triangle) precomputed; larger
@@ -80,6 +82,7 @@ private:
     std::vector<std::array<uint32_t, 3>> m_tris;
     std::vector<Vec3> m_normals;
     std::vector<Vec2> m_uvs;
+    std::vector<MeshAttribute> m_attributes;
     bool m_flip;
     std::string m_name;
     Bounds3 m_bounds;

@@ -3,6 +3,8 @@
 
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "core/object.h"
 #include "core/vector.h"
@@ -18,6 +20,7 @@ struct ShapeSample {
     Vec3 p;
     Vec3 n;          ///< unit (shading-side) normal at p
     double pdf = 0;  ///< area measure for sample_area; solid angle for sample_from
+    Vec2 uv;         ///< surface parameterisation at p (textured emitters read it)
 };
 
 /// Interface of a geometric primitive (sphere, triangle mesh). Shapes own their BSDF and,
@@ -61,6 +64,15 @@ public:
         const double a = (g22 * r1 - g12 * r2) / det, b = (g11 * r2 - g12 * r1) / det;
         return si.dndu * a + si.dndv * b;
     }
+
+    /// Mitsuba's mesh attributes (`mesh_attribute` textures): the value of the attribute `name`
+    /// ("vertex_color", "face_weight", ...) at si, interpolated over the triangle for vertex
+    /// attributes; its channel count (1 or 3), or 0 when the shape has no such attribute.
+    virtual int attribute(const std::string& /*name*/, const SurfaceInteraction& /*si*/, double* /*out*/) const {
+        return 0;
+    }
+    /// The names of the shape's attributes (for error messages).
+    virtual std::vector<std::string> attribute_names() const { return {}; }
 
     const BSDF* bsdf() const { return m_bsdf.get(); }
     const std::shared_ptr<BSDF>& bsdf_ptr() const { return m_bsdf; }

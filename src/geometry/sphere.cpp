@@ -101,13 +101,20 @@ bool Sphere::closest_point(const Vec3& p, double radius, SurfaceInteraction* si)
     return true;
 }
 
-ShapeSample Sphere::sample_area(const Vec2& u) const {
-    const Vec3 w = warp::square_to_uniform_sphere(u);
+ShapeSample Sphere::sample_at(const Vec3& w, double pdf) const {
+    SurfaceInteraction si;
+    fill_interaction(m_center + w * m_radius, &si);
     ShapeSample s;
     s.p = m_center + w * m_radius;
     s.n = m_flip ? -w : w;
-    s.pdf = 1.0 / area();
+    s.uv = si.uv;
+    s.pdf = pdf;
     return s;
+}
+
+ShapeSample Sphere::sample_area(const Vec2& u) const {
+    const Vec3 w = warp::square_to_uniform_sphere(u);
+    return sample_at(w, 1.0 / area());
 }
 
 std::optional<ShapeSample> Sphere::sample_from(const Vec3& ref, const Vec2& u) const {
@@ -133,11 +140,7 @@ std::optional<ShapeSample> Sphere::sample_from(const Vec3& ref, const Vec2& u) c
 
     const Frame f = Frame::from_normal(dc_vec / dc);  // n axis points from ref to the centre
     const Vec3 w = f.to_world(Vec3(sin_alpha * std::cos(phi), sin_alpha * std::sin(phi), -cos_alpha));
-    ShapeSample s;
-    s.p = m_center + w * m_radius;
-    s.n = m_flip ? -w : w;
-    s.pdf = 1.0 / (2 * kPi * one_minus_cos_max);
-    return s;
+    return sample_at(w, 1.0 / (2 * kPi * one_minus_cos_max));
 }
 
 double Sphere::pdf_from(const Vec3& ref, const Vec3& p, const Vec3& n) const {

@@ -40,6 +40,8 @@ public:
     bool intersect_line(const Ray& ray, double* t0, double* t1) const;
     /// Fills `si` (t = 0, wo unset) for a point assumed to lie on the sphere.
     void fill_interaction(const Vec3& p, SurfaceInteraction* si) const;
+    /// The sample at unit direction w from the centre, with density pdf.
+    ShapeSample sample_at(const Vec3& w, double pdf) const;
 
 private:
     Vec3 m_center;

@@ -1,5 +1,6 @@
 #include "io/mesh_ply.h"
 
+#include <array>
 #include <bit>
 #include <cstring>
 #include <filesystem>
@@ -57,6 +58,83 @@ struct PlyElement {
 };
 
 enum class PlyFormat { Ascii, BinaryLE, BinaryBE };
+
+/// Which properties of an element form a mesh attribute, and which of them go in which channel.
+struct AttributeGroup {
+    MeshAttribute attr;
+    std::vector<size_t> props;  ///< property index per channel
+    double scale = 1;           ///< 1/255 for 8-bit colours
+};
+
+// Mitsuba 3's grouping of a PLY element's extra properties into attributes ("{prefix}_{x|y|z}",
+// "_{r|g|b}", "_{0|1|2}", "_{1|2|3}" in a row, 1 or 3 of them; r, g, b or red, green, blue
+// alone form "color"), named "{element}_{prefix}" ("_color" added for the r|g|b postfixes).
+// Properties outside these patterns are skipped, as Mitsuba skips them. 8-bit colours are
+// scaled to [0, 1] (Mitsuba keeps 0..255 and warns; every other reader scales them).
+std::vector<AttributeGroup> attribute_groups(const PlyElement& e, const std::string& element,
+                                             const std::vector<std::string>& reserved) {
+    std::vector<AttributeGroup> out;
+    auto index_of = [&](const std::string& n) -> long {
+        for (size_t i = 0; i < e.props.size(); ++i)
+            if (!e.props[i].is_list && e.props[i].name == n) return long(i);
+        return -1;
+    };
+    auto is_reserved = [&](const std::string& n) {
+        for (const auto& r : reserved)
+            if (n == r) return true;
+        return n == "r" || n == "g" || n == "b" || n == "a" || n == "red" || n == "green" || n == "blue" ||
+               n == "alpha";
+    };
+    for (const auto& names :
+         {std::array<const char*, 3>{"r", "g", "b"}, std::array<const char*, 3>{"red", "green", "blue"}}) {
+        const long r = index_of(names[0]), g = index_of(names[1]), b = index_of(names[2]);
+        if (r < 0 || g < 0 || b < 0) continue;
+        AttributeGroup grp;
+        grp.attr.name = element + "_color";
+        grp.attr.per_face = element == "face";
+        grp.attr.channels = 3;
+        grp.props = {size_t(r), size_t(g), size_t(b)};
+        if (e.props[size_t(r)].type == PlyType::U8) grp.scale = 1.0 / 255;
+        out.push_back(grp);
+        break;
+    }
+    static const char* kPostfix[4] = {"xr01", "yg12", "zb23", "wa34"};
+    size_t i = 0;
+    while (i < e.props.size()) {
+        const PlyProperty& p = e.props[i];
+        const size_t us = p.name.find_last_of('_');
+        if (p.is_list || is_reserved(p.name) || us == std::string::npos || us + 2 != p.name.size()) {
+            ++i;
+            continue;
+        }
+        const std::string prefix = p.name.substr(0, us);
+        const char* cat = std::strchr(kPostfix[0], p.name.back());
+        if (!cat) {
+            ++i;
+            continue;
+        }
+        const size_t c = size_t(cat - kPostfix[0]);
+        // The run of properties prefix_<postfix k> for k = 0, 1, ... in this category.
+        std::vector<size_t> run;
+        while (i + run.size() < e.props.size() && run.size() < 4) {
+            const PlyProperty& q = e.props[i + run.size()];
+            if (q.is_list || q.name != prefix + "_" + kPostfix[run.size()][c]) break;
+            run.push_back(i + run.size());
+        }
+        i += run.size();
+        if (run.size() != 1 && run.size() != 3) continue;  // Mitsuba: 1 or 3 fields
+        AttributeGroup grp;
+        grp.attr.name = element + "_" + prefix + (c == 1 ? "_color" : "");
+        grp.attr.per_face = element == "face";
+        grp.attr.channels = int(run.size());
+        grp.props = run;
+        if (run.size() == 3 && e.props[run[0]].type == PlyType::U8) grp.scale = 1.0 / 255;
+        bool seen = false;
+        for (const auto& g : out) seen = seen || g.attr.name == grp.attr.name;
+        if (!seen) out.push_back(grp);
+    }
+    return out;
+}
 
 /// Reads scalar values of the body in any of the three encodings, as doubles (exact for
 /// every PLY integer type and float).
@@ -235,7 +313,11 @@ MeshData load_ply(const std::string& path) {
             }
             if (!(has[0] && has[1] && has[2])) fail("PLY vertex element lacks x, y or z");
             const bool with_n = has[3] && has[4] && has[5], with_uv = has[6] && has[7];
+            std::vector<AttributeGroup> groups = attribute_groups(e, "vertex",
+                                                                  {"x", "y", "z", "nx", "ny", "nz", "u", "v", "s", "t",
+                                                                   "texture_u", "texture_v", "texture_s", "texture_t"});
             m.positions.reserve(e.count);
+            std::vector<double> row(e.props.size());
             for (size_t k = 0; k < e.count; ++k) {
                 double v[8] = {};
                 for (size_t i = 0; i < e.props.size(); ++i) {
@@ -246,23 +328,31 @@ MeshData load_ply(const std::string& path) {
                         continue;
                     }
                     const double x = body.read(p.type, e.name);
+                    row[i] = x;
                     if (slot[i] >= 0) v[slot[i]] = x;
                 }
                 m.positions.emplace_back(v[0], v[1], v[2]);
                 if (with_n) m.normals.emplace_back(v[3], v[4], v[5]);
                 if (with_uv) m.uvs.emplace_back(v[6], v[7]);
+                for (AttributeGroup& g : groups)
+                    for (size_t idx : g.props) g.attr.values.push_back(float(row[idx] * g.scale));
             }
+            for (AttributeGroup& g : groups) m.attributes.push_back(std::move(g.attr));
         } else if (e.name == "face") {
             saw_face = true;
             bool found = false;
             for (const PlyProperty& p : e.props)
                 found = found || (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index"));
             if (!found) fail("PLY face element lacks a 'vertex_indices' list");
+            std::vector<AttributeGroup> groups = attribute_groups(e, "face", {});
+            std::vector<double> row(e.props.size());
             std::vector<uint32_t> poly;
             for (size_t k = 0; k < e.count; ++k) {
-                for (const PlyProperty& p : e.props) {
+                const size_t tris_before = m.triangles.size();
+                for (size_t pi = 0; pi < e.props.size(); ++pi) {
+                    const PlyProperty& p = e.props[pi];
                     if (!p.is_list) {
-                        body.read(p.type, e.name);
+                        row[pi] = body.read(p.type, e.name);
                         continue;
                     }
                     const double c = body.read(p.count_type, e.name);
@@ -277,7 +367,12 @@ MeshData load_ply(const std::string& path) {
                     if (poly.size() < 3) fail("PLY face " + std::to_string(k) + " has fewer than 3 vertices");
                     for (size_t j = 1; j + 1 < poly.size(); ++j) m.triangles.push_back({poly[0], poly[j], poly[j + 1]});
                 }
+                // A face attribute holds for every triangle the face was cut into.
+                for (size_t t = tris_before; t < m.triangles.size(); ++t)
+                    for (AttributeGroup& g : groups)
+                        for (size_t idx : g.props) g.attr.values.push_back(float(row[idx] * g.scale));
             }
+            for (AttributeGroup& g : groups) m.attributes.push_back(std::move(g.attr));
         } else {
             // Unknown element (edges, materials...): read and drop.
             for (size_t k = 0; k < e.count; ++k)

@@ -2,7 +2,8 @@
 //
 // | parameter | type     | meaning                                                    |
 // |-----------|----------|------------------------------------------------------------|
-// | radiance  | spectrum | emitted radiance, upsampled as an illuminant (default 1)   |
+// | radiance  | spectrum or texture | emitted radiance: a colour is upsampled as an illuminant |
+// |           |                     | (D65 white), a texture as its own spectrum (Mitsuba 3)   |
 //
 //   <shape type="sphere">
 //       <emitter type="area"> <rgb name="radiance" value="10, 10, 10"/> </emitter>
@@ -15,6 +16,20 @@ namespace snell {
 
 AreaLight::AreaLight(const Spectrum& radiance, std::shared_ptr<Shape> shape)
     : m_radiance(radiance), m_shape(std::move(shape)) {}
+
+AreaLight::AreaLight(TextureRef radiance, std::shared_ptr<Shape> shape)
+    : m_texture(std::move(radiance)), m_shape(std::move(shape)) {}
+
+SampledSpectrum AreaLight::radiance_at(const Vec3& p, const Vec3& n, const Vec2& uv,
+                                       const SampledWavelengths& wl) const {
+    if (!m_texture) return m_radiance.eval(wl);
+    // The texture reads the emitter's own surface coordinates (Mitsuba's si.uv on the light).
+    SurfaceInteraction si;
+    si.p = p;
+    si.n = si.ng = n;
+    si.uv = uv;
+    return m_texture->eval(si, wl);
+}
 
 std::optional<LightSample> AreaLight::sample_li(const LightSampleContext& ref, const Vec2& u,
                                                 const SampledWavelengths& wl) const {
@@ -33,7 +48,8 @@ std::optional<LightSample> AreaLight::sample_li(const LightSampleContext& ref, c
     ls.n = ss->n;
     ls.wi = d;
     ls.dist = dist;
-    ls.Le = m_radiance.eval(wl);
+    ls.uv = ss->uv;
+    ls.Le = radiance_at(ss->p, ss->n, ss->uv, wl);
     ls.pdf = ss->pdf;
     // Solid angle -> area: d(omega) = |cos_light| dA / dist^2.
     ls.pdf_area = ss->pdf * cos_light / dist2;
@@ -53,10 +69,15 @@ double AreaLight::pdf_point(const Vec3& ref, const Vec3& p, const Vec3& n) const
     return m_shape->pdf_from(ref, p, n) * cos_light / dist2;
 }
 
-SampledSpectrum AreaLight::le(const Vec3& /*p*/, const Vec3& n, const Vec3& w, const SampledWavelengths& wl) const {
-    return dot(n, w) > 0 ? m_radiance.eval(wl) : SampledSpectrum();
+SampledSpectrum AreaLight::le(const Vec3& p, const Vec3& n, const Vec2& uv, const Vec3& w,
+                              const SampledWavelengths& wl) const {
+    return dot(n, w) > 0 ? radiance_at(p, n, uv, wl) : SampledSpectrum();
 }
 
-double AreaLight::power() const { return m_radiance.average() * m_shape->area() * kPi; }
+double AreaLight::power() const {
+    // A texture's mean over uv stands for its mean over the surface (light selection only).
+    const double L = m_texture ? m_texture->mean() : m_radiance.average();
+    return L * m_shape->area() * kPi;
+}
 
 }  // namespace snell

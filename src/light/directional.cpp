@@ -29,7 +29,8 @@ std::optional<LightSample> DirectionalLight::sample_li(const LightSampleContext&
 
 double DirectionalLight::power() const { return m_irradiance.average() * kPi * sqr(m_sphere.radius); }
 
-SampledSpectrum DirectionalLight::emitted(const Vec3&, const Vec3&, const Vec3&, const SampledWavelengths& wl) const {
+SampledSpectrum DirectionalLight::emitted(const Vec3&, const Vec3&, const Vec2&, const Vec3&,
+                                          const SampledWavelengths& wl) const {
     return m_irradiance.eval(wl);
 }
 

@@ -19,7 +19,8 @@ public:
     double pdf_li(const LightSampleContext&, const Vec3&, const Vec3&, const Vec3&) const override { return 0; }
     /// E * pi r^2 for the scene's bounding sphere of radius r.
     /// The irradiance (direction-independent: MNEE's far point stands in for the direction).
-    SampledSpectrum emitted(const Vec3&, const Vec3&, const Vec3&, const SampledWavelengths& wl) const override;
+    SampledSpectrum emitted(const Vec3&, const Vec3&, const Vec2&, const Vec3&,
+                            const SampledWavelengths& wl) const override;
     double power() const override;
     void preprocess(const Bounds3& scene_bounds) override { m_sphere.set(scene_bounds); }
     const Vec3& direction() const { return m_direction; }

@@ -5,12 +5,14 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "camera/field_of_view.h"
 #include "io/image.h"
 #include "light/area.h"
 #include "light/constant.h"
 #include "light/directional.h"
 #include "light/envmap.h"
 #include "light/point.h"
+#include "light/projector.h"
 #include "light/spot.h"
 
 namespace snell {
@@ -49,7 +51,22 @@ std::shared_ptr<Light> make_spot(const Props& props) {
     if (!(cutoff > 0 && cutoff <= 180)) props.raise_param("cutoff_angle", "cutoff_angle must lie in (0, 180] degrees");
     if (!(beam >= 0 && beam <= cutoff))
         props.raise_param("beam_width", "beam_width must lie in [0, cutoff_angle] degrees");
-    return std::make_shared<SpotLight>(intensity, to_world, cutoff, beam);
+    // Mitsuba 3: the projected texture multiplies the intensity; it must vary over the image.
+    TextureRef texture = props.named_child<const Texture>("texture");
+    if (!texture && props.has("texture"))
+        props.raise_param("texture", "a spot light's 'texture' must be a <texture> (a colour belongs in 'intensity')");
+    return std::make_shared<SpotLight>(intensity, to_world, cutoff, beam, std::move(texture));
+}
+
+std::shared_ptr<Light> make_projector(const Props& props) {
+    TextureRef texture = props.named_child<const Texture>("irradiance");
+    const Spectrum irradiance = texture ? default_white() : emission(props, "irradiance");
+    const double scale = props.get_float("scale", 1.0);
+    if (!std::isfinite(scale) || scale < 0) props.raise_param("scale", "scale must be finite and non-negative");
+    const auto [w, h] = texture ? texture->resolution() : std::pair<int, int>(1, 1);
+    const Vec2 tan_half = fov_tangents(read_field_of_view(props), double(w) / double(h));
+    return std::make_shared<ProjectorLight>(irradiance, std::move(texture), scale, props.get_transform("to_world"),
+                                            tan_half);
 }
 
 std::shared_ptr<Light> make_directional(const Props& props) {
@@ -93,6 +110,8 @@ std::shared_ptr<Light> create_light(const Props& props) {
         light = make_point(props);
     else if (t == "spot")
         light = make_spot(props);
+    else if (t == "projector")
+        light = make_projector(props);
     else if (t == "directional")
         light = make_directional(props);
     else if (t == "constant")
@@ -102,7 +121,8 @@ std::shared_ptr<Light> create_light(const Props& props) {
     else if (t == "area")
         props.raise("an area emitter must be nested inside a shape");
     else
-        props.raise("unknown emitter type '" + t + "' (known: point, spot, directional, constant, envmap, area)");
+        props.raise("unknown emitter type '" + t +
+                    "' (known: point, spot, projector, directional, constant, envmap, area)");
     props.check_unused();
     light->set_id(props.id());
     return light;
@@ -112,7 +132,10 @@ std::shared_ptr<Light> create_area_light(const Props& props, const std::shared_p
     if (props.type() != "area")
         props.raise("only emitters of type 'area' can be nested in a shape, got '" + props.type() + "'");
     if (!shape) props.raise("area emitter without a shape");
-    auto light = std::make_shared<AreaLight>(emission(props, "radiance"), shape);
+    // A textured radiance reads the shape's uv (Mitsuba 3 gives it no D65 white point).
+    TextureRef texture = props.named_child<const Texture>("radiance");
+    auto light = texture ? std::make_shared<AreaLight>(std::move(texture), shape)
+                         : std::make_shared<AreaLight>(emission(props, "radiance"), shape);
     props.check_unused();
     light->set_id(props.id());
     shape->set_emitter(light.get());

@@ -10,7 +10,7 @@ namespace snell {
 
 class Shape;
 
-enum class LightKind { Area, Point, Spot, Directional, Infinite };
+enum class LightKind { Area, Point, Spot, Projector, Directional, Infinite };
 
 /// Reference point for light sampling: position and (optional, zero if none) shading normal.
 struct LightSampleContext {
@@ -21,6 +21,7 @@ struct LightSampleContext {
 struct LightSample {
     Vec3 p;                   ///< point on the light (for directional/infinite: far away along wi)
     Vec3 n;                   ///< light normal at p (zero for point/spot/directional/infinite)
+    Vec2 uv;                  ///< surface parameterisation at p (area lights; textured emission)
     Vec3 wi;                  ///< unit direction from the reference point towards the light
     double dist = kInfinity;  ///< distance to p (infinite for directional/infinite lights)
     /// Incident radiance for area and infinite lights. For delta lights the factor that makes
@@ -36,7 +37,8 @@ public:
     virtual LightKind kind() const = 0;
     bool is_delta() const {
         const LightKind k = kind();
-        return k == LightKind::Point || k == LightKind::Spot || k == LightKind::Directional;
+        return k == LightKind::Point || k == LightKind::Spot || k == LightKind::Projector ||
+               k == LightKind::Directional;
     }
     bool is_infinite() const { return kind() == LightKind::Infinite || kind() == LightKind::Directional; }
 
@@ -47,8 +49,9 @@ public:
     /// For infinite lights p and n are ignored. 0 for delta lights.
     virtual double pdf_li(const LightSampleContext& ref, const Vec3& p, const Vec3& n, const Vec3& wi) const = 0;
 
-    /// Area lights: radiance leaving point p (normal n) in unit direction w (away from the light).
-    virtual SampledSpectrum le(const Vec3& /*p*/, const Vec3& /*n*/, const Vec3& /*w*/,
+    /// Area lights: radiance leaving point p (normal n, surface coordinates uv, which a
+    /// textured radiance reads) in unit direction w (away from the light).
+    virtual SampledSpectrum le(const Vec3& /*p*/, const Vec3& /*n*/, const Vec2& /*uv*/, const Vec3& /*w*/,
                                const SampledWavelengths& /*wl*/) const {
         return {};
     }
@@ -64,14 +67,17 @@ public:
     /// in a different direction than the seed path, so this is evaluated afresh).
     /// Lights at infinity give the radiance arriving from -w (environment) or, for the
     /// directional light, its irradiance (MNEE turns both into points on a far sphere).
-    virtual SampledSpectrum emitted(const Vec3& p, const Vec3& n, const Vec3& w, const SampledWavelengths& wl) const {
-        return is_infinite() ? le_escaped(-w, wl) : le(p, n, w, wl);
+    virtual SampledSpectrum emitted(const Vec3& p, const Vec3& n, const Vec2& uv, const Vec3& w,
+                                    const SampledWavelengths& wl) const {
+        return is_infinite() ? le_escaped(-w, wl) : le(p, n, uv, w, wl);
     }
 
     /// Emitted power, averaged over the visible range (for light selection; need not be exact).
     virtual double power() const = 0;
     /// Called once the scene bounds are known (infinite and directional lights need them).
     virtual void preprocess(const Bounds3& /*scene_bounds*/) {}
+    /// Lights at a point (point, spot, projector): where they sit.
+    virtual Vec3 position() const { return Vec3(); }
     /// The shape of an area light, else nullptr.
     virtual const Shape* shape() const { return nullptr; }
 };

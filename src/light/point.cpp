@@ -32,7 +32,8 @@ std::optional<LightSample> PointLight::sample_li(const LightSampleContext& ref, 
 
 double PointLight::power() const { return 4 * kPi * m_intensity.average(); }
 
-SampledSpectrum PointLight::emitted(const Vec3&, const Vec3&, const Vec3& /*w*/, const SampledWavelengths& wl) const {
+SampledSpectrum PointLight::emitted(const Vec3&, const Vec3&, const Vec2&, const Vec3& /*w*/,
+                                    const SampledWavelengths& wl) const {
     return m_intensity.eval(wl);
 }
 

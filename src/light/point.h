@@ -19,9 +19,10 @@ public:
     /// Delta position: the light point is always its position (discrete probability 1).
     double pdf_point(const Vec3&, const Vec3&, const Vec3&) const override { return 1; }
     /// Intensity emitted along w (away from the light).
-    SampledSpectrum emitted(const Vec3& p, const Vec3& n, const Vec3& w, const SampledWavelengths& wl) const override;
+    SampledSpectrum emitted(const Vec3& p, const Vec3& n, const Vec2& uv, const Vec3& w,
+                            const SampledWavelengths& wl) const override;
     double power() const override;
-    const Vec3& position() const { return m_position; }
+    Vec3 position() const override { return m_position; }
 
 private:
     Spectrum m_intensity;

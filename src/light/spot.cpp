@@ -6,6 +6,7 @@
 // | cutoff_angle | float     | degrees beyond which the light is black (default 20)        |
 // | beam_width   | float     | degrees of the full-intensity core (default 3/4 cutoff)     |
 // | to_world     | transform | emitter-to-world; the light shines along its local +z       |
+// | texture      | texture   | projected along the beam, across the cutoff cone (optional) |
 //
 //   <emitter type="spot"> <transform name="to_world"> <lookat origin="1,1,1" target="1,2,1"/>
 //       </transform> </emitter>
@@ -14,8 +15,9 @@
 namespace snell {
 
 SpotLight::SpotLight(const Spectrum& intensity, const Transform& to_world, double cutoff_angle_deg,
-                     double beam_width_deg)
+                     double beam_width_deg, TextureRef texture)
     : m_intensity(intensity),
+      m_texture(std::move(texture)),
       m_to_world(to_world),
       m_to_local(to_world.inverse()),
       m_position(to_world.point(Vec3(0, 0, 0))),
@@ -33,6 +35,23 @@ double SpotLight::falloff(const Vec3& w_world) const {
     return (m_cutoff - std::acos(clamp(cos_theta, -1.0, 1.0))) / (m_cutoff - m_beam);
 }
 
+SampledSpectrum SpotLight::intensity(const Vec3& w_world, const SampledWavelengths& wl) const {
+    const double f = falloff(w_world);
+    if (!(f > 0)) return {};
+    SampledSpectrum I = m_intensity.eval(wl) * f;
+    if (m_texture) {
+        // The texture spans the cutoff cone's tangent plane: uv = 1/2 at the axis, 0 and 1 at
+        // tan(theta) = tan(cutoff) along local x and y.
+        const Vec3 l = normalize(m_to_local.vector(w_world));
+        const double k = 0.5 / (l.z * std::tan(m_cutoff));
+        SurfaceInteraction si;
+        si.p = m_position;
+        si.uv = Vec2(0.5 + l.x * k, 0.5 + l.y * k);
+        I *= m_texture->eval(si, wl);
+    }
+    return I;
+}
+
 std::optional<LightSample> SpotLight::sample_li(const LightSampleContext& ref, const Vec2& /*u*/,
                                                 const SampledWavelengths& wl) const {
     const Vec3 d = m_position - ref.p;
@@ -41,12 +60,11 @@ std::optional<LightSample> SpotLight::sample_li(const LightSampleContext& ref, c
     const double dist = std::sqrt(dist2);
     // Outside the cone the sample carries no light (Le = 0) but is still returned: MNEE
     // needs the light's position whatever the direction towards ref.
-    const double f = falloff(-d / dist);
     LightSample ls;
     ls.p = m_position;
     ls.dist = dist;
     ls.wi = d / dist;
-    ls.Le = m_intensity.eval(wl) * f / dist2;
+    ls.Le = intensity(-d / dist, wl) / dist2;
     ls.pdf = 1;
     ls.delta = true;
     return ls;
@@ -58,11 +76,13 @@ double SpotLight::power() const {
     double ramp = 0;
     if (m_cutoff > m_beam)
         ramp = ((m_cutoff - m_beam) * m_cos_beam + std::sin(m_beam) - std::sin(m_cutoff)) / (m_cutoff - m_beam);
-    return 2 * kPi * ((1 - m_cos_beam) + ramp) * m_intensity.average();
+    // A texture's mean stands for its mean over the beam (light selection only).
+    return 2 * kPi * ((1 - m_cos_beam) + ramp) * m_intensity.average() * (m_texture ? m_texture->mean() : 1.0);
 }
 
-SampledSpectrum SpotLight::emitted(const Vec3&, const Vec3&, const Vec3& w, const SampledWavelengths& wl) const {
-    return m_intensity.eval(wl) * falloff(w);
+SampledSpectrum SpotLight::emitted(const Vec3&, const Vec3&, const Vec2&, const Vec3& w,
+                                   const SampledWavelengths& wl) const {
+    return intensity(w, wl);
 }
 
 }  // namespace snell

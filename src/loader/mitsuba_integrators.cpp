@@ -92,6 +92,23 @@ Props sms_as_mnee(const XmlObject& o_in, std::vector<std::string>* notices) {
     return out;
 }
 
+// An integrator snell renders with another technique that converges to the same image: keeps
+// the common settings, names the rest in the notice.
+Props renamed(const XmlObject& o, const std::string& as, const std::string& why, std::vector<std::string>* notices) {
+    static const std::set<std::string> kept = {"max_depth", "rr_depth", "hide_emitters", "timeout", "samples_per_pass"};
+    Props out(o.tag, as, o.loc);
+    out.set_id(o.id);
+    std::string ignored;
+    for (const XmlParam& q : o.params)
+        if (kept.count(q.name))
+            out.set(q.name, q.value, q.loc);
+        else
+            ignored += (ignored.empty() ? "" : ", ") + q.name;
+    notices->push_back(o.loc.str() + ": <integrator type=\"" + o.type + "\"> renders as " + as + ": " + why +
+                       (ignored.empty() ? "" : "; ignored: " + ignored));
+    return out;
+}
+
 }  // namespace
 
 const XmlObject& unwrap_integrator(const XmlObject& o_in, std::vector<std::string>* notices) {
@@ -125,6 +142,18 @@ Props integrator_props(const XmlObject& wrapped, std::vector<std::string>* notic
         throw SceneError(c.obj->loc, c.obj->tag,
                          "<integrator type=\"" + o->type + "\"> takes no nested <" + c.obj->tag + ">");
     if (kSmsIntegrators.count(o->type)) return sms_as_mnee(*o, notices);
+    std::vector<std::string> discard;
+    if (!notices) notices = &discard;
+    if (o->type == "ptracer")
+        return renamed(*o, "bdpt",
+                       "Mitsuba's particle tracer is bdpt's light-tracing strategy alone; bdpt converges to the "
+                       "same image",
+                       notices);
+    if (o->type == "path_sms_glints")
+        return renamed(*o, "path",
+                       "glints of normal-mapped reflectors are found by BSDF sampling and emitter sampling "
+                       "(no manifold technique for them): the same image in expectation, noisier for small lights",
+                       notices);
     return object_props(*o);
 }
 

@@ -11,6 +11,7 @@
 
 #include "bsdf/factory.h"
 #include "camera/factory.h"
+#include "camera/field_of_view.h"
 #include "camera/orthographic.h"
 #include "camera/thinlens.h"
 #include "geometry/instance.h"
@@ -21,6 +22,7 @@
 #include "loader/unsupported.h"
 #include "loader/xml_scene.h"
 #include "texture/factory.h"
+#include "texture/mesh_attribute.h"
 
 namespace snell {
 
@@ -45,6 +47,7 @@ public:
     explicit Instantiator(LoadedScene& out) : m_out(out) {}
 
     void run(const XmlObject& root) {
+        note_type_case(root);
         auto scene = std::make_unique<Scene>();
         const XmlObject* sensor = nullptr;
         const XmlObject* integrator = nullptr;
@@ -77,9 +80,7 @@ public:
                 if (o.type == "area" && o.referenced) continue;  // declared here, used by a <shape>'s <ref>
                 if (o.type == "area")
                     throw SceneError(o.loc, o.tag, "an area emitter must be nested inside the <shape> that emits");
-                Props p = props(o);
-                if (o.param("filename")) p.set("__base_dir", o.base_dir, o.loc);  // envmap image
-                sms_flags(p);
+                Props p = emitter_props(o);
                 auto light = located(o, [&] { return create_light(p); });
                 p.check_unused();
                 scene->add_light(light);
@@ -111,6 +112,7 @@ public:
 
 private:
     LoadedScene& m_out;
+    std::set<const XmlObject*> m_case_checked;                  // note_type_case visits each element once
     std::map<const XmlObject*, std::shared_ptr<BSDF>> m_bsdfs;  // one instance per element (refs share)
     std::map<const XmlObject*, TextureRef> m_textures;
     std::map<const XmlObject*, std::shared_ptr<ShapeGroup>> m_groups;
@@ -126,6 +128,25 @@ private:
     bool m_sms_notice = false;
 
     static Props props(const XmlObject& o) { return object_props(o); }
+
+    /// A notice for every type written with capitals ("Rectangle"), which is read in lower case.
+    void note_type_case(const XmlObject& o) {
+        if (!m_case_checked.insert(&o).second) return;  // referenced objects: once
+        if (o.type != o.type_as_written)
+            m_out.notices.push_back(o.loc.str() + ": <" + o.tag + " type=\"" + o.type_as_written + "\"> read as '" +
+                                    o.type + "' (Mitsuba's plugin names are lower case)");
+        for (const auto& c : o.children)
+            if (c.obj) note_type_case(*c.obj);
+    }
+
+    /// An emitter's parameters with its nested or referenced textures.
+    Props emitter_props(const XmlObject& o) {
+        Props p = props(o);
+        if (o.param("filename")) p.set("__base_dir", o.base_dir, o.loc);  // envmap image
+        for (const auto& c : o.children) p.add_child(c.name, std::const_pointer_cast<Texture>(texture(*c.obj)), c.loc);
+        sms_flags(p);
+        return p;
+    }
 
     std::shared_ptr<BSDF> bsdf(const XmlObject& o) {
         if (auto it = m_bsdfs.find(&o); it != m_bsdfs.end()) return it->second;
@@ -178,8 +199,7 @@ private:
         const XmlObject* emitter = nullptr;
         auto shape = make_shape(o, &emitter);
         if (emitter) {
-            Props ep = props(*emitter);
-            sms_flags(ep);
+            Props ep = emitter_props(*emitter);
             auto light = located(*emitter, [&] { return create_area_light(ep, shape); });
             ep.check_unused();
             scene.add_light(light);
@@ -214,7 +234,28 @@ private:
         auto shape = located(o, [&] { return create_shape(p); });
         p.check_unused();
         shape->set_id(o.id);
+        for (const auto& c : o.children)
+            if (c.obj->tag == "bsdf") check_mesh_attributes(*c.obj, o, *shape);
         return shape;
+    }
+
+    /// Every `mesh_attribute` texture under the BSDF `o` must name an attribute the shape has
+    /// (Mitsuba finds out while rendering; the loader says so with both places).
+    void check_mesh_attributes(const XmlObject& o, const XmlObject& shape_xml, const Shape& shape) {
+        for (const auto& c : o.children) {
+            if (!c.obj) continue;
+            check_mesh_attributes(*c.obj, shape_xml, shape);
+            if (c.obj->tag != "texture" || c.obj->type != "mesh_attribute") continue;
+            const auto* t = dynamic_cast<const MeshAttributeTexture*>(texture(*c.obj).get());
+            if (!t) continue;
+            const std::vector<std::string> names = shape.attribute_names();
+            if (std::find(names.begin(), names.end(), t->attribute_name()) != names.end()) continue;
+            std::string have;
+            for (const auto& n : names) have += (have.empty() ? "" : ", ") + n;
+            throw SceneError(c.obj->loc, "texture",
+                             "mesh attribute '" + t->attribute_name() + "' is not on the <shape> at " +
+                                 shape_xml.loc.str() + " (it has " + (have.empty() ? "none" : have) + ")");
+        }
     }
 
     /// A shapegroup's shapes, built once however many instances place it.
@@ -253,26 +294,9 @@ private:
         double fov = 0, aperture = 0, focus = 0;
         std::string axis;
         if (o.type != "orthographic") {
-            axis = p.get_string("fov_axis", "x");
-            static const std::set<std::string> axes = {"x", "y", "smaller", "larger", "diagonal"};
-            if (!axes.count(axis)) p.raise_param("fov_axis", "fov_axis must be x, y, smaller, larger or diagonal");
-            if (p.has("fov") && p.has("focal_length"))
-                p.raise_param("focal_length", "give either 'fov' or 'focal_length', not both");
-            if (p.has("fov")) {
-                fov = p.get_float("fov");
-            } else {
-                // Mitsuba: a focal length ("50mm" unless given) on 35 mm film, whose diagonal
-                // (sqrt(36^2 + 24^2) mm) it spans: the field of view is along the diagonal.
-                std::string f = p.get_string("focal_length", "50mm");
-                if (f.size() > 2 && f.compare(f.size() - 2, 2, "mm") == 0) f.resize(f.size() - 2);
-                char* end = nullptr;
-                const double mm = std::strtod(f.c_str(), &end);
-                if (f.empty() || *end != '\0' || !(mm > 0) || !std::isfinite(mm))
-                    p.raise_param("focal_length", "focal_length must read like '50mm'");
-                fov = 2.0 * std::atan(std::sqrt(36.0 * 36.0 + 24.0 * 24.0) / (2.0 * mm)) * 180.0 / kPi;
-                axis = "diagonal";
-            }
-            if (!(fov > 0 && fov < 180)) p.raise_param("fov", "fov must lie in (0, 180) degrees");
+            const FieldOfView f = read_field_of_view(p);
+            fov = f.fov_deg;
+            axis = f.axis;
         }
         if (o.type == "thinlens") {
             // Mitsuba's thinlens takes both, without defaults.
@@ -337,6 +361,9 @@ private:
             p.raise_param("pixel_format", "unknown pixel_format (rgb, rgba, luminance, luminance_alpha, xyz, xyza)");
         if (!component_formats.count(p.get_string("component_format", "float16")))
             p.raise_param("component_format", "unknown component_format (float16, float32, uint32)");
+        static const std::set<std::string> file_formats = {"openexr", "exr", "rgbe", "hdr", "pfm"};
+        if (!file_formats.count(p.get_string("file_format", "openexr")))
+            p.raise_param("file_format", "unknown file_format (openexr, rgbe, pfm)");
         f.filter = default_filter();
         for (const auto& c : o.children) f.filter = read_rfilter(*c.obj);
         if (o.children.size() > 1)
@@ -365,7 +392,10 @@ private:
         }
         SamplerSpec spec;
         spec.type = o.type;
-        if (o.type == "stratified" || o.type == "multijitter") spec.jitter = p.get_bool("jitter", true);
+        if (o.type == "stratified" || o.type == "multijitter" || o.type == "orthogonal")
+            spec.jitter = p.get_bool("jitter", true);
+        if (o.type == "orthogonal" && p.get_int("strength", 2) != 2)
+            p.raise_param("strength", "snell's orthogonal sampler has strength 2 (the one Mitsuba recommends)");
         const int64_t spp = p.get_int("sample_count", m_out.spp);
         if (spp <= 0) p.raise_param("sample_count", "sample_count must be positive");
         const int64_t seed = p.get_int("seed", 0);

@@ -20,11 +20,8 @@ std::string unsupported_feature(const std::string& tag, const std::string& type)
         {{"integrator", "volpathmis"}, "participating media are"},
         {{"integrator", "prbvolpath"}, "participating media are"},
         {{"integrator", "stokes"}, "polarisation is"},
-        {{"integrator", "path_sms_glints"},
-         "glints from normal-mapped reflectors (no manifold technique for them) are"},
         {{"sensor", "radiancemeter"}, "radiance meters are"},
         {{"sensor", "irradiancemeter"}, "irradiance meters are"},
-        {{"emitter", "projector"}, "projector emitters (textures) are"},
     };
     const auto it = table.find({tag, type});
     if (it == table.end()) return "";

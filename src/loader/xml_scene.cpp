@@ -42,6 +42,7 @@ const std::set<std::string>& allowed_children(const std::string& parent) {
         {"film", {"rfilter"}},
         {"bsdf", {"bsdf", "texture"}},
         {"texture", {"texture"}},                 // checkerboard's color0/color1
+        {"emitter", {"texture"}},                 // textured radiance, spot texture, projector image
         {"shape", {"bsdf", "emitter", "shape"}},  // shapes only in a shapegroup, refs only in an instance
     };
     static const std::set<std::string> none;
@@ -296,11 +297,16 @@ private:
     void parse_path(const pugi::xml_node& n, const FileCtx& f) {
         const SourceLoc loc = f.at(n);
         const Attrs a = attrs(n, f, {"value"});
-        fs::path p(require(a, "value", loc, "path"));
-        if (p.is_relative()) p = fs::path(f.dir) / p;
+        // As Mitsuba 3 does: relative to the folder of the file that says it, else through the
+        // file resolver (the earlier <path> folders, the main scene's folder).
+        const std::string value = require(a, "value", loc, "path");
+        const std::optional<fs::path> p = resolve_file(value, f.dir);
         std::error_code ec;
-        if (!fs::is_directory(p, ec)) throw SceneError(loc, "path", "no such folder '" + p.string() + "'");
-        m_search_paths.insert(m_search_paths.begin(), p.string());
+        if (!p || !fs::is_directory(*p, ec))
+            throw SceneError(loc, "path",
+                             "no such folder '" + value + "' (relative to '" + f.dir +
+                                 "', the <path> folders and the main scene's folder)");
+        m_search_paths.insert(m_search_paths.begin(), p->string());
     }
 
     // A relative file name as Mitsuba's file resolver finds it, with the folder of the file that
@@ -324,7 +330,11 @@ private:
         obj->loc = f.at(n);
         obj->base_dir = f.dir;
         const Attrs a = attrs(n, f, {"type", "id", "name"});
-        obj->type = require(a, "type", obj->loc, obj->tag);
+        obj->type_as_written = require(a, "type", obj->loc, obj->tag);
+        // Plugin names are lower case; files exported on case-insensitive systems write
+        // "Rectangle", which Mitsuba finds there. The loader says so (a notice).
+        obj->type = obj->type_as_written;
+        for (char& ch : obj->type) ch = char(std::tolower(static_cast<unsigned char>(ch)));
         *name = a.count("name") ? a.at("name") : "";
         check_name(*name, obj->loc, obj->tag);
         if (a.count("id")) {

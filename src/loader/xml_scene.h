@@ -29,7 +29,8 @@ struct XmlObject {
         SourceLoc loc;  ///< where it was nested or referenced
     };
     std::string tag;               ///< element name, e.g. "bsdf"
-    std::string type;              ///< `type` attribute (empty for <scene>)
+    std::string type;              ///< `type` attribute in lower case (empty for <scene>)
+    std::string type_as_written;   ///< `type` as the file spells it
     std::string id;                ///< `id` attribute, empty if none
     SourceLoc loc;                 ///< the element itself
     std::string base_dir;          ///< folder of the file the element was written in

@@ -12,6 +12,7 @@ LightPoint light_point(const Scene& scene, const Light& light, const LightSample
     if (!light.is_infinite()) {
         lp.p = ls.p;
         lp.n = ls.n;
+        lp.uv = ls.uv;
         lp.pdf = ls.delta ? 1.0 : ls.pdf_area;
         return lp;
     }
@@ -23,13 +24,14 @@ LightPoint light_point(const Scene& scene, const Light& light, const LightSample
     return lp;
 }
 
-LightPoint light_point_hit(const Scene& scene, const Light& light, const Vec3& p, const Vec3& n, const Vec3& d,
-                           const Vec3& center) {
+LightPoint light_point_hit(const Scene& scene, const Light& light, const Vec3& p, const Vec3& n, const Vec2& uv,
+                           const Vec3& d, const Vec3& center) {
     LightPoint lp;
     lp.delta = light.is_delta();
     if (!light.is_infinite()) {
         lp.p = p;
         lp.n = n;
+        lp.uv = uv;
         return lp;
     }
     lp.p = center + d * far_light_distance(scene);
@@ -47,11 +49,11 @@ double light_point_pdf(const Scene& scene, const Light& light, const Vec3& ref, 
     (void)scene;
 }
 
-SampledSpectrum light_point_emission(const Light& light, const Vec3& p, const Vec3& n, const Vec3& w,
-                                     const Vec3& center, const SampledWavelengths& wl) {
-    const SampledSpectrum e = light.emitted(p, n, w, wl);
+SampledSpectrum light_point_emission(const Light& light, const LightPoint& lp, const Vec3& w, const Vec3& center,
+                                     const SampledWavelengths& wl) {
+    const SampledSpectrum e = light.emitted(lp.p, lp.n, lp.uv, w, wl);
     // A directional light's irradiance E is the intensity E D^2 of a point at distance D.
-    return light.kind() == LightKind::Directional ? e * length_squared(p - center) : e;
+    return light.kind() == LightKind::Directional ? e * length_squared(lp.p - center) : e;
 }
 
 }  // namespace snell

@@ -16,6 +16,7 @@ class Scene;
 
 struct LightPoint {
     Vec3 p, n;           ///< position and normal (facing the scene for far points)
+    Vec2 uv;             ///< surface coordinates on an area light (its texture reads them)
     double pdf = 0;      ///< area density of p, or 1 for delta positions
     bool delta = false;  ///< position (point, spot) or direction (directional) is a delta
 };
@@ -28,15 +29,15 @@ LightPoint light_point(const Scene& scene, const Light& light, const LightSample
 
 /// The light point a path reaching light along unit direction d from `from` ends on (for
 /// lights at infinity: on the far sphere around `center`, where MNEE would have put it).
-LightPoint light_point_hit(const Scene& scene, const Light& light, const Vec3& p, const Vec3& n, const Vec3& d,
-                           const Vec3& center);
+LightPoint light_point_hit(const Scene& scene, const Light& light, const Vec3& p, const Vec3& n, const Vec2& uv,
+                           const Vec3& d, const Vec3& center);
 
 /// Density (area measure; 1 for delta lights) with which NEE from `ref` yields light point p.
 double light_point_pdf(const Scene& scene, const Light& light, const Vec3& ref, const Vec3& p, const Vec3& n);
 
 /// Emission from light point p (normal n) along unit w (away from the light): radiance, or
 /// intensity for delta lights. `center` is the far sphere's centre (x_b).
-SampledSpectrum light_point_emission(const Light& light, const Vec3& p, const Vec3& n, const Vec3& w,
-                                     const Vec3& center, const SampledWavelengths& wl);
+SampledSpectrum light_point_emission(const Light& light, const LightPoint& lp, const Vec3& w, const Vec3& center,
+                                     const SampledWavelengths& wl);
 
 }  // namespace snell

@@ -197,7 +197,7 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     const Vec3 wo_b = xb.to_local(xb.wo), o_b_l = xb.to_local(o_b);
     const SampledSpectrum f_b = bsdf_b.eval(ctx.at(xb), wo_b, o_b_l) * std::abs(o_b_l.z);
     const Vec3 from_light = normalize(chain[k - 1].p - xc);
-    const SampledSpectrum Le = light_point_emission(light, xc, lp.n, from_light, xb.p, ctx.wl);
+    const SampledSpectrum Le = light_point_emission(light, lp, from_light, xb.p, ctx.wl);
     if (f_b.is_zero() || Le.is_zero()) {
         wc::count_walk_end(false, wc::WalkEnd::Zero);
         out.outcome = MneeOutcome::Zero;

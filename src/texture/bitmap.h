@@ -38,6 +38,7 @@ public:
     double max_value() const override { return m_max; }
 
     int width() const { return m_width; }
+    std::pair<int, int> resolution() const override { return {m_width, m_height}; }
     int height() const { return m_height; }
     int channels() const { return m_channels; }
     /// Texel index along an axis of n texels after the wrap mode.

@@ -8,6 +8,7 @@
 #include "texture/bitmap.h"
 #include "texture/checkerboard.h"
 #include "texture/constant.h"
+#include "texture/mesh_attribute.h"
 
 namespace snell {
 
@@ -78,6 +79,16 @@ TextureRef make_rawconstant(const Props& p) {
     return ConstantTexture::make(Spectrum::from_rgb_unbounded(v), v.luminance(), v);
 }
 
+/// Mitsuba's `mesh_attribute`: `name` ("vertex_..." or "face_..."), `scale` (1).
+TextureRef make_mesh_attribute(const Props& p) {
+    const std::string name = p.get_string("name");
+    if (name.rfind("vertex_", 0) != 0 && name.rfind("face_", 0) != 0)
+        p.raise_param("name", "a mesh attribute's name starts with 'vertex_' or 'face_' (got '" + name + "')");
+    const double scale = p.get_float("scale", 1.0);
+    if (!std::isfinite(scale) || scale < 0) p.raise_param("scale", "scale must be finite and non-negative");
+    return std::make_shared<MeshAttributeTexture>(name, scale);
+}
+
 }  // namespace
 
 TextureRef create_texture(const Props& p) {
@@ -88,8 +99,10 @@ TextureRef create_texture(const Props& p) {
         t = make_checkerboard(p);
     else if (p.type() == "rawconstant")
         t = make_rawconstant(p);
+    else if (p.type() == "mesh_attribute")
+        t = make_mesh_attribute(p);
     else
-        p.raise("unknown texture type '" + p.type() + "' (known: bitmap, checkerboard, rawconstant)");
+        p.raise("unknown texture type '" + p.type() + "' (known: bitmap, checkerboard, rawconstant, mesh_attribute)");
     p.check_unused();
     return t;
 }

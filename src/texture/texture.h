@@ -4,6 +4,7 @@
 // spectral value at a path's wavelengths, eval_float() a scalar (a colour's luminance), eval_rgb()
 // the stored triple (normal maps).
 #include <memory>
+#include <utility>
 
 #include "core/object.h"
 #include "core/sampled_spectrum.h"
@@ -32,6 +33,8 @@ public:
     virtual double max_value() const = 0;
     /// The same value everywhere (BSDFs keep their constant fast paths).
     virtual bool is_constant() const { return false; }
+    /// Texels along u and v (1 x 1 for procedural textures): a projector's aspect ratio.
+    virtual std::pair<int, int> resolution() const { return {1, 1}; }
 };
 
 using TextureRef = std::shared_ptr<const Texture>;

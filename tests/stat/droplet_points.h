@@ -40,7 +40,7 @@ double refracted_light_sample(const Scene& scene, const SurfaceInteraction& xb, 
     std::vector<SurfaceInteraction> chain;
     SurfaceInteraction h;
     for (int d = 0; d < 6 && scene.intersect(ray, &h); ++d) {
-        if (h.emitter()) return accept(chain, h) ? beta * h.emitter()->le(h.p, h.n, -ray.d, ctx.wl)[0] : 0.0;
+        if (h.emitter()) return accept(chain, h) ? beta * h.emitter()->le(h.p, h.n, h.uv, -ray.d, ctx.wl)[0] : 0.0;
         const auto b2 = h.bsdf()->sample(ctx, h.to_local(h.wo), smp.next_1d(), smp.next_2d());
         if (!b2 || !(b2->lobe & kTransmission)) return 0;
         chain.push_back(h);

@@ -5,6 +5,7 @@
 
 #include "bsdf/conductor.h"
 #include "bsdf/conductor_data.h"
+#include "bsdf/conductor_table.h"
 #include "bsdf/dielectric.h"
 #include "bsdf/diffuse.h"
 #include "bsdf/factory.h"
@@ -94,8 +95,27 @@ TEST(Fresnel, DiffuseReflectanceReciprocity) {
 }
 
 TEST(Conductors, NamedDataIsMeasured) {
-    for (const char* n : {"Au", "Ag", "Cu", "Al"}) ASSERT_TRUE(named_conductor(n)) << n;
+    for (const char* n : {"Au", "Ag", "Cu", "Al", "a-C", "W", "Cr", "TiN", "Na_palik"})
+        ASSERT_TRUE(named_conductor(n)) << n;
     EXPECT_FALSE(named_conductor("unobtainium"));
+    // Every material of the generated table: ascending wavelengths from the near UV (a few end
+    // early, AlSb at 590 nm: the last value holds beyond), non-negative eta and k, one value per
+    // wavelength.
+    EXPECT_GE(conductor_table().size(), 70u);
+    for (const ConductorTableEntry& e : conductor_table()) {
+        for (const auto* l : {&e.eta_lambda, &e.k_lambda}) {
+            ASSERT_GE(l->size(), 2u) << e.name;
+            EXPECT_LE(l->front(), 360.0) << e.name;
+            EXPECT_GE(l->back(), 590.0) << e.name;
+            for (size_t i = 1; i < l->size(); ++i) EXPECT_LT((*l)[i - 1], (*l)[i]) << e.name;
+        }
+        ASSERT_EQ(e.eta.size(), e.eta_lambda.size()) << e.name;
+        ASSERT_EQ(e.k.size(), e.k_lambda.size()) << e.name;
+        for (double v : e.eta) EXPECT_GE(v, 0) << e.name;  // AlAs has gaps written as 0
+        for (double v : e.k) EXPECT_GE(v, 0) << e.name;
+    }
+    // Amorphous carbon (a-C) at 516.58 nm, as tabulated: eta 2.30.
+    EXPECT_NEAR(named_conductor("a-C")->eta(516.583008), 2.30, 1e-9);
     auto au = *named_conductor("Au");
     // A tabulated point (Palik): Au at 619.92 nm has eta 0.194, k 3.06.
     EXPECT_NEAR(au.eta(619.920898), 0.194, 1e-9);

@@ -80,10 +80,12 @@ TEST(AreaLight, SamplePdfMatchesPdfLiAndAreaDensity) {
 TEST(AreaLight, OneSidedEmission) {
     auto disk = std::make_shared<test::TestDisk>(Vec3(0, 0, 0), Vec3(0, 0, 1), 1.0);
     AreaLight light(Spectrum::constant(2.0), disk);
-    EXPECT_EQ(light.le(Vec3(0, 0, 0), Vec3(0, 0, 1), normalize(Vec3(0.3, 0, 1)), SampledWavelengths::single(550))[0],
-              2.0);
-    EXPECT_EQ(light.le(Vec3(0, 0, 0), Vec3(0, 0, 1), normalize(Vec3(0.3, 0, -1)), SampledWavelengths::single(550))[0],
-              0.0);
+    EXPECT_EQ(
+        light.le(Vec3(0, 0, 0), Vec3(0, 0, 1), Vec2(), normalize(Vec3(0.3, 0, 1)), SampledWavelengths::single(550))[0],
+        2.0);
+    EXPECT_EQ(
+        light.le(Vec3(0, 0, 0), Vec3(0, 0, 1), Vec2(), normalize(Vec3(0.3, 0, -1)), SampledWavelengths::single(550))[0],
+        0.0);
     // A reference point behind the disk sees no emission: nothing to sample.
     PCG32 rng(3, 4);
     for (int i = 0; i < 100; ++i)

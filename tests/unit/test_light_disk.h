@@ -24,7 +24,7 @@ public:
 
     ShapeSample sample_area(const Vec2& u) const override {
         const Vec2 d = warp::square_to_uniform_disk_concentric(u) * m_R;
-        return {m_c + m_frame.to_world(Vec3(d.x, d.y, 0)), m_frame.n, 1.0 / area()};
+        return {m_c + m_frame.to_world(Vec3(d.x, d.y, 0)), m_frame.n, 1.0 / area(), d};
     }
     std::optional<ShapeSample> sample_from(const Vec3& ref, const Vec2& u) const override {
         ShapeSample s = sample_area(u);

@@ -14,13 +14,15 @@
 #include "sampler/hashing.h"
 #include "sampler/ldsampler.h"
 #include "sampler/multijitter.h"
+#include "sampler/orthogonal.h"
 #include "sampler/stratified.h"
 
 using namespace snell;
 
 namespace {
 
-const std::vector<std::string> kAllTypes = {"independent", "stratified", "multijitter", "ldsampler", "sobol"};
+const std::vector<std::string> kAllTypes = {"independent", "stratified", "multijitter",
+                                            "orthogonal",  "ldsampler",  "sobol"};
 
 std::unique_ptr<Sampler> make(const std::string& type, int n, uint64_t seed, bool jitter = true) {
     SamplerSpec spec;
@@ -153,6 +155,46 @@ TEST(Samplers, MultiJitterIsStratifiedIn2DAndIn1DProjections) {
                     } else {
                         EXPECT_TRUE(one_per_cell(as_1d(d[c]), n, 1)) << "n " << n << " call " << c;
                     }
+                }
+            }
+        }
+    }
+}
+
+// Orthogonal-array sampling (strength 2): *every* pair of the first p + 1 dimensions is
+// stratified p x p, whether drawn by next_1d or next_2d, and every dimension into p^2 intervals;
+// past p + 1 dimensions a new round starts with the same properties. A shuffled column (a mutation
+// that reuses one column for two dimensions) fails the pairwise check.
+TEST(Samplers, OrthogonalIsStratifiedInEveryPairOfDimensions) {
+    EXPECT_EQ(OrthogonalSampler::round_sample_count(25), 25);
+    EXPECT_EQ(OrthogonalSampler::round_sample_count(26), 49);
+    EXPECT_EQ(OrthogonalSampler::round_sample_count(4), 4);
+    EXPECT_EQ(OrthogonalSampler::round_sample_count(1), 4);
+    for (int p : {5, 7}) {
+        const int n = p * p;
+        for (bool jitter : {true, false}) {
+            OrthogonalSampler s(n, 11, jitter);
+            ASSERT_EQ(s.sample_count(), n);
+            for (uint64_t block : {0, 2}) {
+                // 2 (p + 1) next_1d calls: two rounds of p + 1 columns.
+                const auto d = draw(s, 3, 8, block * n, n, std::string(size_t(2 * (p + 1)), 'u'));
+                for (size_t r = 0; r < 2; ++r)
+                    for (size_t j = 0; j <= size_t(p); ++j) {
+                        const auto& dj = d[r * (p + 1) + j];
+                        EXPECT_TRUE(one_per_cell(as_1d(dj), n, 1)) << "p " << p << " dim " << j;
+                        for (size_t k = j + 1; k <= size_t(p); ++k) {
+                            const auto& dk = d[r * (p + 1) + k];
+                            std::vector<Vec2> pair(static_cast<size_t>(n));
+                            for (int i = 0; i < n; ++i) pair[size_t(i)] = Vec2(dj[size_t(i)].x, dk[size_t(i)].x);
+                            EXPECT_TRUE(one_per_cell(pair, p, p)) << "p " << p << " dims " << j << ", " << k;
+                        }
+                    }
+                // next_2d: both coordinates of each call stratified p x p and n x 1.
+                const auto q = draw(s, 3, 8, block * n, n, "ppp");
+                for (const auto& c : q) {
+                    EXPECT_TRUE(one_per_cell(c, p, p));
+                    EXPECT_TRUE(one_per_cell(c, n, 1));
+                    EXPECT_TRUE(one_per_cell(transposed(c), n, 1));
                 }
             }
         }

@@ -158,8 +158,12 @@ TEST(SceneLoaderFull, SensorFilmSamplerErrors) {
         "test.xml:4: <film>", "does not fit");
     expect_error(
         "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n"
-        "<sampler type=\"orthogonal\"/>\n</sensor>\n</scene>",
-        "test.xml:4: <sampler>", "unknown sampler type 'orthogonal' (supported: independent, stratified");
+        "<sampler type=\"halton\"/>\n</sensor>\n</scene>",
+        "test.xml:4: <sampler>", "unknown sampler type 'halton' (supported: independent, stratified");
+    expect_error(
+        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n"
+        "<sampler type=\"orthogonal\"><integer name=\"strength\" value=\"3\"/></sampler>\n</sensor>\n</scene>",
+        "test.xml:4: <sampler>", "strength 2");
     expect_error(
         "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n"
         "<film type=\"hdrfilm\">\n<float name=\"exposure\" value=\"1\"/>\n</film>\n</sensor>\n</scene>",
@@ -302,7 +306,17 @@ TEST(SceneLoaderFull, SmsIntegratorsMapToMnee) {
     // A parameter neither SMS nor snell knows is still an error at its line.
     expect_error(scene_with("<integrator type=\"path_sms_ss\">\n<float name=\"nope\" value=\"1\"/>\n</integrator>"),
                  "test.xml:4: <integrator>", "unused parameter 'nope'");
-    expect_error(scene_with("<integrator type=\"path_sms_glints\"/>"), "test.xml:3: <integrator>", "glints");
+    // The glint integrator renders as `path` (BSDF and emitter sampling converge to the same
+    // image), with a notice naming what it ignores; Mitsuba's particle tracer as `bdpt`.
+    const LoadedScene glints =
+        load_string(scene_with("<integrator type=\"path_sms_glints\"><integer name=\"max_depth\" value=\"7\"/>"
+                               "<integer name=\"glints_max_trials\" value=\"3\"/></integrator>"));
+    EXPECT_EQ(glints.integrator->name(), "path");
+    EXPECT_TRUE(has_notice(glints, "renders as path"));
+    EXPECT_TRUE(has_notice(glints, "ignored: glints_max_trials"));
+    const LoadedScene pt = load_string(scene_with("<integrator type=\"ptracer\"/>"));
+    EXPECT_EQ(pt.integrator->name(), "bdpt");
+    EXPECT_TRUE(has_notice(pt, "renders as bdpt"));
 }
 
 // Mitsuba 3 scenes declare films, samplers and area emitters at the top level with an id and use

@@ -116,7 +116,7 @@ SampledSpectrum BdptTracer::li_splat(const CameraSample& cs, const Ray& ray, con
         const Vertex& z = cam[size_t(t - 1)];
         // s = 0: the camera subpath ends on an area light.
         if (z.light && !(m_settings.hide_emitters && t == 2)) {
-            const SampledSpectrum le = z.light->le(z.si.p, z.si.n, z.si.wo, wl);
+            const SampledSpectrum le = z.light->le(z.si.p, z.si.n, z.si.uv, z.si.wo, wl);
             if (le.is_nonzero()) {
                 const SampledSpectrum c = z.beta * le * mis_weight(scene, disk, cam, lig, 0, t, wl);
                 L += c;

@@ -42,7 +42,7 @@ SampledSpectrum connect(const Scene& scene, const std::vector<Vertex>& cam, cons
         const SampledSpectrum fz = z.bsdf->eval(BSDFContext{wl, TransportMode::Radiance}.at(z.si),
                                                 z.si.to_local(z.si.wo), z.si.to_local(y.dir)) *
                                    std::abs(dot(z.si.n, y.dir));
-        const SampledSpectrum c = z.beta * fz * y.light->emitted(Vec3(), Vec3(), -y.dir, wl) * y.beta;
+        const SampledSpectrum c = z.beta * fz * y.light->emitted(Vec3(), Vec3(), Vec2(), -y.dir, wl) * y.beta;
         if (c.is_zero() || scene.occluded(scene.spawn_ray(z.si, y.dir))) return {};
         return joined(c, z, y, wl);
     }
@@ -57,8 +57,8 @@ SampledSpectrum connect(const Scene& scene, const std::vector<Vertex>& cam, cons
     if (fz.is_zero()) return {};
     SampledSpectrum fy;
     if (s == 1) {
-        fy = y.has_normal() ? y.light->le(y.si.p, y.si.n, -d, wl) * std::abs(dot(y.si.n, d))
-                            : y.light->emitted(y.si.p, Vec3(), -d, wl);
+        fy = y.has_normal() ? y.light->le(y.si.p, y.si.n, y.si.uv, -d, wl) * std::abs(dot(y.si.n, d))
+                            : y.light->emitted(y.si.p, Vec3(), Vec2(), -d, wl);
     } else {
         fy = adjoint_f(y, -d, wl);
     }

@@ -99,15 +99,10 @@ void light_subpath(const Scene& scene, const SceneDisk& disk, Sampler& sampler, 
     SampledSpectrum le;
     Vec3 w;
     if (delta_position(*light)) {
-        if (const auto* pl = dynamic_cast<const PointLight*>(light))
-            y0.si.p = pl->position();
-        else if (const auto* sl = dynamic_cast<const SpotLight*>(light))
-            y0.si.p = sl->position();
-        else
-            return;
+        y0.si.p = light->position();
         w = warp::square_to_uniform_sphere(u_dir);
         pdf_dir = kInv4Pi;
-        le = light->emitted(y0.si.p, Vec3(), w, wl);
+        le = light->emitted(y0.si.p, Vec3(), Vec2(), w, wl);
     } else {
         const Shape* shape = light->shape();
         if (!shape) return;
@@ -119,7 +114,8 @@ void light_subpath(const Scene& scene, const SceneDisk& disk, Sampler& sampler, 
         const Vec3 w_local = warp::square_to_cosine_hemisphere(u_dir);
         w = y0.si.to_world(w_local);
         pdf_dir = warp::square_to_cosine_hemisphere_pdf(w_local);
-        le = light->le(ss.p, ss.n, w, wl) * w_local.z;
+        y0.si.uv = ss.uv;
+        le = light->le(ss.p, ss.n, ss.uv, w, wl) * w_local.z;
     }
     if (!(pdf_pos > 0)) return;
     y0.pdf_fwd = pmf * pdf_pos;

@@ -42,7 +42,9 @@ struct Vertex {
     bool connectible() const { return type != VertexType::Surface || (bsdf && bsdf->is_smooth_sampled()); }
 };
 
-inline bool delta_position(const Light& l) { return l.kind() == LightKind::Point || l.kind() == LightKind::Spot; }
+inline bool delta_position(const Light& l) {
+    return l.kind() == LightKind::Point || l.kind() == LightKind::Spot || l.kind() == LightKind::Projector;
+}
 // Lights no camera subpath can hit: a delta position, or the directional light's delta direction.
 inline bool delta_origin(const Light& l) { return delta_position(l) || l.kind() == LightKind::Directional; }
 

@@ -59,7 +59,7 @@ SampledSpectrum DirectIntegrator::li(const Ray& ray, const Scene& scene, Sampler
         return L;
     }
     if (const Light* em = si.emitter(); em && !m_direct.hide_emitters)
-        add(Technique::Emitted, em->le(si.p, si.n, -ray.d, wl));
+        add(Technique::Emitted, em->le(si.p, si.n, si.uv, -ray.d, wl));
     const BSDF* bsdf = si.bsdf();
     if (!bsdf) {
         log.record(wl);
@@ -101,7 +101,7 @@ SampledSpectrum DirectIntegrator::li(const Ray& ray, const Scene& scene, Sampler
         const Light* em = hit.emitter();
         if (!em) continue;
         const SampledSpectrum tr = media.inside() ? media.transmittance(hit.t, wl) : SampledSpectrum(1.0);
-        add(Technique::BsdfHit, tp.beta * tr * em->le(hit.p, hit.n, -d, wl) * (weight(*em, hit.p, hit.n) / nb));
+        add(Technique::BsdfHit, tp.beta * tr * em->le(hit.p, hit.n, hit.uv, -d, wl) * (weight(*em, hit.p, hit.n) / nb));
     }
     log.record(wl);
     return L;

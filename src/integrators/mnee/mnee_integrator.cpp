@@ -147,7 +147,7 @@ double MneeIntegrator::emitter_hit_weight(const Scene& scene, const PathState& s
     const RefractiveSuffix& s = static_cast<const MneePathState&>(state).suffix;
     if (!s.has_xb || s.k == 0) return PathTracer::emitter_hit_weight(scene, state, light, p, n, d, ctx);
     // A BSDF-sampled path x_b, x_1..x_k (refractive), x_c: three techniques can produce it.
-    const LightPoint lp = light_point_hit(scene, light, p, n, d, s.xb.p);
+    const LightPoint lp = light_point_hit(scene, light, p, n, Vec2(), d, s.xb.p);  // densities only: no uv
     const double pmf = scene.light_sampler().pmf(&light);
     const size_t last = size_t(s.k - 1);
     const double p_bsdf = s.p_prefix * s.q_last * std::abs(dot(lp.n, d)) / length_squared(lp.p - s.chain[last].p);
@@ -180,7 +180,7 @@ SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const S
     const Ray shadow = std::isinf(ls->dist) ? scene.spawn_ray(si, ls->wi) : scene.spawn_ray_to(si, ls->p);
     if (scene.occluded(shadow)) return {};
     // The path x_b, x_1..x_k = si, x_c in area measure (lights at infinity on MNEE's far sphere).
-    const LightPoint lp = light_point_hit(scene, *light, ls->p, ls->n, ls->wi, s.xb.p);
+    const LightPoint lp = light_point_hit(scene, *light, ls->p, ls->n, ls->uv, ls->wi, s.xb.p);
     const double p_nee = s.p_prefix * pmf * light_point_pdf(scene, *light, si.p, lp.p, lp.n);
     const double p_bsdf = lp.delta ? 0.0
                                    : s.p_prefix * bsdf.pdf(ctx.at(si), wo, wi) * std::abs(dot(lp.n, ls->wi)) /

@@ -85,7 +85,7 @@ SampledSpectrum PathTracer::trace(const Ray& camera_ray, const Scene& scene, Sam
         // The emitter's weight depends on the path *before* this vertex (it ends here), so
         // it is computed before the vertex is recorded.
         if (const Light* em = si.emitter(); em && emitters_visible) {
-            const SampledSpectrum le = em->le(si.p, si.n, -ray.d, wl);
+            const SampledSpectrum le = em->le(si.p, si.n, si.uv, -ray.d, wl);
             if (le.is_nonzero())
                 add(depth == 0 ? Technique::Emitted : emitter_hit_technique(state),
                     tp.beta * le * emitter_hit_weight(scene, state, *em, si.p, si.n, ray.d, ctx));
