@@ -29,6 +29,12 @@ snell_test(test_texture_scenes
   SOURCES tests/texture/test_texture_scenes.cpp
   LIBS snell_loader snell_integrators PkgConfig::OIIO)
 
+# Emitters that read textures (area, spot, projector) and mesh_attribute, against closed-form
+# values; Mitsuba's file layout (<path> through the main folder, capitalised types).
+snell_test(test_emitter_textures
+  SOURCES tests/texture/test_emitter_textures.cpp
+  LIBS snell_loader snell_integrators PkgConfig::OIIO)
+
 # Reconstruction filters: chi-square of filter importance sampling, normalisation, splat
 # support, and <rfilter> loading.
 snell_test(test_filters
