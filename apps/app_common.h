@@ -20,7 +20,8 @@ extern std::atomic<bool> g_cancel;
 extern "C" void on_sigint(int);
 
 /// Loads a scene file or a built-in ("builtin:NAME") with -D overrides.
-LoadedScene load_scene_arg(const std::string& scene_arg, const Defines& defines);
+LoadedScene load_scene_arg(const std::string& scene_arg, const Defines& defines,
+                           const std::vector<std::string>& search_paths = {});
 /// Parses a scene file or built-in into the intermediate XML tree (no plugin is instantiated).
 std::shared_ptr<XmlObject> parse_scene_arg(const std::string& scene_arg, const Defines& defines);
 /// Parses -D items "name=value"; throws CLI::ValidationError on a malformed item.

@@ -19,9 +19,19 @@ namespace snell {
 
 int cmd_render(const std::string& scene_arg, std::string out, int spp, double time_limit, int threads,
                std::optional<uint64_t> seed_arg, double exposure, std::string stats_path, bool quiet,
-               const std::vector<std::string>& define_items, bool strategies) {
+               const std::vector<std::string>& define_items, bool strategies,
+               const std::vector<std::string>& search_path_items) {
     const Defines defines = parse_defines(define_items);
-    LoadedScene ls = load_scene_arg(scene_arg, defines);
+    std::vector<std::string> search_paths;
+    for (const std::string& item : search_path_items) {
+        size_t start = 0;
+        while (start <= item.size()) {
+            const size_t end = std::min(item.find(';', start), item.size());
+            if (end > start) search_paths.push_back(item.substr(start, end - start));
+            start = end + 1;
+        }
+    }
+    LoadedScene ls = load_scene_arg(scene_arg, defines, search_paths);
     const Integrator* integ = ls.integrator.get();
     if (!integ) throw std::runtime_error(scene_arg + ": the scene declares no <integrator>");
 

@@ -11,7 +11,8 @@ namespace snell {
 /// `snell render` (docs/rendering.md).
 int cmd_render(const std::string& scene_arg, std::string out, int spp, double time_limit, int threads,
                std::optional<uint64_t> seed_arg, double exposure, std::string stats_path, bool quiet,
-               const std::vector<std::string>& define_items, bool strategies = false);
+               const std::vector<std::string>& define_items, bool strategies = false,
+               const std::vector<std::string>& search_paths = {});
 
 /// `snell diff a.exr b.exr [--crop x,y,w,h]... [--json]`: metrics of a against the reference b.
 int cmd_diff(const std::string& a_path, const std::string& b_path, const std::vector<std::string>& crops,

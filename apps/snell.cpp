@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
     double time_limit = 0, exposure = 0;
     uint64_t seed = 0;
     bool quiet = false, strategies = false;
-    std::vector<std::string> defines;
+    std::vector<std::string> defines, search_paths;
     render_cmd->add_option("scene", scene_arg, "scene file, or builtin:droplet")->required();
     render_cmd->add_option("-o,--output", out, "output EXR (a PNG and a stats JSON are written beside it)");
     auto* spp_opt = render_cmd->add_option("--spp", spp, "samples per pixel (default: the scene's sample_count)")
@@ -34,6 +34,10 @@ int main(int argc, char** argv) {
     render_cmd->add_option("--exposure", exposure, "PNG exposure in stops");
     render_cmd->add_option("--stats", stats_path, "stats JSON path (default: beside the EXR)");
     render_cmd->add_option("-D,--define", defines, "override a scene <default>: -D name=value")
+        ->allow_extra_args(false);
+    render_cmd
+        ->add_option("-a,--search-path", search_paths,
+                     "folder to find the scene's files in after its own (Mitsuba's -a; ';' separates several)")
         ->allow_extra_args(false);
     render_cmd->add_flag("-q,--quiet", quiet, "no progress bar or summary");
     render_cmd->add_flag("--strategies", strategies,
@@ -100,7 +104,7 @@ int main(int argc, char** argv) {
         if (render_cmd->parsed())
             return cmd_render(scene_arg, out, spp, time_limit, threads,
                               seed_opt->count() ? std::optional<uint64_t>(seed) : std::nullopt, exposure, stats_path,
-                              quiet, defines, strategies);
+                              quiet, defines, strategies, search_paths);
         if (cmp_cmd->parsed()) {
             if (cmp_seed_opt->count()) cmp.seed = cmp_seed;
             if (cmp.reference_file.empty() && cmp.reference_spp == 0 && cmp.reference_time == 0)

@@ -14,6 +14,7 @@ snell_library(snell_bsdf
   src/bsdf/plastic.cpp
   src/bsdf/roughplastic.cpp
   src/bsdf/principled.cpp
+  src/bsdf/principledthin.cpp
   src/bsdf/blend.cpp
   src/bsdf/twosided.cpp
   src/bsdf/perturbed_frame.cpp

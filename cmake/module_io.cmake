@@ -7,6 +7,7 @@ snell_library(snell_io
   src/io/mesh_ply.cpp
   src/io/mesh_serialized.cpp
   src/io/texture_image.cpp
+  src/io/volume_grid.cpp
 )
 target_link_libraries(snell_io PUBLIC snell_core nlohmann_json::nlohmann_json
                       PRIVATE OpenEXR::OpenEXR PkgConfig::OIIO tinyobjloader::tinyobjloader ZLIB::ZLIB ${STB_LIBRARY})

@@ -5,6 +5,7 @@ snell_library(snell_texture
   src/texture/checkerboard.cpp
   src/texture/bitmap.cpp
   src/texture/mesh_attribute.cpp
+  src/texture/gridvolume.cpp
   src/texture/factory.cpp
 )
 target_link_libraries(snell_texture PUBLIC snell_core snell_io snell_geometry)

@@ -15,6 +15,7 @@
 #include "bsdf/null_bsdf.h"
 #include "bsdf/plastic.h"
 #include "bsdf/principled.h"
+#include "bsdf/principledthin.h"
 #include "bsdf/roughconductor.h"
 #include "bsdf/roughdielectric.h"
 #include "bsdf/roughplastic.h"
@@ -251,6 +252,32 @@ std::shared_ptr<BSDF> build(const Props& p) {
         }
         return std::make_shared<PrincipledBSDF>(std::move(q));
     }
+    if (type == "principledthin") {
+        PrincipledThinBSDF::Params q;
+        q.base_color = get_texture(p, "base_color", SpectrumUse::Reflectance, Spectrum::constant(0.5));
+        auto on = [&](const char* n) { return p.named_child<const Texture>(n) || (p.has(n) && p.get_float(n) != 0.0); };
+        auto unit = [&](const char* n, double def) { return get_float_texture(p, n, def, 0.0, 1.0); };
+        q.roughness = unit("roughness", 0.5);
+        q.anisotropic = unit("anisotropic", 0.0);
+        q.spec_trans = unit("spec_trans", 0.0);
+        q.spec_tint = unit("spec_tint", 0.0);
+        q.sheen = unit("sheen", 0.0);
+        q.sheen_tint = unit("sheen_tint", 0.0);
+        q.flatness = unit("flatness", 0.0);
+        q.diff_trans = get_float_texture(p, "diff_trans", 0.0, 0.0, 2.0);  // Burley's range
+        q.eta = get_float_texture(p, "eta", 1.5, 1e-3, 10.0);
+        q.anisotropic_on = on("anisotropic");
+        q.spec_trans_on = on("spec_trans");
+        q.diff_trans_on = on("diff_trans");
+        for (auto [n, slot] : {std::pair{"specular_reflectance_sampling_rate", &q.spec_refl_srate},
+                               std::pair{"specular_transmittance_sampling_rate", &q.spec_trans_srate},
+                               std::pair{"diffuse_reflectance_sampling_rate", &q.diff_refl_srate},
+                               std::pair{"diffuse_transmittance_sampling_rate", &q.diff_trans_srate}}) {
+            *slot = p.get_float(n, 1.0);
+            if (!(*slot >= 0) || !std::isfinite(*slot)) p.raise_param(n, std::string(n) + " must be >= 0");
+        }
+        return std::make_shared<PrincipledThinBSDF>(std::move(q));
+    }
     if (type == "normalmap" || type == "bumpmap") {
         auto kids = p.children<BSDF>();
         if (kids.size() != 1) p.raise(type + " needs exactly one nested BSDF");
@@ -279,7 +306,8 @@ std::shared_ptr<BSDF> build(const Props& p) {
     }
     p.raise("unknown BSDF type '" + type +
             "' (known: diffuse, dielectric, thindielectric, roughdielectric, conductor, "
-            "roughconductor, plastic, roughplastic, twosided, blendbsdf, mask, null, normalmap, bumpmap, principled)");
+            "roughconductor, plastic, roughplastic, twosided, blendbsdf, mask, null, normalmap, bumpmap, principled, "
+            "principledthin)");
 }
 
 }  // namespace

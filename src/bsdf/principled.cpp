@@ -4,28 +4,14 @@
 #include <cmath>
 
 #include "bsdf/fresnel.h"
+#include "bsdf/principled_helpers.h"
 #include "core/warp.h"
 
 namespace snell {
 
+using namespace principled;
+
 namespace {
-
-/// (1 - cos)^5, Schlick's weight.
-double schlick_weight(double c) {
-    const double m = clamp(1.0 - c, 0.0, 1.0);
-    return (m * m) * (m * m) * m;
-}
-
-/// Schlick's Fresnel with F0 = r0, for the signed cosine cos_i against the microfacet; from the
-/// denser side the transmitted angle's weight is used (total internal reflection gives 1).
-double schlick(double r0, double cos_i, double eta) {
-    const double eta_it = cos_i >= 0 ? eta : 1.0 / eta;
-    if (eta_it > 1.0) return r0 + (1 - r0) * schlick_weight(std::abs(cos_i));
-    const double cos_t2 = 1 - (1 - cos_i * cos_i) / (eta_it * eta_it);
-    return r0 + (1 - r0) * schlick_weight(std::sqrt(std::max(0.0, cos_t2)));
-}
-
-double schlick_r0(double eta) { return sqr((eta - 1) / (eta + 1)); }
 
 /// Burley's GTR1 ("Berry") distribution of the clearcoat, normalised in projected area.
 struct GTR1 {
@@ -52,13 +38,6 @@ double smith_ggx1(const Vec3& v, const Vec3& m, double alpha) {
     return 2.0 / (1.0 + std::sqrt(1.0 + alpha * alpha * tan2));
 }
 
-/// Both directions on m's side of the macro surface as the reflection (or refraction) needs,
-/// with m oriented to wo's side.
-bool compatible(const Vec3& m_up, const Vec3& wo, const Vec3& wi, bool reflection) {
-    const Vec3 m = wo.z >= 0 ? m_up : -m_up;
-    return dot(wo, m) > 0 && (reflection ? dot(wi, m) > 0 : dot(wi, m) < 0);
-}
-
 }  // namespace
 
 struct PrincipledBSDF::Local {
@@ -75,14 +54,7 @@ PrincipledBSDF::Local PrincipledBSDF::at(const BSDFContext& ctx) const {
     l.clearcoat = m_p.clearcoat_on ? m_p.clearcoat.eval(ctx) : 0.0;
     l.brdf = (1 - l.metallic) * (1 - l.spec_trans);
     l.bsdf = (1 - l.metallic) * l.spec_trans;
-    // Burley 2012: alpha = roughness^2, stretched by aspect = sqrt(1 - 0.9 anisotropic).
-    const double r2 = l.roughness * l.roughness;
-    double ax = std::max(1e-3, r2), ay = ax;
-    if (m_p.anisotropic_on) {
-        const double aspect = std::sqrt(1 - 0.9 * m_p.anisotropic.eval(ctx));
-        ax = std::max(1e-3, r2 / aspect);
-        ay = std::max(1e-3, r2 * aspect);
-    }
+    const auto [ax, ay] = ggx_alphas(l.roughness, m_p.anisotropic_on ? m_p.anisotropic.eval(ctx) : 0.0);
     l.distr = MicrofacetDistribution(MicrofacetDistribution::Type::GGX, ax, ay, true);
     if (m_p.clearcoat_on) {
         const double g = m_p.clearcoat_gloss.eval(ctx);
@@ -155,23 +127,9 @@ SampledSpectrum PrincipledBSDF::eval_at(const BSDFContext& ctx, const Local& l, 
         f += SampledSpectrum(0.25 * l.clearcoat * Fcc * l.cc.D(h) * Gcc);
     }
     if (reflect && front) {
-        const double Fo = schlick_weight(cos_i), Fi = schlick_weight(cos_o);  // light side, camera side
         const double cos_d = dot(h, wi);
-        if (l.brdf > 0) {
-            // Burley 2012: retro-reflective diffuse; Burley 2015: fake subsurface by flatness.
-            const double f_diff = (1 - 0.5 * Fi) * (1 - 0.5 * Fo);
-            const double Rr = 2 * l.roughness * cos_d * cos_d;
-            const double f_retro = Rr * (Fo + Fi + Fo * Fi * (Rr - 1));
-            double shape = f_diff + f_retro;
-            const double flatness = m_p.flatness.eval(ctx);
-            if (flatness > 0) {
-                const double Fss90 = Rr / 2;
-                const double Fss = (1 - Fo + Fss90 * Fo) * (1 - Fi + Fss90 * Fi);
-                const double f_ss = 1.25 * (Fss * (1 / (cos_i + cos_o) - 0.5) + 0.5);
-                shape = shape * (1 - flatness) + f_ss * flatness;
-            }
-            f += base * (l.brdf * kInvPi * shape);
-        }
+        if (l.brdf > 0)
+            f += base * (l.brdf * kInvPi * diffuse_shape(cos_o, cos_i, cos_d, l.roughness, m_p.flatness.eval(ctx)));
         const double sheen = m_p.sheen.eval(ctx);
         if (sheen > 0 && l.metallic < 1) {
             const double Fd = schlick_weight(std::abs(cos_d));

@@ -138,6 +138,9 @@ const XmlObject& unwrap_integrator(const XmlObject& o_in, std::vector<std::strin
 
 Props integrator_props(const XmlObject& wrapped, std::vector<std::string>* notices) {
     const XmlObject* o = &unwrap_integrator(wrapped, notices);
+    // An unsupported wrapper (stokes) says what it is before anything about its nesting.
+    if (const std::string why = unsupported_feature(o->tag, o->type); !why.empty())
+        throw SceneError(o->loc, o->tag, why);
     for (const auto& c : o->children)
         throw SceneError(c.obj->loc, c.obj->tag,
                          "<integrator type=\"" + o->type + "\"> takes no nested <" + c.obj->tag + ">");

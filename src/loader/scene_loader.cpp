@@ -361,6 +361,7 @@ private:
             p.raise_param("pixel_format", "unknown pixel_format (rgb, rgba, luminance, luminance_alpha, xyz, xyza)");
         if (!component_formats.count(p.get_string("component_format", "float16")))
             p.raise_param("component_format", "unknown component_format (float16, float32, uint32)");
+        p.mark_used("banner");  // Mitsuba 0.6's; Mitsuba 3 accepts and ignores it too
         static const std::set<std::string> file_formats = {"openexr", "exr", "rgbe", "hdr", "pfm"};
         if (!file_formats.count(p.get_string("file_format", "openexr")))
             p.raise_param("file_format", "unknown file_format (openexr, rgbe, pfm)");
@@ -416,8 +417,9 @@ LoadedScene instantiate(const XmlObject& root, const std::string& path) {
 
 }  // namespace
 
-LoadedScene load_scene_file(const std::string& path, const Defines& defines) {
-    return instantiate(*parse_scene_xml_file(path, defines), path);
+LoadedScene load_scene_file(const std::string& path, const Defines& defines,
+                            const std::vector<std::string>& search_paths) {
+    return instantiate(*parse_scene_xml_file(path, defines, search_paths), path);
 }
 
 LoadedScene load_scene_string(const std::string& xml, const std::string& name, const std::string& base_dir,

@@ -37,7 +37,10 @@ struct LoadedScene {
 using Defines = std::map<std::string, std::string>;
 
 /// Loads a Mitsuba 2/3-style XML scene. Errors are SceneError "file:line: <element>: what".
-LoadedScene load_scene_file(const std::string& path, const Defines& defines = {});
+/// `search_paths` (the command line's -a, as in Mitsuba) are tried for relative file names after
+/// the scene's own folders.
+LoadedScene load_scene_file(const std::string& path, const Defines& defines = {},
+                            const std::vector<std::string>& search_paths = {});
 /// Loads from a string; relative paths resolve against `base_dir`; `name` labels errors.
 LoadedScene load_scene_string(const std::string& xml, const std::string& name, const std::string& base_dir,
                               const Defines& defines = {});

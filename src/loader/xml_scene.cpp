@@ -27,7 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::set<std::string> kObjectTags = {"integrator", "sensor", "film",    "sampler", "rfilter",
-                                           "bsdf",       "shape",  "emitter", "texture"};
+                                           "bsdf",       "shape",  "emitter", "texture", "volume"};
 const std::set<std::string> kValueTags = {"float",  "integer", "boolean",  "string",   "point",
                                           "vector", "rgb",     "spectrum", "transform"};
 const std::set<std::string> kTransformOps = {"lookat", "translate", "rotate", "scale", "matrix"};
@@ -41,7 +41,7 @@ const std::set<std::string>& allowed_children(const std::string& parent) {
         {"sensor", {"film", "sampler"}},
         {"film", {"rfilter"}},
         {"bsdf", {"bsdf", "texture"}},
-        {"texture", {"texture"}},                 // checkerboard's color0/color1
+        {"texture", {"texture", "volume"}},       // checkerboard's color0/color1; a volume texture's grid
         {"emitter", {"texture"}},                 // textured radiance, spot texture, projector image
         {"shape", {"bsdf", "emitter", "shape"}},  // shapes only in a shapegroup, refs only in an instance
     };
@@ -101,7 +101,8 @@ struct FileCtx {
 
 class Parser {
 public:
-    explicit Parser(const std::map<std::string, std::string>& defines) : m_defines(defines), m_params(defines) {}
+    explicit Parser(const std::map<std::string, std::string>& defines, std::vector<std::string> extra_paths = {})
+        : m_defines(defines), m_params(defines), m_extra_paths(std::move(extra_paths)) {}
 
     std::shared_ptr<XmlObject> parse_root(const std::string& text, const FileCtx& f, const std::string& canonical) {
         auto scene = std::make_shared<XmlObject>();
@@ -136,6 +137,7 @@ private:
     std::vector<std::string> m_include_stack;  // canonical paths of the files being read
     std::string m_main_dir;                    // folder of the main scene file
     std::vector<std::string> m_search_paths;   // <path> folders, the latest first (Mitsuba's prepend)
+    std::vector<std::string> m_extra_paths;    // the command line's (-a), after the main folder
     std::map<std::string, std::shared_ptr<XmlObject>> m_ids;
     std::vector<PendingRef> m_refs;
 
@@ -318,6 +320,7 @@ private:
         std::vector<fs::path> candidates{fs::path(own_dir) / file};
         for (const auto& dir : m_search_paths) candidates.push_back(fs::path(dir) / file);
         candidates.push_back(fs::path(m_main_dir) / file);
+        for (const auto& dir : m_extra_paths) candidates.push_back(fs::path(dir) / file);
         std::error_code ec;
         for (const auto& c : candidates)
             if (fs::exists(c, ec)) return c;
@@ -674,13 +677,14 @@ private:
 }  // namespace
 
 std::shared_ptr<XmlObject> parse_scene_xml_file(const std::string& path,
-                                                const std::map<std::string, std::string>& defines) {
+                                                const std::map<std::string, std::string>& defines,
+                                                const std::vector<std::string>& search_paths) {
     bool ok = false;
     const std::string text = read_file(path, &ok);
     if (!ok) throw SceneError("cannot open scene file '" + path + "'");
     std::string dir = fs::path(path).parent_path().string();
     if (dir.empty()) dir = ".";
-    Parser parser(defines);
+    Parser parser(defines, search_paths);
     return parser.parse_root(text, FileCtx(path, dir, text), fs::weakly_canonical(path).string());
 }
 

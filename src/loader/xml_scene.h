@@ -45,8 +45,10 @@ struct XmlObject {
 /// Parses a scene file. `defines` (-D name=value) override the scene's <default> values; a
 /// define that the scene never declares or uses is an error (it is most likely a typo).
 /// Throws SceneError "file:line: <element>: what" for any syntax the loader does not know.
+/// `search_paths` (Mitsuba's -a) are tried for relative file names after the main scene's folder.
 std::shared_ptr<XmlObject> parse_scene_xml_file(const std::string& path,
-                                                const std::map<std::string, std::string>& defines = {});
+                                                const std::map<std::string, std::string>& defines = {},
+                                                const std::vector<std::string>& search_paths = {});
 /// Same from a string; `name` labels errors and `base_dir` resolves relative includes.
 std::shared_ptr<XmlObject> parse_scene_xml_string(const std::string& xml, const std::string& name,
                                                   const std::string& base_dir,

@@ -36,19 +36,7 @@ BitmapTexture::BitmapTexture(TextureImage image, Filter filter, Wrap wrap, bool 
     m_mean = n ? sum / double(n) : 0.0;
 }
 
-int BitmapTexture::wrap(int i, int n) const {
-    switch (m_wrap) {
-        case Wrap::Clamp:
-            return std::clamp(i, 0, n - 1);
-        case Wrap::Mirror: {
-            const int m = ((i % (2 * n)) + 2 * n) % (2 * n);
-            return m < n ? m : 2 * n - 1 - m;
-        }
-        case Wrap::Repeat:
-        default:
-            return ((i % n) + n) % n;
-    }
-}
+int BitmapTexture::wrap(int i, int n) const { return wrap_index(i, n, m_wrap); }
 
 BitmapTexture::Footprint BitmapTexture::footprint(const Vec2& uv_in) const {
     const Vec2 uv = transform_uv(m_to_uv, uv_in);

@@ -23,7 +23,7 @@ namespace snell {
 class BitmapTexture final : public Texture {
 public:
     enum class Filter { Nearest, Bilinear };
-    enum class Wrap { Repeat, Mirror, Clamp };
+    using Wrap = WrapMode;
 
     /// `raw`: keep the stored values (no sRGB decoding).
     BitmapTexture(TextureImage image, Filter filter, Wrap wrap, bool raw, Transform to_uv);

@@ -5,9 +5,11 @@
 #include <sstream>
 
 #include "io/texture_image.h"
+#include "io/volume_grid.h"
 #include "texture/bitmap.h"
 #include "texture/checkerboard.h"
 #include "texture/constant.h"
+#include "texture/gridvolume.h"
 #include "texture/mesh_attribute.h"
 
 namespace snell {
@@ -89,6 +91,51 @@ TextureRef make_mesh_attribute(const Props& p) {
     return std::make_shared<MeshAttributeTexture>(name, scale);
 }
 
+/// Mitsuba's `gridvolume` (a <volume> inside a `volume` texture): filename, filter_type
+/// (trilinear, nearest), wrap_mode (clamp, repeat, mirror), raw, to_world, use_grid_bbox.
+TextureRef make_gridvolume(const Props& p) {
+    std::filesystem::path file = p.get_string("filename");
+    const std::string base = p.get_string("__base_dir", "");
+    if (file.is_relative() && !base.empty()) file = std::filesystem::path(base) / file;
+    const std::string filter = p.get_string("filter_type", "trilinear");
+    if (filter != "trilinear" && filter != "nearest")
+        p.raise_param("filter_type", "unknown filter_type '" + filter + "' (expected trilinear or nearest)");
+    const std::string wrap = p.get_string("wrap_mode", "clamp");
+    WrapMode w = WrapMode::Clamp;
+    if (wrap == "repeat")
+        w = WrapMode::Repeat;
+    else if (wrap == "mirror")
+        w = WrapMode::Mirror;
+    else if (wrap != "clamp")
+        p.raise_param("wrap_mode", "unknown wrap_mode '" + wrap + "' (expected clamp, repeat or mirror)");
+    const bool raw = p.get_bool("raw", false);
+    Transform to_world = p.get_transform("to_world");
+    p.mark_used("max_value");  // a majorant for media, meaningless for a texture
+    p.mark_used("accel");      // Mitsuba's GPU texture setting
+    VolumeGrid grid;
+    try {
+        grid = read_volume_grid(file.string());
+    } catch (const std::exception& e) {
+        p.raise_param("filename", e.what());
+    }
+    if (p.get_bool("use_grid_bbox", false)) {
+        // The file's box instead of the unit cube.
+        const auto& b = grid.bbox;
+        to_world = to_world * Transform::translate(Vec3(b[0], b[1], b[2])) *
+                   Transform::scale(Vec3(b[3] - b[0], b[4] - b[1], b[5] - b[2]));
+    }
+    if (!(std::abs(to_world.det3()) > 0)) p.raise_param("to_world", "to_world must be invertible");
+    return std::make_shared<GridVolumeTexture>(std::move(grid), to_world, filter == "nearest", w, raw);
+}
+
+/// Mitsuba's `volume` texture: its nested <volume> (gridvolume, constvolume) looked up at the
+/// surface point, or a constant `volume` value.
+TextureRef make_volume_texture(const Props& p) {
+    if (auto v = p.named_child<const Texture>("volume")) return v;
+    if (p.has("volume")) return get_texture(p, "volume", SpectrumUse::Reflectance, Spectrum::constant(1.0));
+    p.raise("a volume texture needs a nested <volume type=\"gridvolume\"> (or a constant 'volume')");
+}
+
 }  // namespace
 
 TextureRef create_texture(const Props& p) {
@@ -101,8 +148,16 @@ TextureRef create_texture(const Props& p) {
         t = make_rawconstant(p);
     else if (p.type() == "mesh_attribute")
         t = make_mesh_attribute(p);
+    else if (p.type() == "volume")
+        t = make_volume_texture(p);
+    else if (p.type() == "gridvolume")
+        t = make_gridvolume(p);
+    else if (p.type() == "constvolume")
+        t = get_texture(p, "value", SpectrumUse::Reflectance, Spectrum::constant(1.0));
     else
-        p.raise("unknown texture type '" + p.type() + "' (known: bitmap, checkerboard, rawconstant, mesh_attribute)");
+        p.raise("unknown " + p.tag() + " type '" + p.type() +
+                "' (known: bitmap, checkerboard, rawconstant, mesh_attribute, volume; volumes: gridvolume, "
+                "constvolume)");
     p.check_unused();
     return t;
 }

@@ -39,6 +39,22 @@ public:
 
 using TextureRef = std::shared_ptr<const Texture>;
 
+/// Mitsuba's wrap modes: where a texel index outside [0, n) reads.
+enum class WrapMode { Repeat, Mirror, Clamp };
+inline int wrap_index(int i, int n, WrapMode w) {
+    switch (w) {
+        case WrapMode::Clamp:
+            return i < 0 ? 0 : (i >= n ? n - 1 : i);
+        case WrapMode::Mirror: {
+            const int m = ((i % (2 * n)) + 2 * n) % (2 * n);
+            return m < n ? m : 2 * n - 1 - m;
+        }
+        case WrapMode::Repeat:
+        default:
+            return ((i % n) + n) % n;
+    }
+}
+
 /// Mitsuba's `to_uv`: a 2D affine map of (u, v); a 4x4 transform from the file acts on (u, v, 0).
 inline Vec2 transform_uv(const Transform& to_uv, const Vec2& uv) {
     const Vec3 q = to_uv.point(Vec3(uv.x, uv.y, 0));

@@ -83,4 +83,14 @@ check "diff --crop in image coordinates" "echo \"\$out\" | grep -q '^crop 12,8,6
 out=$("$SNELL" diff "$TMP/ok.exr" "$TMP/crop.exr" --reference-offset 50,40 2>&1); rc=$?
 check "a reference window outside the image is an error" "[ $rc -ne 0 ] && echo \"\$out\" | grep -q 'does not fit'"
 
+# 10. -a adds a folder to find the scene's files in (Mitsuba's -a), after the scene's own; a
+#     mesh found only there loads, and without it the error names the mesh.
+mkdir -p "$TMP/assets/meshes" "$TMP/sc"
+printf 'v -1 -1 0\nv 1 -1 0\nv 1 1 0\nf 1 2 3\n' > "$TMP/assets/meshes/tri.obj"
+sed 's|</scene>|<shape type="obj"><string name="filename" value="meshes/tri.obj"/></shape></scene>|' "$TMP/ok.xml" > "$TMP/sc/a.xml"
+"$SNELL" render "$TMP/sc/a.xml" -o "$TMP/a.exr" --spp 1 -q -a "$TMP/nowhere;$TMP/assets"; rc=$?
+check "-a finds a mesh in the extra folder" "[ $rc -eq 0 ] && [ -s $TMP/a.exr ]"
+out=$("$SNELL" render "$TMP/sc/a.xml" -o "$TMP/a2.exr" --spp 1 -q 2>&1); rc=$?
+check "without -a the mesh is missing" "[ $rc -ne 0 ] && echo \"\$out\" | grep -q 'meshes/tri.obj'"
+
 exit $fail

@@ -15,6 +15,7 @@
 #include "bsdf/null_bsdf.h"
 #include "bsdf/plastic.h"
 #include "bsdf/principled.h"
+#include "bsdf/principledthin.h"
 #include "bsdf/roughconductor.h"
 #include "bsdf/roughdielectric.h"
 #include "bsdf/roughplastic.h"
@@ -159,6 +160,35 @@ std::vector<Case> make_cases() {
                                   q.flatness = 0.6;
                               }),
                               dir(70)));
+        // The thin sheet: all its lobes (specular reflection and unbent transmission, diffuse
+        // reflection and transmission, sheen), from the front and from the back.
+        auto thin = [&](auto tweak) {
+            PrincipledThinBSDF::Params q;
+            q.base_color = base;
+            tweak(q);
+            return std::make_shared<PrincipledThinBSDF>(q);
+        };
+        c.push_back(bsdf_case("principledthin_default", thin([](auto&) {}), dir(35)));
+        auto sheet = [](auto& q) {
+            q.roughness = 0.4;
+            q.spec_trans = 0.5;
+            q.spec_trans_on = true;
+            q.diff_trans = 0.8;
+            q.diff_trans_on = true;
+            q.sheen = 0.4;
+            q.spec_tint = 0.3;
+            q.eta = 1.4;
+        };
+        c.push_back(bsdf_case("principledthin_all_lobes_front", thin(sheet), dir(50)));
+        c.push_back(bsdf_case("principledthin_all_lobes_back", thin(sheet), dir(125)));
+        c.push_back(bsdf_case("principledthin_anisotropic", thin([](auto& q) {
+                                  q.roughness = 0.3;
+                                  q.anisotropic = 0.7;
+                                  q.anisotropic_on = true;
+                                  q.spec_trans = 0.9;
+                                  q.spec_trans_on = true;
+                              }),
+                              dir(65)));
     }
     // Perturbed shading frames at a point of a plane (dp/du = 2 x, dp/dv = 2 y): a normal map
     // tilted by 35 degrees, and a bump map whose height rises along u and v. Grazing directions

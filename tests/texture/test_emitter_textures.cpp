@@ -37,9 +37,7 @@ std::string emitting_plane(const std::string& integrator) {
 
 /// The colour a texture of colour `rgb` emits (Mitsuba 3 gives a texture in an emitter its own
 /// reflectance-like spectrum, not a D65-based one as for an <rgb>): that spectrum's linear sRGB.
-Vec3 emission_rgb(const RGB& rgb) {
-    return xyz_to_linear_srgb(spectrum_to_xyz(Spectrum::from_rgb_reflectance(rgb)));
-}
+Vec3 emission_rgb(const RGB& rgb) { return xyz_to_linear_srgb(spectrum_to_xyz(Spectrum::from_rgb_reflectance(rgb))); }
 
 }  // namespace
 

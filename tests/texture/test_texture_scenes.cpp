@@ -91,7 +91,7 @@ TEST(TextureScenes, BadInputNamesFileLineAndElement) {
                       dir, "test.xml:5: <texture>", "missing.png");
     expect_load_error(scene_with(R"(<bsdf type="diffuse"><texture type="wood" name="reflectance"/></bsdf>)"), dir,
                       "test.xml:4: <texture>",
-                      "unknown texture type 'wood' (known: bitmap, checkerboard, rawconstant)");
+                      "unknown texture type 'wood' (known: bitmap, checkerboard, rawconstant, mesh_attribute");
     write_texture("quad.png", 2, 2, 3, std::vector<uint8_t>(12, 7));
     expect_load_error(scene_with(R"(<bsdf type="diffuse"><texture type="bitmap" name="reflectance">
         <string name="filename" value="quad.png"/><string name="filter_type" value="ewa"/></texture></bsdf>)"),
