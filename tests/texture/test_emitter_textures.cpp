@@ -203,3 +203,44 @@ TEST(EmitterTextures, MitsubaFileLayout) {
     expect_load_error(R"(<scene version="3.0.0"><path value="nowhere"/></scene>)", root.string(), "test.xml:1: <path>",
                       "no such folder 'nowhere'");
 }
+
+// A `volume` texture reads its grid at the surface point in world space: a 2 x 1 x 1 grid placed
+// over the plane shows its two voxels on the two halves (nearest), and their blend along x
+// (trilinear, clamped beyond the outer voxel centres). A missing or damaged .vol file, and a
+// volume texture without its grid, are errors naming the element.
+TEST(EmitterTextures, VolumeTextureFromAGrid) {
+    const std::filesystem::path vol = texture_dir() / "two.vol";
+    {
+        std::ofstream f(vol, std::ios::binary);
+        const char magic[4] = {'V', 'O', 'L', 3};
+        const int32_t head[5] = {1, 2, 1, 1, 1};
+        const float bbox[6] = {0, 0, 0, 1, 1, 1}, data[2] = {0.2f, 0.8f};
+        f.write(magic, 4);
+        f.write(reinterpret_cast<const char*>(head), sizeof(head));
+        f.write(reinterpret_cast<const char*>(bbox), sizeof(bbox));
+        f.write(reinterpret_cast<const char*>(data), sizeof(data));
+    }
+    auto scene = [&](const std::string& filter, const std::string& file) {
+        return plane_scene(R"(<texture type="volume" name="reflectance"><volume type="gridvolume" name="volume">
+            <string name="filename" value=")" +
+                           file + R"("/><string name="filter_type" value=")" + filter +
+                           R"("/><transform name="to_world"><translate value="-0.5, -0.5, -0.5"/>
+            <scale value="2"/></transform></volume></texture>)");
+    };
+    const auto n = render_rgb(load_xml(scene("nearest", vol.string())), 4, 8);
+    expect_rgb(mean_over(n, 0.1, 0.45, 0.1, 0.9), Vec3(0.2), 0.02, "left voxel");
+    expect_rgb(mean_over(n, 0.55, 0.9, 0.1, 0.9), Vec3(0.8), 0.02, "right voxel");
+    const auto t = render_rgb(load_xml(scene("trilinear", vol.string())), 4, 9);
+    // Voxel centres at x = -0.5 and 0.5 (u = 0.25, 0.75): a linear blend between, clamped outside.
+    expect_rgb(mean_over(t, 0.1, 0.2, 0.1, 0.9), Vec3(0.2), 0.02, "clamped left");
+    expect_rgb(mean_over(t, 0.45, 0.55, 0.1, 0.9), Vec3(0.5), 0.02, "middle");
+    std::ofstream(texture_dir() / "bad.vol") << "VOX";
+    for (const std::string& bad : {(texture_dir() / "bad.vol").string(), (texture_dir() / "none.vol").string()}) {
+        const std::string err = load_error(scene("nearest", bad), texture_dir().string());
+        EXPECT_NE(err.find("<volume>"), std::string::npos) << err;
+        EXPECT_NE(err.find(bad), std::string::npos) << err;
+    }
+    EXPECT_NE(load_error(plane_scene(R"(<texture type="volume" name="reflectance"/>)"), texture_dir().string())
+                  .find("needs a nested <volume"),
+              std::string::npos);
+}
