@@ -10,10 +10,10 @@ namespace snell {
 
 class BumpMapBSDF final : public PerturbedFrameBSDF {
 public:
-    BumpMapBSDF(TextureRef height, double scale, std::shared_ptr<const BSDF> nested)
-        : PerturbedFrameBSDF(std::move(nested)), m_height(std::move(height)), m_scale(scale) {}
+    BumpMapBSDF(TextureRef height, double scale, std::shared_ptr<const BSDF> nested, Options opt = {})
+        : PerturbedFrameBSDF(std::move(nested), opt), m_height(std::move(height)), m_scale(scale) {}
 
-    Frame local_frame(const BSDFContext& ctx) const override;
+    Vec3 local_normal(const BSDFContext& ctx) const override;
 
 private:
     TextureRef m_height;

@@ -281,6 +281,11 @@ std::shared_ptr<BSDF> build(const Props& p) {
     if (type == "normalmap" || type == "bumpmap") {
         auto kids = p.children<BSDF>();
         if (kids.size() != 1) p.raise(type + " needs exactly one nested BSDF");
+        // Mitsuba 3's corrections default to on; the SMS code's normalmap (Mitsuba 2) has neither.
+        const bool sms_form = type == "normalmap" && !p.named_child<const Texture>("normalmap") && p.has("filename");
+        PerturbedFrameBSDF::Options opt;
+        opt.flip_invalid_normals = p.get_bool("flip_invalid_normals", !sms_form);
+        opt.shadowing = p.get_bool("use_shadowing_function", !sms_form);
         if (type == "normalmap") {
             auto normals = p.named_child<const Texture>("normalmap");
             if (!normals && p.has("filename")) normals = sms_normal_map(p);
@@ -288,14 +293,14 @@ std::shared_ptr<BSDF> build(const Props& p) {
                 p.raise(
                     "normalmap needs a nested <texture name=\"normalmap\"> (a raw bitmap, usually) or, as in the "
                     "SMS code, a 'filename'");
-            return std::make_shared<NormalMapBSDF>(normals, kids[0]);
+            return std::make_shared<NormalMapBSDF>(normals, kids[0], opt);
         }
         // Mitsuba's bumpmap takes its one nested texture whatever its name.
         auto heights = p.children<const Texture>();
         if (heights.size() != 1) p.raise("bumpmap needs exactly one nested texture (the height field)");
         const double scale = p.get_float("scale", 1.0);
         if (!std::isfinite(scale)) p.raise_param("scale", "scale must be finite");
-        return std::make_shared<BumpMapBSDF>(heights[0], scale, kids[0]);
+        return std::make_shared<BumpMapBSDF>(heights[0], scale, kids[0], opt);
     }
     if (type == "twosided") {
         auto kids = p.children<BSDF>();

@@ -9,12 +9,12 @@ namespace snell {
 
 class NormalMapBSDF final : public PerturbedFrameBSDF {
 public:
-    NormalMapBSDF(TextureRef normals, std::shared_ptr<const BSDF> nested)
-        : PerturbedFrameBSDF(std::move(nested)), m_normals(std::move(normals)) {}
+    NormalMapBSDF(TextureRef normals, std::shared_ptr<const BSDF> nested, Options opt = {})
+        : PerturbedFrameBSDF(std::move(nested), opt), m_normals(std::move(normals)) {}
 
-    Frame local_frame(const BSDFContext& ctx) const override {
+    Vec3 local_normal(const BSDFContext& ctx) const override {
         const RGB c = m_normals->eval_rgb(ctx.point());
-        return frame_from_normal(Vec3(2 * c.r - 1, 2 * c.g - 1, 2 * c.b - 1));
+        return Vec3(2 * c.r - 1, 2 * c.g - 1, 2 * c.b - 1);
     }
 
 private:

@@ -114,28 +114,38 @@ TEST(TextureScenes, BadInputNamesFileLineAndElement) {
 
 // A normal-mapped plane under a directional light of irradiance pi from l = (-1, 0, 1) / sqrt 2:
 // a diffuse BSDF of albedo 0.5 in the perturbed frame shows 0.5 cos(l, n') (Mitsuba's and
-// pbrt's convention: the cosine is the perturbed normal's). The map is a checkerboard of two
-// normals, n' tilted 30 degrees towards -x (cos = cos 15 deg) and the surface's own (cos 45 deg).
+// pbrt's convention: the cosine is the perturbed normal's), times Mitsuba 3's shadowing term
+// G = 2 / (1 + sqrt(1 + a^2 tan^2 theta_l)), a^2 = tan^2 theta_n' / 8, unless
+// use_shadowing_function is false. The map is a checkerboard of two normals, n' tilted 30 degrees
+// towards -x (cos = cos 15 deg) and the surface's own (cos 45 deg, G = 1).
 TEST(TextureScenes, NormalMappedPlaneIrradiance) {
     const double s30 = std::sin(M_PI / 6), c30 = std::cos(M_PI / 6);
     char colour[96];
     std::snprintf(colour, sizeof colour, "%.9f, 0.5, %.9f", 0.5 * (1 - s30), 0.5 * (1 + c30));
-    const std::string bsdf_open = std::string(R"(<bsdf type="normalmap">
-      <texture type="checkerboard" name="normalmap"><rgb name="color0" value=")") +
-                                  colour + R"("/><rgb name="color1" value="0.5, 0.5, 1"/></texture>
+    for (bool shadowing : {true, false}) {
+        SCOPED_TRACE(shadowing);
+        const std::string bsdf_open =
+            std::string(R"(<bsdf type="normalmap"><boolean name="use_shadowing_function" value=")") +
+            (shadowing ? "true" : "false") + R"("/>
+      <texture type="checkerboard" name="normalmap"><rgb name="color0" value=")" +
+            colour + R"("/><rgb name="color1" value="0.5, 0.5, 1"/></texture>
       <bsdf type="diffuse"><float name="reflectance" value="0.5"/></bsdf></bsdf>)";
-    const std::string xml = plane_scene("", "direct", bsdf_open, sun_from(-1, 1));
-    const auto rgb = render_rgb(load_xml(xml), 4, 2);
-    const double tilted = 0.5 * std::cos(M_PI / 12), flat = 0.5 * std::cos(M_PI / 4);
-    expect_rgb(mean_over(rgb, 0.1, 0.5, 0.1, 0.5), Vec3(tilted, tilted, tilted), 0.01, "tilted cell (0, 0)");
-    expect_rgb(mean_over(rgb, 0.5, 0.9, 0.1, 0.5), Vec3(flat, flat, flat), 0.01, "flat cell (1, 0)");
+        const std::string xml = plane_scene("", "direct", bsdf_open, sun_from(-1, 1));
+        const auto rgb = render_rgb(load_xml(xml), 4, 2);
+        const double a2 = std::tan(M_PI / 6) * std::tan(M_PI / 6) / 8, tan2_l = 1.0;
+        const double G = shadowing ? 2 / (1 + std::sqrt(1 + a2 * tan2_l)) : 1.0;
+        const double tilted = 0.5 * std::cos(M_PI / 12) * G, flat = 0.5 * std::cos(M_PI / 4);
+        expect_rgb(mean_over(rgb, 0.1, 0.5, 0.1, 0.5), Vec3(tilted, tilted, tilted), 0.005, "tilted cell (0, 0)");
+        expect_rgb(mean_over(rgb, 0.5, 0.9, 0.1, 0.5), Vec3(flat, flat, flat), 0.005, "flat cell (1, 0)");
+    }
 }
 
 // A bump map whose height is u (a 2 x 1 linear EXR, values 0 and 1, read bilinearly with clamp):
 // between the texel centres (u in [1/4, 3/4]) dh/du = 2, so with scale s the perturbed tangent is
 // dp/du + n 2 s = (2, 0, 2 s) and n' = (-s, 0, 1) / sqrt(1 + s^2); outside, the height is flat.
 // s = tan 30 deg tilts n' by 30 degrees towards -x: under the light from (1, 0, 1) / sqrt 2 the
-// middle shows 0.5 cos 75 deg and the flat edges 0.5 cos 45 deg.
+// middle shows 0.5 cos 75 deg times the shadowing term (as for the normal map) and the flat edges
+// 0.5 cos 45 deg.
 TEST(TextureScenes, BumpMappedPlaneIrradiance) {
     write_texture("ramp.exr", 2, 1, 1, std::vector<float>{0.0f, 1.0f});
     const std::string dir = texture_dir().string();
@@ -147,7 +157,8 @@ TEST(TextureScenes, BumpMappedPlaneIrradiance) {
                   std::tan(M_PI / 6));
     const std::string xml = plane_scene("", "direct", bsdf, sun_from(1, 1));
     const auto rgb = render_rgb(load_scene_string(xml, "t.xml", dir), 4, 2);
-    const double middle = 0.5 * std::cos(5 * M_PI / 12), edge = 0.5 * std::cos(M_PI / 4);
+    const double a2 = std::tan(M_PI / 6) * std::tan(M_PI / 6) / 8;
+    const double middle = 0.5 * std::cos(5 * M_PI / 12) * 2 / (1 + std::sqrt(1 + a2)), edge = 0.5 * std::cos(M_PI / 4);
     expect_rgb(mean_over(rgb, 0.3, 0.7, 0.1, 0.9), Vec3(middle, middle, middle), 0.01, "sloped middle");
     expect_rgb(mean_over(rgb, 0.1, 0.2, 0.1, 0.9), Vec3(edge, edge, edge), 0.01, "flat edge");
 }

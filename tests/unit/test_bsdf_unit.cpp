@@ -11,6 +11,7 @@
 #include "bsdf/factory.h"
 #include "bsdf/fresnel.h"
 #include "bsdf/microfacet.h"
+#include "bsdf/normalmap.h"
 #include "bsdf/plastic.h"
 #include "bsdf/principled.h"
 #include "bsdf/principledthin.h"
@@ -380,6 +381,42 @@ TEST(Principled, CornersInClosedForm) {
         const double want = F * ggx.D(h) * ggx.G(wo, wi, h) / (4 * wo.z * wi.z);
         EXPECT_NEAR(m.eval(ctx, wo, wi)[0], want, 1e-9 * (1 + want)) << k;
     }
+}
+
+// Mitsuba 3's flip_invalid_normals: a viewer behind the perturbed normal (a normal map tilted
+// 60 degrees towards +x, seen from -x at 70 degrees) would see black; the flip mirrors the normal
+// about the surface's, so the value equals that of the mirrored map, unflipped. Without the flip
+// it is 0. The shadowing term is Estevez et al.'s closed form, and 1 for the unperturbed normal.
+TEST(NormalMap, FlipInvalidNormalsAndShadowing) {
+    auto normal_tex = [](const Vec3& n) {
+        const RGB c(0.5 * (n.x + 1), 0.5 * (n.y + 1), 0.5 * (n.z + 1));
+        return ConstantTexture::make(Spectrum::from_rgb_unbounded(c), c.luminance(), c);
+    };
+    const double t = kPi / 3;
+    const Vec3 n(std::sin(t), 0, std::cos(t)), mirrored(-std::sin(t), 0, std::cos(t));
+    auto diffuse = std::make_shared<DiffuseBSDF>(Spectrum::constant(0.5));
+    SurfaceInteraction si;
+    si.n = si.ng = Vec3(0, 0, 1);
+    BSDFContext ctx;
+    ctx = ctx.at(si);
+    const Vec3 wo = Vec3(-std::sin(70 * kPi / 180), 0, std::cos(70 * kPi / 180));
+    const Vec3 wi = normalize(Vec3(-0.3, 0.1, 0.95));
+    const NormalMapBSDF flipped(normal_tex(n), diffuse, {true, false});
+    const NormalMapBSDF unflipped(normal_tex(n), diffuse, {false, false});
+    const NormalMapBSDF mirror(normal_tex(mirrored), diffuse, {false, false});
+    EXPECT_EQ(unflipped.eval(ctx, wo, wi)[0], 0.0);
+    EXPECT_GT(flipped.eval(ctx, wo, wi)[0], 0.0);
+    EXPECT_NEAR(flipped.eval(ctx, wo, wi)[0], mirror.eval(ctx, wo, wi)[0], 1e-6);
+    EXPECT_NEAR(flipped.pdf(ctx, wo, wi), mirror.pdf(ctx, wo, wi), 1e-6);
+    // A viewer in front of the normal sees no flip.
+    const Vec3 front = normalize(Vec3(0.5, 0, 1));
+    EXPECT_NEAR(flipped.eval(ctx, front, wi)[0], unflipped.eval(ctx, front, wi)[0], 1e-12);
+    // Shadowing: G = 2 / (1 + sqrt(1 + a^2 tan^2 theta_i)), a^2 = min(tan^2 theta_n / 8, 1).
+    const NormalMapBSDF shadowed(normal_tex(n), diffuse, {false, true});
+    const double a2 = std::min(std::tan(t) * std::tan(t) / 8, 1.0), tan2 = (1 - wi.z * wi.z) / (wi.z * wi.z);
+    const double G = 2 / (1 + std::sqrt(1 + a2 * tan2));
+    EXPECT_NEAR(shadowed.eval(ctx, front, wi)[0], G * unflipped.eval(ctx, front, wi)[0], 1e-6);
+    EXPECT_NEAR(shadowed.shadowing(Vec3(0, 0, 1), wi), 1.0, 0.0);
 }
 
 // The thin sheet is reciprocal in every lobe, reflection and transmission (its specular
