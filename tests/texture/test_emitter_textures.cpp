@@ -244,3 +244,25 @@ TEST(EmitterTextures, VolumeTextureFromAGrid) {
                   .find("needs a nested <volume"),
               std::string::npos);
 }
+
+// Bad input to the new plugins names file:line, the element and what is wrong.
+TEST(EmitterTextures, BadInputNamesTheElement) {
+    const std::string dir = texture_dir().string();
+    auto scene = [](const std::string& body) {
+        return std::string(R"(<scene version="3.0.0"><sensor type="perspective"><float name="fov" value="30"/></sensor>
+)") + body + "\n</scene>";
+    };
+    expect_load_error(scene(R"(<emitter type="projector"><float name="fov" value="190"/></emitter>)"), dir,
+                      "test.xml:2: <emitter>", "fov must lie in (0, 180)");
+    expect_load_error(scene(R"(<emitter type="projector"><float name="scale" value="-1"/></emitter>)"), dir,
+                      "test.xml:2: <emitter>", "scale must be finite and non-negative");
+    expect_load_error(scene(R"(<emitter type="spot"><rgb name="texture" value="0.5"/></emitter>)"), dir,
+                      "test.xml:2: <emitter>", "must be a <texture>");
+    expect_load_error(
+        scene(
+            R"(<shape type="sphere"><bsdf type="principledthin"><float name="diff_trans" value="2.5"/></bsdf></shape>)"),
+        dir, "test.xml:2: <bsdf>", "'diff_trans' must lie in [0, 2]");
+    expect_load_error(scene(R"(<shape type="sphere"><bsdf type="principledthin"><float name="spec_trans" value="0.5"/>
+        <float name="specular_transmittance_sampling_rate" value="-1"/></bsdf></shape>)"),
+                      dir, "test.xml:3: <bsdf>", "must be >= 0");
+}

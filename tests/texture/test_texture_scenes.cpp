@@ -166,7 +166,9 @@ TEST(TextureScenes, BumpMappedPlaneIrradiance) {
 // A plane seen along its normal (orthographic) under a constant environment of radiance 1 shows
 // its BSDF's directional albedo at normal incidence, which a quadrature of eval() alone computes,
 // independently of the BSDF's sampling and of the integrator: for principled (its base colour a
-// checkerboard of two greys, both cells checked), roughplastic, blendbsdf and roughconductor.
+// checkerboard of two greys, both cells checked), roughplastic, blendbsdf, roughconductor, and
+// principledthin with its transmission lobes (the environment behind the plane shows through:
+// the quadrature covers the sphere).
 TEST(TextureScenes, PlanesShowTheirAlbedo) {
     const std::string ortho = R"(<sensor type="orthographic">
     <transform name="to_world"><scale x="0.8" y="0.8"/><lookat origin="0, 0, 2" target="0, 0, 0" up="0, 1, 0"/></transform>)";
@@ -175,6 +177,7 @@ TEST(TextureScenes, PlanesShowTheirAlbedo) {
     struct Case {
         std::string name, bsdf;  // the plane's BSDF; `$c` is the grey of the checked cell
         bool checker;
+        bool transmits = false;  // the environment behind the plane shows through: integrate over the sphere
     };
     const std::vector<Case> cases = {
         {"principled", R"(<bsdf type="principled"><float name="base_color" value="$c"/>)" + principled + "</bsdf>",
@@ -189,6 +192,10 @@ TEST(TextureScenes, PlanesShowTheirAlbedo) {
         {"roughconductor", R"(<bsdf type="roughconductor"><string name="distribution" value="ggx"/>
            <float name="alpha" value="0.25"/><float name="specular_reflectance" value="$c"/></bsdf>)",
          false},
+        {"principledthin", R"(<bsdf type="principledthin"><float name="base_color" value="$c"/>
+           <float name="roughness" value="0.4"/><float name="spec_trans" value="0.4"/>
+           <float name="diff_trans" value="0.6"/><float name="sheen" value="0.3"/><float name="eta" value="1.4"/></bsdf>)",
+         false, true},
     };
     auto with_grey = [](std::string xml, double grey) {
         xml.replace(xml.find("$c"), 2, std::to_string(grey));
@@ -211,12 +218,13 @@ TEST(TextureScenes, PlanesShowTheirAlbedo) {
             Vec3 albedo;
             BSDFContext ctx;
             ctx.wl = SampledWavelengths::single(550);
+            const double range = c.transmits ? M_PI : M_PI / 2;
             for (int k = 0; k < n; ++k) {
-                const double th = (k + 0.5) / n * (M_PI / 2);
+                const double th = (k + 0.5) / n * range;
                 albedo += Vec3(1, 1, 1) * (b.eval(ctx, Vec3(0, 0, 1), Vec3(std::sin(th), 0, std::cos(th)))[0] *
-                                           std::cos(th) * std::sin(th));
+                                           std::abs(std::cos(th)) * std::sin(th));
             }
-            albedo = albedo * (2 * M_PI * (M_PI / 2) / n);
+            albedo = albedo * (2 * M_PI * range / n);
             const Vec3 got = grey == 0.8 ? mean_over(rgb, 0.1, 0.5, 0.1, 0.5) : mean_over(rgb, 0.5, 0.9, 0.1, 0.5);
             expect_rgb(got, albedo, 0.02, c.name + " albedo " + std::to_string(grey));
         }
