@@ -91,8 +91,9 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
                          (out_path.parent_path() / out_path.stem()).c_str());
     }
 
-    const RenderReport rep = make_report(ls.path, integ->name(), ls.film.out_width(), ls.film.out_height(), r,
-                                         time_limit > 0 ? 0 : uint64_t(opt.spp), time_limit, nthreads, seed);
+    RenderReport rep = make_report(ls.path, integ->name(), ls.film.out_width(), ls.film.out_height(), r,
+                                   time_limit > 0 ? 0 : uint64_t(opt.spp), time_limit, nthreads, seed);
+    rep.beyond_float = r.film.values_beyond_float();
     if (!quiet && rep.extra.contains("mnee")) std::fprintf(stderr, "%s", mnee_stats_text(r.counters).c_str());
     write_stats_json(stats_path, rep);
 
@@ -100,12 +101,12 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
     if (!quiet || r.interrupted)
         std::fprintf(stderr,
                      "snell: %s%.2f s, %llu spp (mean %.1f), %.3g paths/s, %.3g rays/s; discarded NaN %llu, Inf %llu, "
-                     "negative %llu\n  wrote %s, %s, %s\n",
+                     "negative %llu; beyond float32 %llu\n  wrote %s, %s, %s\n",
                      r.interrupted ? "INTERRUPTED after " : "", r.seconds, (unsigned long long)r.spp_completed,
                      r.spp_mean, double(rep.paths) / s, double(rep.rays + rep.shadow_rays) / s,
                      (unsigned long long)rep.discarded_nan, (unsigned long long)rep.discarded_inf,
-                     (unsigned long long)rep.discarded_negative, out_path.c_str(), png_path.c_str(),
-                     stats_path.c_str());
+                     (unsigned long long)rep.discarded_negative, (unsigned long long)rep.beyond_float, out_path.c_str(),
+                     png_path.c_str(), stats_path.c_str());
     return r.interrupted ? 130 : 0;
 }
 

@@ -2,12 +2,32 @@
 // the command line; each sub-command lives in its own cmd_*.cpp.
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <optional>
 
 #include "commands.h"
 
 using namespace snell;
+
+namespace {
+
+// CLI11's PositiveNumber accepts "nan" and reports its range with a 300-digit bound (issue 12):
+// these say what is expected.
+const CLI::Validator kSeconds(
+    [](std::string& in) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(in.c_str(), &end);
+        if (end == in.c_str() || *end != '\0' || !std::isfinite(v) || !(v > 0))
+            return "expected a positive, finite number of seconds, got '" + in + "'";
+        return "";
+    },
+    "SECONDS>0");
+const CLI::Validator kSpp = CLI::Range(int64_t(1), int64_t(1) << 30, "SPP in [1, 2^30]");
+const CLI::Validator kThreads = CLI::Range(0, 4096, "THREADS in [0, 4096], 0 = all cores");
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"snell: a spectral renderer for caustics through refractive interfaces (MNEE)"};
@@ -22,13 +42,12 @@ int main(int argc, char** argv) {
     std::vector<std::string> defines, search_paths;
     render_cmd->add_option("scene", scene_arg, "scene file, or builtin:droplet")->required();
     render_cmd->add_option("-o,--output", out, "output EXR (a PNG and a stats JSON are written beside it)");
-    auto* spp_opt = render_cmd->add_option("--spp", spp, "samples per pixel (default: the scene's sample_count)")
-                        ->check(CLI::PositiveNumber);
+    auto* spp_opt =
+        render_cmd->add_option("--spp", spp, "samples per pixel (default: the scene's sample_count)")->check(kSpp);
     render_cmd->add_option("--time", time_limit, "render for this many seconds instead (equal-time comparisons)")
-        ->check(CLI::PositiveNumber)
+        ->check(kSeconds)
         ->excludes(spp_opt);
-    render_cmd->add_option("-t,--threads", threads, "worker threads (default: all cores)")
-        ->check(CLI::NonNegativeNumber);
+    render_cmd->add_option("-t,--threads", threads, "worker threads (default: all cores)")->check(kThreads);
     auto* seed_opt =
         render_cmd->add_option("--seed", seed, "sampler seed (default: the scene's <sampler> seed, else 0)");
     render_cmd->add_option("--exposure", exposure, "PNG exposure in stops");
@@ -66,24 +85,22 @@ int main(int argc, char** argv) {
                      "comma-separated: pt, path, nee, bdpt, erpt, mnee, mnee-biased, pssmlt(nee), pssmlt(mnee)")
         ->required()
         ->delimiter(',');
-    cmp_cmd->add_option("--time", cmp.time, "wall-clock seconds per integrator")
-        ->required()
-        ->check(CLI::PositiveNumber);
+    cmp_cmd->add_option("--time", cmp.time, "wall-clock seconds per integrator")->required()->check(kSeconds);
     cmp_cmd->add_option("-o,--out", cmp.out_dir, "report folder (created)")->required();
     auto* ref_file = cmp_cmd->add_option("--reference", cmp.reference_file, "reference EXR");
     auto* ref_integ = cmp_cmd->add_option("--reference-integrator", cmp.reference_integrator,
                                           "integrator that renders the reference (default mnee)");
-    auto* ref_spp = cmp_cmd->add_option("--reference-spp", cmp.reference_spp, "reference samples per pixel")
-                        ->check(CLI::PositiveNumber);
-    auto* ref_time = cmp_cmd->add_option("--reference-time", cmp.reference_time, "reference render time (s)")
-                         ->check(CLI::PositiveNumber);
+    auto* ref_spp =
+        cmp_cmd->add_option("--reference-spp", cmp.reference_spp, "reference samples per pixel")->check(kSpp);
+    auto* ref_time =
+        cmp_cmd->add_option("--reference-time", cmp.reference_time, "reference render time (s)")->check(kSeconds);
     ref_file->excludes(ref_integ)->excludes(ref_spp)->excludes(ref_time);
     ref_spp->excludes(ref_time);
     cmp_cmd->add_option("-D,--define", cmp.defines, "override a scene <default>: -D name=value")
         ->allow_extra_args(false);
     cmp_cmd->add_option("--crop", cmp.crops, "also evaluate and show the rectangle x,y,w,h (repeatable)");
     cmp_cmd->add_option("-t,--threads", cmp.threads, "worker threads, the same for every integrator (default: all)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kThreads);
     auto* cmp_seed_opt = cmp_cmd->add_option("--seed", cmp_seed, "sampler seed (default: the scene's, else 0)");
     cmp_cmd->add_option("--exposure", cmp.exposure, "PNG exposure in stops");
     cmp_cmd
@@ -97,7 +114,8 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // Help and version exit 0; every usage error exits 1 with CLI11's message.
+        return app.exit(e) == 0 ? 0 : 1;
     }
     try {
         if (diff_cmd->parsed()) return cmd_diff(diff_a, diff_b, diff_crops, diff_offset, diff_json);

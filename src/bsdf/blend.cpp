@@ -3,7 +3,10 @@
 namespace snell {
 
 BlendBSDF::BlendBSDF(FloatParam weight, std::shared_ptr<const BSDF> first, std::shared_ptr<const BSDF> second)
-    : m_weight(std::move(weight)), m_first(std::move(first)), m_second(std::move(second)) {}
+    : m_weight(std::move(weight)),
+      m_first(std::move(first)),
+      m_second(std::move(second)),
+      m_flags(m_first->flags() | m_second->flags()) {}
 
 SampledSpectrum BlendBSDF::eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
     const double weight = m_weight.eval(ctx);

@@ -18,13 +18,14 @@ public:
     SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc, const Vec2& u) const override;
-    uint32_t flags() const override { return m_first->flags() | m_second->flags(); }
+    uint32_t flags() const override { return m_flags; }  ///< computed once (a blend may nest the same BSDF twice)
     SampledSpectrum eval_delta(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     double pdf_delta(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
 
 private:
     FloatParam m_weight;
     std::shared_ptr<const BSDF> m_first, m_second;
+    uint32_t m_flags = 0;
 };
 
 }  // namespace snell

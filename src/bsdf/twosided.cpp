@@ -7,7 +7,9 @@ Vec3 flip(const Vec3& w) { return {w.x, w.y, -w.z}; }
 }  // namespace
 
 TwoSidedBSDF::TwoSidedBSDF(std::shared_ptr<const BSDF> front, std::shared_ptr<const BSDF> back)
-    : m_front(std::move(front)), m_back(back ? std::move(back) : m_front) {}
+    : m_front(std::move(front)),
+      m_back(back ? std::move(back) : m_front),
+      m_flags(m_front->flags() | m_back->flags()) {}
 
 SampledSpectrum TwoSidedBSDF::eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const {
     if (wo.z > 0) return m_front->eval(ctx, wo, wi);

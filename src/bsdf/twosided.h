@@ -16,10 +16,13 @@ public:
     SampledSpectrum eval(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc, const Vec2& u) const override;
-    uint32_t flags() const override { return m_front->flags() | m_back->flags(); }
+    /// Computed once at construction: front and back are often the same object, and asking both
+    /// at every call made nested twosided BSDFs cost 2^depth (issue 12).
+    uint32_t flags() const override { return m_flags; }
 
 private:
     std::shared_ptr<const BSDF> m_front, m_back;
+    uint32_t m_flags = 0;
 };
 
 }  // namespace snell

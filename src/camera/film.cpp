@@ -1,8 +1,25 @@
 #include "camera/film.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include "core/spectrum.h"
 
 namespace snell {
+
+namespace {
+
+constexpr double kFloatMax = double(std::numeric_limits<float>::max());
+
+/// The double as a float, clamped into float's finite range (NaN, which the renderer never
+/// lets through, as 0).
+float to_float(double v) {
+    if (!(v == v)) return 0.0f;
+    return float(std::clamp(v, -kFloatMax, kFloatMax));
+}
+
+}  // namespace
 
 std::vector<float> Film::to_linear_srgb(int layer) const {
     std::vector<float> rgb(size_t(m_w) * m_h * 3);
@@ -12,12 +29,22 @@ std::vector<float> Film::to_linear_srgb(int layer) const {
             // mean of per-sample sRGB while keeping unreached pixels at exactly zero.
             const Vec3 c = xyz_to_linear_srgb(layer == 0 ? xyz(x, y) : layer_xyz(layer, x, y));
             const size_t i = (size_t(y) * m_w + x) * 3;
-            rgb[i + 0] = float(c.x);
-            rgb[i + 1] = float(c.y);
-            rgb[i + 2] = float(c.z);
+            rgb[i + 0] = to_float(c.x);
+            rgb[i + 1] = to_float(c.y);
+            rgb[i + 2] = to_float(c.z);
         }
     }
     return rgb;
+}
+
+uint64_t Film::values_beyond_float(int layer) const {
+    uint64_t n = 0;
+    for (int y = 0; y < m_h; ++y)
+        for (int x = 0; x < m_w; ++x) {
+            const Vec3 c = xyz_to_linear_srgb(layer == 0 ? xyz(x, y) : layer_xyz(layer, x, y));
+            for (double v : {c.x, c.y, c.z}) n += !(std::abs(v) <= kFloatMax);
+        }
+    return n;
 }
 
 PixelDominance pixel_dominance(const Film& film) {

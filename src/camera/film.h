@@ -68,8 +68,12 @@ public:
         if (size_t(layer) >= m_splats.size() || m_splats[size_t(layer)].empty()) return Vec3();
         return m_splats[size_t(layer)][size_t(y) * m_w + x] * m_splat_scale;
     }
-    /// Linear sRGB image, row-major, 3 floats per pixel (layer 0: the image).
+    /// Linear sRGB image, row-major, 3 floats per pixel (layer 0: the image). A value beyond
+    /// float's range (a finite double pixel can be: radiance 1e300) becomes the largest float of
+    /// its sign, never Inf (issue 12); values_beyond_float() counts them.
     std::vector<float> to_linear_srgb(int layer = 0) const;
+    /// How many values of layer `layer`'s linear sRGB exceed float's range (clamped on output).
+    uint64_t values_beyond_float(int layer = 0) const;
 
 private:
     int m_w, m_h;

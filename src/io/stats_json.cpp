@@ -55,7 +55,11 @@ void to_json(nlohmann::json& j, const RenderReport& r) {
         {"shadow_rays", r.shadow_rays},
         {"paths_per_second", r.paths_per_second()},
         {"rays_per_second", r.rays_per_second()},
-        {"discarded", {{"nan", r.discarded_nan}, {"inf", r.discarded_inf}, {"negative", r.discarded_negative}}},
+        {"discarded",
+         {{"nan", r.discarded_nan},
+          {"inf", r.discarded_inf},
+          {"negative", r.discarded_negative},
+          {"beyond_float32", r.beyond_float}}},
         {"dominance",
          {{"pixels", r.pixels},
           {"dominated", r.pixels_dominated},
@@ -89,6 +93,7 @@ void from_json(const nlohmann::json& j, RenderReport& r) {
         if (auto it = d->find("nan"); it != d->end()) it->get_to(r.discarded_nan);
         if (auto it = d->find("inf"); it != d->end()) it->get_to(r.discarded_inf);
         if (auto it = d->find("negative"); it != d->end()) it->get_to(r.discarded_negative);
+        if (auto it = d->find("beyond_float32"); it != d->end()) it->get_to(r.beyond_float);
     }
     if (auto d = j.find("dominance"); d != j.end()) {
         if (auto it = d->find("pixels"); it != d->end()) it->get_to(r.pixels);

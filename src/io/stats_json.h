@@ -29,6 +29,7 @@ struct RenderReport {
     uint64_t discarded_nan = 0;       ///< samples dropped as NaN
     uint64_t discarded_inf = 0;       ///< samples dropped as infinite
     uint64_t discarded_negative = 0;  ///< samples dropped as negative
+    uint64_t beyond_float = 0;        ///< image values beyond float32's range, written as its largest
     /// Pixel dominance (render/renderer.h PixelDominance), written under "dominance": pixels
     /// with a positive sum, those where one sample carries more than half of it, and the
     /// largest such share.

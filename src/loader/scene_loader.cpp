@@ -42,6 +42,9 @@ auto located(const XmlObject& o, F&& f) -> decltype(f()) {
     }
 }
 
+/// The largest sample count a scene may ask for (the samplers index samples in 32 bits).
+constexpr int64_t kMaxSampleCount = int64_t(1) << 30;
+
 class Instantiator {
 public:
     explicit Instantiator(LoadedScene& out) : m_out(out) {}
@@ -112,7 +115,8 @@ public:
 
 private:
     LoadedScene& m_out;
-    std::set<const XmlObject*> m_case_checked;                  // note_type_case visits each element once
+    std::set<const XmlObject*> m_case_checked;  // note_type_case visits each element once
+    std::map<const XmlObject*, std::vector<const XmlObject*>> m_mesh_attr_below;  // mesh_attribute_textures()
     std::map<const XmlObject*, std::shared_ptr<BSDF>> m_bsdfs;  // one instance per element (refs share)
     std::map<const XmlObject*, TextureRef> m_textures;
     std::map<const XmlObject*, std::shared_ptr<ShapeGroup>> m_groups;
@@ -242,20 +246,31 @@ private:
     /// Every `mesh_attribute` texture under the BSDF `o` must name an attribute the shape has
     /// (Mitsuba finds out while rendering; the loader says so with both places).
     void check_mesh_attributes(const XmlObject& o, const XmlObject& shape_xml, const Shape& shape) {
-        for (const auto& c : o.children) {
-            if (!c.obj) continue;
-            check_mesh_attributes(*c.obj, shape_xml, shape);
-            if (c.obj->tag != "texture" || c.obj->type != "mesh_attribute") continue;
-            const auto* t = dynamic_cast<const MeshAttributeTexture*>(texture(*c.obj).get());
+        for (const XmlObject* tex_xml : mesh_attribute_textures(o)) {
+            const auto* t = dynamic_cast<const MeshAttributeTexture*>(texture(*tex_xml).get());
             if (!t) continue;
             const std::vector<std::string> names = shape.attribute_names();
             if (std::find(names.begin(), names.end(), t->attribute_name()) != names.end()) continue;
             std::string have;
             for (const auto& n : names) have += (have.empty() ? "" : ", ") + n;
-            throw SceneError(c.obj->loc, "texture",
+            throw SceneError(tex_xml->loc, "texture",
                              "mesh attribute '" + t->attribute_name() + "' is not on the <shape> at " +
                                  shape_xml.loc.str() + " (it has " + (have.empty() ? "none" : have) + ")");
         }
+    }
+
+    /// The `mesh_attribute` textures below `o`, once per element: a <ref> can name one BSDF twice
+    /// per level, and walking such a tree without memory costs 2^depth (issue 12).
+    const std::vector<const XmlObject*>& mesh_attribute_textures(const XmlObject& o) {
+        if (auto it = m_mesh_attr_below.find(&o); it != m_mesh_attr_below.end()) return it->second;
+        std::vector<const XmlObject*> found;
+        for (const auto& c : o.children) {
+            if (!c.obj) continue;
+            if (c.obj->tag == "texture" && c.obj->type == "mesh_attribute") found.push_back(c.obj.get());
+            for (const XmlObject* t : mesh_attribute_textures(*c.obj))
+                if (std::find(found.begin(), found.end(), t) == found.end()) found.push_back(t);
+        }
+        return m_mesh_attr_below[&o] = std::move(found);
     }
 
     /// A shapegroup's shapes, built once however many instances place it.
@@ -338,20 +353,28 @@ private:
         Props p = props(o);
         if (o.type != "hdrfilm") p.raise("unknown film type '" + o.type + "' (supported: hdrfilm)");
         FilmSpec f;
-        f.width = int(p.get_int("width", 768));
-        f.height = int(p.get_int("height", 576));
-        if (f.width <= 0 || f.height <= 0) p.raise("film width and height must be positive");
-        const int cx = int(p.get_int("crop_offset_x", 0)), cy = int(p.get_int("crop_offset_y", 0));
-        const int cw = int(p.get_int("crop_width", f.width - cx)), ch = int(p.get_int("crop_height", f.height - cy));
-        if (cx < 0 || cy < 0 || cw <= 0 || ch <= 0 || cx + cw > f.width || cy + ch > f.height)
+        // Read as 64-bit and range-checked before any narrowing (issue 12: 4294967312 became 16).
+        constexpr int64_t kMaxSide = int64_t(1) << 16;
+        const int64_t width = p.get_int("width", 768), height = p.get_int("height", 576);
+        for (auto [name, v] : {std::pair{"width", width}, std::pair{"height", height}})
+            if (v <= 0 || v > kMaxSide)
+                p.raise_param(name,
+                              std::string("film ") + name + " must lie in [1, 65536] (got " + std::to_string(v) + ")");
+        f.width = int(width);
+        f.height = int(height);
+        // 64-bit sums: offset + size cannot overflow (issue 12: crop_offset_x=2147483647 did).
+        const int64_t cx = p.get_int("crop_offset_x", 0), cy = p.get_int("crop_offset_y", 0);
+        const int64_t cw = p.get_int("crop_width", width - cx), ch = p.get_int("crop_height", height - cy);
+        if (cx < 0 || cy < 0 || cw <= 0 || ch <= 0 || cx > width || cy > height || cw > width || ch > height ||
+            cx + cw > width || cy + ch > height)
             p.raise("crop window (offset " + std::to_string(cx) + "," + std::to_string(cy) + ", size " +
                     std::to_string(cw) + "x" + std::to_string(ch) + ") does not fit the " + std::to_string(f.width) +
                     "x" + std::to_string(f.height) + " film");
         if (cx != 0 || cy != 0 || cw != f.width || ch != f.height) {
-            f.crop_x = cx;
-            f.crop_y = cy;
-            f.crop_w = cw;
-            f.crop_h = ch;
+            f.crop_x = int(cx);
+            f.crop_y = int(cy);
+            f.crop_w = int(cw);
+            f.crop_h = int(ch);
         }
         // Accepted for compatibility with Mitsuba files; the output format is chosen by the app.
         static const std::set<std::string> pixel_formats = {"rgb", "rgba", "luminance", "luminance_alpha",
@@ -398,7 +421,10 @@ private:
         if (o.type == "orthogonal" && p.get_int("strength", 2) != 2)
             p.raise_param("strength", "snell's orthogonal sampler has strength 2 (the one Mitsuba recommends)");
         const int64_t spp = p.get_int("sample_count", m_out.spp);
-        if (spp <= 0) p.raise_param("sample_count", "sample_count must be positive");
+        // Range-checked before narrowing (issue 12: 2147483648 became negative, 4294967297 one).
+        if (spp <= 0 || spp > kMaxSampleCount)
+            p.raise_param("sample_count", "sample_count must lie in [1, " + std::to_string(kMaxSampleCount) +
+                                              "] (got " + std::to_string(spp) + ")");
         const int64_t seed = p.get_int("seed", 0);
         if (seed < 0) p.raise_param("seed", "seed must be non-negative");
         p.check_unused();

@@ -33,7 +33,8 @@ std::vector<Tile> make_tiles(int w, int h, int size) {
 
 // Pass sizes 1, 1, 2, 4, 8, 16, 16, ...: early passes give quick previews and a fine-grained
 // equal-time cut-off; later ones amortise scheduling. Fixed, so images are reproducible.
-uint64_t pass_size(int pass) { return pass < 1 ? 1 : std::min<uint64_t>(16, uint64_t(1) << (pass - 1)); }
+// (The shift is taken only below 5: a shift by 64 or more, reached past 976 spp, is undefined.)
+uint64_t pass_size(int pass) { return pass < 1 ? 1 : pass >= 5 ? 16 : uint64_t(1) << (pass - 1); }
 
 }  // namespace
 

@@ -93,4 +93,20 @@ check "-a finds a mesh in the extra folder" "[ $rc -eq 0 ] && [ -s $TMP/a.exr ]"
 out=$("$SNELL" render "$TMP/sc/a.xml" -o "$TMP/a2.exr" --spp 1 -q 2>&1); rc=$?
 check "without -a the mesh is missing" "[ $rc -ne 0 ] && echo \"\$out\" | grep -q 'meshes/tri.obj'"
 
+# 11. Issue 12: bad numbers on the command line exit 1 with a message that says what is expected
+#     (they exited 104/105 with a 300-digit bound, and --time nan was accepted); a radiance of
+#     1e300 gives an image without Inf (the largest float instead), counted in the stats.
+for args in "--spp 0" "--threads -1" "--threads 1000000" "--time nan" "--time -1"; do
+  out=$("$SNELL" render builtin:droplet -o "$TMP/bad.exr" -q $args 2>&1); rc=$?
+  check "$args exits 1 with a clear message" "[ $rc -eq 1 ] && echo \"\$out\" | grep -q 'range\\|expected a positive'"
+done
+cat > "$TMP/huge.xml" <<'XML'
+<scene version="3.0.0"><integrator type="path"/>
+<sensor type="perspective"><float name="fov" value="40"/><film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>
+<emitter type="constant"><float name="radiance" value="1e300"/></emitter></scene>
+XML
+"$SNELL" render "$TMP/huge.xml" -o "$TMP/huge.exr" --spp 2 -q; rc=$?
+check "radiance 1e300 renders" "[ $rc -eq 0 ]"
+check "values beyond float32 are counted" "grep -q '\"beyond_float32\": 192' $TMP/huge.json"
+
 exit $fail

@@ -405,3 +405,43 @@ TEST(SceneLoaderFull, Cylinder) {
                             "z=\"1\"/></transform>\n</shape>"),
                  "test.xml:4: <shape>", "must keep its cross section circular");
 }
+
+// Issue 12's loader defects, each a regression test:
+//  - integers are read as 64-bit and range-checked before narrowing: sample_count 2147483648 was
+//    negative (and rendered forever), 4294967297 one sample, width 4294967312 a 16-pixel film;
+//  - crop_offset_x = 2147483647 overflowed the crop check;
+//  - nested twosided BSDFs (front and back the same object) cost 2^depth in flags(): depth 50
+//    never finished loading; it loads now, as does a blend nesting one BSDF twice per level.
+TEST(SceneLoaderFull, IntegersAreRangeCheckedAndNestingIsLinear) {
+    auto film = [](const std::string& film_params, const std::string& sampler = "") {
+        return std::string(
+                   "<scene version=\"3.0.0\">\n<sensor type=\"perspective\"><float name=\"fov\" value=\"30\"/>\n"
+                   "<film type=\"hdrfilm\">") +
+               film_params + "</film>" + sampler + "\n</sensor>\n</scene>";
+    };
+    expect_error(
+        film("", "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"2147483648\"/></sampler>"),
+        "test.xml:3: <sampler>", "sample_count must lie in [1, 1073741824] (got 2147483648)");
+    expect_error(
+        film("", "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"4294967297\"/></sampler>"),
+        "test.xml:3: <sampler>", "got 4294967297");
+    expect_error(film("<integer name=\"width\" value=\"4294967312\"/>"), "test.xml:3: <film>",
+                 "film width must lie in [1, 65536] (got 4294967312)");
+    expect_error(film("<integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/>"
+                      "<integer name=\"crop_offset_x\" value=\"2147483647\"/>"),
+                 "test.xml:3: <film>", "does not fit the 8x8 film");
+    expect_error(film("<integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/>"
+                      "<integer name=\"crop_offset_x\" value=\"4\"/><integer name=\"crop_width\" "
+                      "value=\"9223372036854775807\"/>"),
+                 "test.xml:3: <film>", "does not fit the 8x8 film");
+    std::string nested = R"(<bsdf type="diffuse"/>)";
+    for (int i = 0; i < 60; ++i) nested = R"(<bsdf type="twosided">)" + nested + "</bsdf>";
+    const LoadedScene deep = load_string(scene_with("<shape type=\"sphere\">" + nested + "</shape>"));
+    EXPECT_TRUE(deep.scene->shapes()[0]->bsdf()->flags() & kReflection);
+    std::string blend = R"(<bsdf type="diffuse" id="b0"/>)";
+    for (int i = 1; i <= 60; ++i)
+        blend += "<bsdf type=\"blendbsdf\" id=\"b" + std::to_string(i) + "\"><ref id=\"b" + std::to_string(i - 1) +
+                 "\"/><ref id=\"b" + std::to_string(i - 1) + "\"/></bsdf>";
+    const LoadedScene wide = load_string(scene_with(blend + "<shape type=\"sphere\"><ref id=\"b60\"/></shape>"));
+    EXPECT_TRUE(wide.scene->shapes()[0]->bsdf()->flags() & kDiffuse);
+}
