@@ -62,6 +62,8 @@ void write_exr(const std::string& path, const Image& img) {
 }
 
 Image read_exr(const std::string& path) {
+    std::error_code ec;  // only regular files: opening a FIFO would block (issue 12)
+    if (!std::filesystem::is_regular_file(path, ec)) fail("cannot read EXR", path, "not a file");
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
@@ -117,6 +119,8 @@ void write_png(const std::string& path, const Image& img, double exposure) {
 }
 
 Image read_hdr(const std::string& path) {
+    std::error_code ec;  // only regular files: opening a FIFO would block (issue 12)
+    if (!std::filesystem::is_regular_file(path, ec)) throw std::runtime_error("cannot open image '" + path + "'");
     FILE* f = std::fopen(path.c_str(), "rb");
     if (!f) throw std::runtime_error("cannot open image '" + path + "'");
     const bool is_hdr = stbi_is_hdr_from_file(f);

@@ -2,6 +2,8 @@
 
 #include <array>
 #include <bit>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -144,8 +146,13 @@ public:
 
     double read(PlyType t, const std::string& where) {
         if (m_fmt == PlyFormat::Ascii) {
-            double v;
-            if (!(m_in >> v)) fail(where);
+            // A token read by strtod, which (unlike operator>>) reads "nan" and "inf": the
+            // callers then reject them with what they mean there.
+            std::string token;
+            if (!(m_in >> token)) fail(where);
+            char* end = nullptr;
+            const double v = std::strtod(token.c_str(), &end);
+            if (end == token.c_str() || *end != '\0') fail(where);
             return v;
         }
         unsigned char b[8];
@@ -356,11 +363,15 @@ MeshData load_ply(const std::string& path) {
                         continue;
                     }
                     const double c = body.read(p.count_type, e.name);
-                    if (c < 0 || c > 1e6) fail("bad PLY face vertex count");
+                    if (!(c >= 0 && c <= 1e6) || c != std::floor(c)) fail("bad PLY face vertex count");
                     poly.clear();
                     for (size_t j = 0; j < size_t(c); ++j) {
                         const double idx = body.read(p.type, e.name);
-                        if (idx < 0) fail("negative PLY face index");
+                        // A whole number in uint32's range, else an error (issue 12: 2^32, NaN
+                        // and 2.7 became some other vertex); validate_mesh checks the vertex count.
+                        if (!(idx >= 0) || idx != std::floor(idx) || idx > 4294967295.0)
+                            fail("PLY face " + std::to_string(k) + " has an invalid vertex index " +
+                                 std::to_string(idx));
                         poly.push_back(uint32_t(idx));
                     }
                     if (p.name != "vertex_indices" && p.name != "vertex_index") continue;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -61,6 +62,9 @@ private:
 };
 
 std::vector<unsigned char> read_all(const std::string& path) {
+    std::error_code ec;  // only regular files: opening a FIFO would block (issue 12)
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw std::runtime_error("cannot open serialized mesh '" + path + "'");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::runtime_error("cannot open serialized mesh '" + path + "'");
     std::ostringstream ss;

@@ -70,8 +70,12 @@ std::string snake_case(const std::string& s) {
 }
 
 std::string read_file(const std::string& path, bool* ok) {
+    // Checked before opening: opening a FIFO blocks (issue 12), a folder "opens" empty.
+    std::error_code ec;
+    *ok = fs::is_regular_file(path, ec);
+    if (!*ok) return {};
     std::ifstream in(path, std::ios::binary);
-    *ok = bool(in) && fs::is_regular_file(path);
+    *ok = bool(in);
     if (!*ok) return {};
     std::ostringstream ss;
     ss << in.rdbuf();

@@ -109,4 +109,13 @@ XML
 check "radiance 1e300 renders" "[ $rc -eq 0 ]"
 check "values beyond float32 are counted" "grep -q '\"beyond_float32\": 192' $TMP/huge.json"
 
+# 12. Issue 12: an <include> of a FIFO blocked forever (the file was opened before it was checked
+#     to be a regular file); it is an error now, as is a scene file that is a folder.
+mkfifo "$TMP/fifo.xml"
+printf '<scene version="3.0.0"><include filename="fifo.xml"/></scene>\n' > "$TMP/inc_fifo.xml"
+out=$(timeout 60 "$SNELL" render "$TMP/inc_fifo.xml" -o "$TMP/fifo.exr" -q 2>&1); rc=$?
+check "an <include> of a FIFO is an error, not a hang" "[ $rc -eq 1 ] && echo \"\$out\" | grep -q 'inc_fifo.xml:1: <include>'"
+out=$(timeout 60 "$SNELL" render "$TMP" -o "$TMP/dir.exr" -q 2>&1); rc=$?
+check "a folder as the scene is an error" "[ $rc -eq 1 ]"
+
 exit $fail

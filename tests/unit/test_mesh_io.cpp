@@ -157,6 +157,23 @@ TEST(MeshIo, PlyErrorsNameThePath) {
           "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 "
           "0\n3 0 1 5\n");
     expect_throws_naming([&] { load_ply(idx.string()); }, idx.string(), "vertex 5");
+    // Issue 12: a vertex index of 2^32, NaN or 2.7 (a float list) became some other vertex;
+    // each is now an error naming the face. A vertex count of NaN too.
+    for (const std::string bad_index : {"4294967296", "nan", "2.7"}) {
+        const fs::path f = temp_dir() / "bad_float_index.ply";
+        write(f,
+              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty "
+              "float z\nelement face 1\nproperty list uchar double vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 "
+              "0\n3 0 1 " +
+                  bad_index + "\n");
+        expect_throws_naming([&] { load_ply(f.string()); }, f.string(), "invalid vertex index");
+    }
+    const fs::path count = temp_dir() / "bad_count.ply";
+    write(count,
+          "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty "
+          "float z\nelement face 1\nproperty list double int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 "
+          "0\nnan 0 1 2\n");
+    expect_throws_naming([&] { load_ply(count.string()); }, count.string(), "bad PLY face vertex count");
 }
 
 namespace {
