@@ -8,6 +8,7 @@ snell_library(snell_io
   src/io/mesh_serialized.cpp
   src/io/texture_image.cpp
   src/io/volume_grid.cpp
+  src/io/atomic_file.cpp
 )
 target_link_libraries(snell_io PUBLIC snell_core nlohmann_json::nlohmann_json
                       PRIVATE OpenEXR::OpenEXR PkgConfig::OIIO tinyobjloader::tinyobjloader ZLIB::ZLIB ${STB_LIBRARY})

@@ -5,6 +5,7 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfStdIO.h>
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
@@ -16,6 +17,8 @@
 #include <exception>
 #include <filesystem>
 #include <stdexcept>
+
+#include "io/atomic_file.h"
 
 namespace snell {
 
@@ -53,9 +56,15 @@ void write_exr(const std::string& path, const Image& img) {
         char* base = reinterpret_cast<char*>(const_cast<float*>(img.rgb.data()));
         const size_t xs = 3 * sizeof(float), ys = xs * size_t(img.width);
         for (int c = 0; c < 3; ++c) fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
-        Imf::OutputFile file(path.c_str(), header);
-        file.setFrameBuffer(fb);
-        file.writePixels(img.height);
+        // Encoded in memory, then written atomically (io/atomic_file.h): a failed write never
+        // leaves a truncated file in place of a good one.
+        Imf::StdOSStream stream;
+        {
+            Imf::OutputFile file(stream, header);
+            file.setFrameBuffer(fb);
+            file.writePixels(img.height);
+        }  // the file's destructor writes the line-offset table
+        write_file_atomically(path, stream.str());
     } catch (const std::exception& e) {
         fail("cannot write EXR", path, e.what());
     }
@@ -114,8 +123,18 @@ void write_png(const std::string& path, const Image& img, double exposure) {
         // NaN maps to black rather than to an undefined cast.
         bytes[i] = std::isnan(v) ? 0 : uint8_t(std::lround(255.0 * srgb_oetf(v)));
     }
-    if (!stbi_write_png(path.c_str(), img.width, img.height, 3, bytes.data(), img.width * 3))
-        fail("cannot write PNG", path, "stb_image_write failed (unwritable path or out of memory)");
+    // Encoded in memory, then written atomically (io/atomic_file.h).
+    std::string data;
+    const auto append = [](void* ctx, void* chunk, int size) {
+        static_cast<std::string*>(ctx)->append(static_cast<const char*>(chunk), size_t(size));
+    };
+    if (!stbi_write_png_to_func(append, &data, img.width, img.height, 3, bytes.data(), img.width * 3))
+        fail("cannot write PNG", path, "stb_image_write failed (out of memory)");
+    try {
+        write_file_atomically(path, data);
+    } catch (const std::exception& e) {
+        fail("cannot write PNG", path, e.what());
+    }
 }
 
 Image read_hdr(const std::string& path) {

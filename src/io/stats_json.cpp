@@ -1,5 +1,7 @@
 #include "io/stats_json.h"
 
+#include "io/atomic_file.h"
+
 #include <fstream>
 #include <stdexcept>
 
@@ -106,11 +108,11 @@ void from_json(const nlohmann::json& j, RenderReport& r) {
 }
 
 void write_stats_json(const std::string& path, const RenderReport& report) {
-    std::ofstream out(path);
-    if (!out) throw std::runtime_error("cannot write stats JSON '" + path + "': cannot open file for writing");
-    out << nlohmann::json(report).dump(2) << '\n';
-    out.flush();
-    if (!out) throw std::runtime_error("cannot write stats JSON '" + path + "': write failed");
+    try {
+        write_file_atomically(path, nlohmann::json(report).dump(2) + "\n");
+    } catch (const std::exception& e) {
+        throw std::runtime_error("cannot write stats JSON '" + path + "': " + e.what());
+    }
 }
 
 }  // namespace snell

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <limits>
 
+#include "io/atomic_file.h"
 #include "io/image.h"
 
 using namespace snell;
@@ -281,4 +282,31 @@ TEST_F(ImageIO, ReadsRadianceHdr) {
     } catch (const std::runtime_error& e) {
         EXPECT_NE(std::string(e.what()).find("unsupported image format '.png'"), std::string::npos) << e.what();
     }
+}
+
+// Issue 12: output is written atomically and every write is checked. Writing onto /dev/full
+// (a device that reports "no space left" on every write) is an error for EXR, PNG and the stats
+// writer's helper; and when the new file cannot be completed (here: its temporary file cannot be
+// created, because a folder has taken its name), the existing good file is left as it was.
+TEST_F(ImageIO, OutputIsAtomicAndWriteErrorsAreCaught) {
+    Image img;
+    img.width = img.height = 2;
+    img.rgb.assign(12, 0.5f);
+    EXPECT_THROW(write_exr("/dev/full", img), std::runtime_error);
+    EXPECT_THROW(write_png("/dev/full", img, 0.0), std::runtime_error);
+    EXPECT_THROW(write_file_atomically("/dev/full", "data"), std::runtime_error);
+    const std::string good = path("good.exr");
+    write_exr(good, img);
+    const auto size_before = fs::file_size(good);
+    fs::create_directories(path(".good.exr.tmp" + std::to_string(::getpid())));
+    Image other = img;
+    other.rgb.assign(12, 0.25f);
+    EXPECT_THROW(write_exr(good, other), std::runtime_error);
+    EXPECT_EQ(fs::file_size(good), size_before);
+    EXPECT_FLOAT_EQ(read_exr(good).rgb[0], 0.5f);
+    fs::remove(path(".good.exr.tmp" + std::to_string(::getpid())));
+    write_exr(good, other);  // and with the way clear it is replaced
+    EXPECT_FLOAT_EQ(read_exr(good).rgb[0], 0.25f);
+    for (const auto& e : fs::directory_iterator(fs::path(good).parent_path()))
+        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << "left over: " << e.path();
 }
