@@ -147,10 +147,29 @@ private:
 
     // --- documents and includes --------------------------------------------------------------
 
+    /// Scene elements nest a few levels; every pass over them (this parser, the 0.6 upgrade, the
+    /// loader) recurses, so a deeper document is refused before any of them runs, by an iterative
+    /// walk (issue 12: 100,000 nested elements overflowed the stack).
+    static constexpr int kMaxDepth = 256;
+    static void check_depth(const pugi::xml_document& doc, const FileCtx& f) {
+        std::vector<std::pair<pugi::xml_node, int>> stack;
+        for (pugi::xml_node c : doc.children()) stack.emplace_back(c, 1);
+        while (!stack.empty()) {
+            const auto [n, depth] = stack.back();
+            stack.pop_back();
+            if (depth > kMaxDepth)
+                throw SceneError(f.at(n), n.name(),
+                                 "elements nested deeper than " + std::to_string(kMaxDepth) + " levels");
+            for (pugi::xml_node c : n.children())
+                if (c.type() == pugi::node_element) stack.emplace_back(c, depth + 1);
+        }
+    }
+
     void parse_document(const std::string& text, const FileCtx& f, XmlObject& parent, bool is_root) {
         pugi::xml_document doc;
         const pugi::xml_parse_result res = doc.load_buffer(text.data(), text.size(), pugi::parse_default);
         if (!res) throw SceneError(f.at(res.offset), "xml", std::string("malformed XML: ") + res.description());
+        check_depth(doc, f);
         pugi::xml_node root;
         for (pugi::xml_node n : doc.children()) {
             if (n.type() != pugi::node_element) continue;

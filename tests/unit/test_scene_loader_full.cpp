@@ -445,3 +445,19 @@ TEST(SceneLoaderFull, IntegersAreRangeCheckedAndNestingIsLinear) {
     const LoadedScene wide = load_string(scene_with(blend + "<shape type=\"sphere\"><ref id=\"b60\"/></shape>"));
     EXPECT_TRUE(wide.scene->shapes()[0]->bsdf()->flags() & kDiffuse);
 }
+
+// Issue 12: 100,000 nested elements overflowed the stack of the recursive parser. Any document
+// nested deeper than 256 levels is refused first, at the element where it crosses the limit;
+// 200 levels (far more than any scene needs) still load.
+TEST(SceneLoaderFull, DeepNestingIsAClearError) {
+    const int n = 100000;
+    std::string deep;
+    deep.reserve(size_t(n) * 48);
+    for (int i = 0; i < n; ++i) deep += "<bsdf type=\"twosided\">";
+    deep += "<bsdf type=\"diffuse\"/>";
+    for (int i = 0; i < n; ++i) deep += "</bsdf>";
+    expect_error(scene_with(deep), "test.xml:3: <bsdf>", "nested deeper than 256 levels");
+    std::string ok = R"(<bsdf type="diffuse"/>)";
+    for (int i = 0; i < 200; ++i) ok = R"(<bsdf type="twosided">)" + ok + "</bsdf>";
+    EXPECT_NO_THROW(load_string(scene_with("<shape type=\"sphere\">" + ok + "</shape>")));
+}
