@@ -1,5 +1,6 @@
 #pragma once
 // Emitter interface. Radiance/intensity values are at the path's wavelengths.
+#include <cmath>
 #include <optional>
 
 #include "core/object.h"
@@ -80,6 +81,25 @@ public:
     virtual Vec3 position() const { return Vec3(); }
     /// The shape of an area light, else nullptr.
     virtual const Shape* shape() const { return nullptr; }
+
+protected:
+    /// sample_li of a light at a point (point, spot, projector): the delta sample at `pos` seen
+    /// from ref, Le = emitted intensity towards ref / distance^2. A zero Le (outside a cone) is
+    /// still returned: MNEE needs the light's position whatever the direction towards ref.
+    std::optional<LightSample> sample_at_position(const Vec3& pos, const LightSampleContext& ref,
+                                                  const SampledWavelengths& wl) const {
+        const Vec3 d = pos - ref.p;
+        const double dist2 = length_squared(d);
+        if (!(dist2 > 0)) return std::nullopt;
+        LightSample ls;
+        ls.p = pos;
+        ls.dist = std::sqrt(dist2);
+        ls.wi = d / ls.dist;
+        ls.Le = emitted(pos, Vec3(), Vec2(), -ls.wi, wl) / dist2;  // inverse-square law
+        ls.pdf = 1;
+        ls.delta = true;
+        return ls;
+    }
 };
 
 }  // namespace snell

@@ -17,17 +17,7 @@ PointLight::PointLight(const Spectrum& intensity, const Vec3& position)
 
 std::optional<LightSample> PointLight::sample_li(const LightSampleContext& ref, const Vec2& /*u*/,
                                                  const SampledWavelengths& wl) const {
-    const Vec3 d = m_position - ref.p;
-    const double dist2 = length_squared(d);
-    if (!(dist2 > 0)) return std::nullopt;
-    LightSample ls;
-    ls.p = m_position;
-    ls.dist = std::sqrt(dist2);
-    ls.wi = d / ls.dist;
-    ls.Le = m_intensity.eval(wl) / dist2;  // inverse-square law
-    ls.pdf = 1;
-    ls.delta = true;
-    return ls;
+    return sample_at_position(m_position, ref, wl);
 }
 
 double PointLight::power() const { return 4 * kPi * m_intensity.average(); }

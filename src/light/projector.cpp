@@ -51,18 +51,7 @@ SampledSpectrum ProjectorLight::emitted(const Vec3&, const Vec3&, const Vec2&, c
 
 std::optional<LightSample> ProjectorLight::sample_li(const LightSampleContext& ref, const Vec2& /*u*/,
                                                      const SampledWavelengths& wl) const {
-    const Vec3 d = m_position - ref.p;
-    const double dist2 = length_squared(d);
-    if (!(dist2 > 0)) return std::nullopt;
-    const double dist = std::sqrt(dist2);
-    LightSample ls;
-    ls.p = m_position;
-    ls.dist = dist;
-    ls.wi = d / dist;
-    ls.Le = emitted(m_position, Vec3(), Vec2(), -ls.wi, wl) / dist2;
-    ls.pdf = 1;
-    ls.delta = true;
-    return ls;
+    return sample_at_position(m_position, ref, wl);
 }
 
 double ProjectorLight::power() const {

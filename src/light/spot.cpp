@@ -54,20 +54,7 @@ SampledSpectrum SpotLight::intensity(const Vec3& w_world, const SampledWavelengt
 
 std::optional<LightSample> SpotLight::sample_li(const LightSampleContext& ref, const Vec2& /*u*/,
                                                 const SampledWavelengths& wl) const {
-    const Vec3 d = m_position - ref.p;
-    const double dist2 = length_squared(d);
-    if (!(dist2 > 0)) return std::nullopt;
-    const double dist = std::sqrt(dist2);
-    // Outside the cone the sample carries no light (Le = 0) but is still returned: MNEE
-    // needs the light's position whatever the direction towards ref.
-    LightSample ls;
-    ls.p = m_position;
-    ls.dist = dist;
-    ls.wi = d / dist;
-    ls.Le = intensity(-d / dist, wl) / dist2;
-    ls.pdf = 1;
-    ls.delta = true;
-    return ls;
+    return sample_at_position(m_position, ref, wl);
 }
 
 double SpotLight::power() const {
