@@ -50,6 +50,9 @@ namespace {
 uint64_t bootstrap_seed(uint64_t seed, uint64_t i) { return mix_bits(mix_bits(seed) ^ (i * 2 + 1)); }
 uint64_t chain_seed(uint64_t seed, uint64_t c) { return mix_bits(mix_bits(seed + 0x632be59bd9b4e019ULL) ^ (c * 2)); }
 
+// Chains of a fixed-length render without a `chains` setting (see render_pssmlt).
+constexpr int kDefaultChains = 64;
+
 }  // namespace
 
 RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, int spectral_samples,
@@ -64,7 +67,11 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, i
     const size_t pixels = size_t(w) * size_t(h);
     const auto inner = make_pssmlt_inner(settings);
     const int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    const int n_chains = settings.chains > 0 ? settings.chains : threads;
+    // The chain count decides the image, so it must not come from the machine: without a
+    // `chains` setting a fixed-length render runs kDefaultChains chains, `threads` at a time
+    // (batches). An equal-time render cannot run chains in turn, so it runs one per thread.
+    const int n_chains = settings.chains > 0 ? settings.chains : (timed ? threads : kDefaultChains);
+    const int batch = timed ? n_chains : std::min(n_chains, threads);
     const double p_large = settings.large_step_probability;
     // A state's weight goes to every pixel whose reconstruction filter covers its position.
     const Filter& filter = spec.pixel_filter();
@@ -109,75 +116,82 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, i
     // Mutations per chain: the total split as evenly as possible (equal-time: unbounded).
     const uint64_t mpp = uint64_t(settings.mutations_per_pixel > 0 ? settings.mutations_per_pixel : opt.spp);
     const uint64_t total = mpp * pixels;
-    std::vector<std::vector<Vec3>> films(static_cast<size_t>(n_chains));
-    std::vector<uint64_t> done(size_t(n_chains), 0);
+    // One film per running chain; after each batch the films are added to `sum` in chain
+    // order, so every pixel sees the same sequence of additions whatever the batch size.
+    std::vector<std::vector<Vec3>> films(static_cast<size_t>(batch));
+    std::vector<Vec3> sum(pixels, Vec3());
+    uint64_t mutations = 0;
 
     std::unique_ptr<ProgressBar> bar;
     if (opt.progress)
         bar.reset(timed ? new ProgressBar(ProgressBar::for_time("pssmlt", opt.time_limit))
                         : new ProgressBar("pssmlt", total));
 
-    arena.execute([&] {
-        tbb::parallel_for(0, n_chains, [&](int c) {
-            const uint64_t quota = total / uint64_t(n_chains) + (uint64_t(c) < total % uint64_t(n_chains) ? 1 : 0);
-            std::vector<Vec3>& film = films[size_t(c)];
-            film.assign(pixels, Vec3());
-            // Resample a bootstrap path proportionally to Y and reproduce it exactly (same
-            // stream, iteration 0 draws every dimension fresh), then give the chain its own stream.
-            PCG32 pick(chain_seed(opt.seed, uint64_t(c)), uint64_t(c) * 2 + 1);
-            const size_t i = seeds.sample_discrete(pick.next_double());
-            PrimarySampleSampler sampler(bootstrap_seed(opt.seed, i), i, p_large, settings.s1, settings.s2);
-            PathSample current = evaluate(scene, *camera, *inner, spectral_samples, spec, sampler);
-            sampler.accept();
-            sampler.reseed(chain_seed(opt.seed, uint64_t(c)), uint64_t(c) * 2);
+    const auto run_chain = [&](int c, std::vector<Vec3>& film) -> uint64_t {
+        const uint64_t quota = total / uint64_t(n_chains) + (uint64_t(c) < total % uint64_t(n_chains) ? 1 : 0);
+        film.assign(pixels, Vec3());
+        // Resample a bootstrap path proportionally to Y and reproduce it exactly (same
+        // stream, iteration 0 draws every dimension fresh), then give the chain its own stream.
+        PCG32 pick(chain_seed(opt.seed, uint64_t(c)), uint64_t(c) * 2 + 1);
+        const size_t i = seeds.sample_discrete(pick.next_double());
+        PrimarySampleSampler sampler(bootstrap_seed(opt.seed, i), i, p_large, settings.s1, settings.s2);
+        PathSample current = evaluate(scene, *camera, *inner, spectral_samples, spec, sampler);
+        sampler.accept();
+        sampler.reseed(chain_seed(opt.seed, uint64_t(c)), uint64_t(c) * 2);
 
-            uint64_t m = 0;
-            const uint64_t kCheck = 1024;
-            for (; timed || m < quota; ++m) {
-                if (m % kCheck == 0 && m > 0) {
-                    if (bar && !timed) bar->add(kCheck);
-                    if (stop_requested()) break;
-                }
-                sampler.start_iteration();
-                const PathSample proposed = evaluate(scene, *camera, *inner, spectral_samples, spec, sampler);
-                const double fc = current.target(), fp = proposed.target();
-                const double a = fc > 0 ? std::min(1.0, fp / fc) : 1.0;
-                // Expected-value accumulation: each state splats XYZ / Y with its probability
-                // of being the next state; the image scale b / (mutations per pixel) comes last.
-                // Kelemen et al. (2002, Sec. 4) also count a large step as an independent
-                // sample of density 1 and combine both by the balance heuristic: Y / b becomes
-                // Y / b + p_large and a large-step proposal earns one more unit of weight.
-                const bool large = sampler.large_step();
-                const double pk = settings.kelemen_weights ? p_large : 0.0;
-                const double wc = (1 - a) / (fc / b + pk);
-                const double wp = (a + (settings.kelemen_weights && large ? 1.0 : 0.0)) / (fp / b + pk);
-                if (wc > 0 && fc > 0) deposit(film, current, current.xyz * wc);
-                if (wp > 0 && fp > 0) deposit(film, proposed, proposed.xyz * wp);
-                if (sampler.uniform() < a) {
-                    current = proposed;
-                    sampler.accept();
-                } else {
-                    sampler.reject();
-                }
+        uint64_t m = 0;
+        const uint64_t kCheck = 1024;
+        for (; timed || m < quota; ++m) {
+            if (m % kCheck == 0 && m > 0) {
+                if (bar && !timed) bar->add(kCheck);
+                if (stop_requested()) break;
             }
-            done[size_t(c)] = m;
-        });
-    });
+            sampler.start_iteration();
+            const PathSample proposed = evaluate(scene, *camera, *inner, spectral_samples, spec, sampler);
+            const double fc = current.target(), fp = proposed.target();
+            const double a = fc > 0 ? std::min(1.0, fp / fc) : 1.0;
+            // Expected-value accumulation: each state splats XYZ / Y with its probability
+            // of being the next state; the image scale b / (mutations per pixel) comes last.
+            // Kelemen et al. (2002, Sec. 4) also count a large step as an independent
+            // sample of density 1 and combine both by the balance heuristic: Y / b becomes
+            // Y / b + p_large and a large-step proposal earns one more unit of weight.
+            const bool large = sampler.large_step();
+            const double pk = settings.kelemen_weights ? p_large : 0.0;
+            const double wc = (1 - a) / (fc / b + pk);
+            const double wp = (a + (settings.kelemen_weights && large ? 1.0 : 0.0)) / (fp / b + pk);
+            if (wc > 0 && fc > 0) deposit(film, current, current.xyz * wc);
+            if (wp > 0 && fp > 0) deposit(film, proposed, proposed.xyz * wp);
+            if (sampler.uniform() < a) {
+                current = proposed;
+                sampler.accept();
+            } else {
+                sampler.reject();
+            }
+        }
+        return m;
+    };
+
+    for (int c0 = 0; c0 < n_chains; c0 += batch) {
+        const int nb = std::min(batch, n_chains - c0);
+        std::vector<uint64_t> done(size_t(nb), 0);
+        arena.execute(
+            [&] { tbb::parallel_for(0, nb, [&](int k) { done[size_t(k)] = run_chain(c0 + k, films[size_t(k)]); }); });
+        for (int k = 0; k < nb; ++k) {
+            mutations += done[size_t(k)];
+            const auto& f = films[size_t(k)];
+            for (size_t p = 0; p < pixels; ++p) sum[p] += f[p];  // fixed chain order
+        }
+        if (stop_requested()) break;
+    }
     if (bar) bar->finish();
 
     // Pixel value = b * (pixel count) / (mutations) * splat sum: the chains visit the film
     // with density Y / b over the unit square of film positions, each pixel covering 1/area.
-    uint64_t mutations = 0;
-    for (uint64_t d : done) mutations += d;
     // Film positions cover the window grown by the filter margin: its area replaces the count.
     const Vec2 extent = spec.sample_extent();
     const double scale = mutations > 0 ? extent.x * extent.y / double(mutations) : 0.0;
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            Vec3 sum;
-            for (const auto& f : films) sum += f[size_t(y) * w + x];  // fixed chain order
-            result.film.add_sum(x, y, sum * scale, 1);
-        }
+        for (int x = 0; x < w; ++x) result.film.add_sum(x, y, sum[size_t(y) * w + x] * scale, 1);
     result.seconds = elapsed();
     result.spp_mean = double(mutations) / double(pixels);
     result.spp_completed = mutations / pixels;

@@ -25,8 +25,10 @@ struct PssmltSettings {
     /// (mutations_per_pixel) mutations in all chains together, per output pixel; 0: the
     /// render options' spp. Ignored in equal-time mode (RenderOptions::time_limit > 0).
     int64_t mutations_per_pixel = 0;
-    int64_t bootstrap_samples = 100000;     ///< (bootstrap_samples) independent paths estimating b
-    int chains = 0;                         ///< (chains) parallel Markov chains; 0: one per thread
+    int64_t bootstrap_samples = 100000;  ///< (bootstrap_samples) independent paths estimating b
+    /// (chains) Markov chains; 0: 64 for a fixed-length render (run `threads` at a time, so
+    /// the image does not depend on the machine), one per thread in equal-time mode.
+    int chains = 0;
     double s1 = 1.0 / 1024, s2 = 1.0 / 64;  ///< small-step range (Kelemen's defaults, not in scene files)
     PathSettings path;                      ///< (max_depth, rr_depth, hide_emitters) of the inner estimator
     MneeSettings mnee;                      ///< MNEE parameters when sampler = "mnee"
@@ -42,8 +44,8 @@ std::shared_ptr<PathTracer> make_pssmlt_inner(const PssmltSettings& settings);
 /// expected-value weights (current 1 - a, proposed a); with kelemen_weights a large step also
 /// counts as an independent sample (balance heuristic). The first two primary samples choose
 /// the film position over the output (crop) window, the next two the wavelengths, as in render().
-/// A pure function of (scene, settings, options.seed) when `chains` is fixed and no time
-/// limit is set: each chain owns its random stream and per-chain films are summed in order.
+/// A pure function of (scene, settings, options.seed) when no time limit is set, whatever
+/// the thread count: each chain owns its random stream and per-chain films are summed in order.
 /// Each path carries `spectral_samples` wavelengths.
 RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, int spectral_samples,
                            const FilmSpec& film, const RenderOptions& options,
