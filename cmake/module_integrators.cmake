@@ -37,6 +37,7 @@ snell_test(test_mitsuba_references SOURCES tests/stat/test_mitsuba_references.cp
 snell_test(test_hero_wavelengths SOURCES tests/stat/test_hero_wavelengths.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_sampler_images SOURCES tests/stat/test_sampler_images.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_pssmlt SOURCES tests/stat/test_pssmlt.cpp LIBS ${SNELL_ALL_LIBS})
+snell_test(test_scale_invariance SOURCES tests/stat/test_scale_invariance.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_bdpt SOURCES tests/stat/test_bdpt_agreement.cpp tests/stat/test_bdpt_light_tracing.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_erpt SOURCES tests/stat/test_erpt.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_bdpt_vertices SOURCES tests/unit/test_bdpt_vertices.cpp LIBS ${SNELL_ALL_LIBS})

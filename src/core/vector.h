@@ -93,6 +93,10 @@ inline Vec3 normalize(const Vec3& a) { return a / length(a); }
 inline Vec3 vmin(const Vec3& a, const Vec3& b) { return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)}; }
 inline Vec3 vmax(const Vec3& a, const Vec3& b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
 inline double max_component(const Vec3& a) { return std::max(a.x, std::max(a.y, a.z)); }
+/// Largest coordinate magnitude: the scale of a point's floating-point rounding.
+inline double max_abs_component(const Vec3& a) {
+    return std::max(std::abs(a.x), std::max(std::abs(a.y), std::abs(a.z)));
+}
 inline bool is_finite(const Vec3& a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 /// Flip `v` to the hemisphere of `ref`.
 inline Vec3 face_forward(const Vec3& v, const Vec3& ref) { return dot(v, ref) < 0 ? -v : v; }

@@ -127,6 +127,7 @@ ShapeSample InstancedShape::sample_area(const Vec2& u) const {
     s.p = m_to_world.point(s.p);
     s.n = normalize(m_to_world.normal(s.n));
     s.pdf *= ratio;
+    s.p_error = -1;  // the base shape's bound was in its own space
     return s;
 }
 

@@ -7,6 +7,13 @@
 
 namespace snell {
 
+double TriangleMesh::position_error(const SurfaceInteraction& si) const {
+    if (si.prim >= m_tris.size()) return shape_position_error();
+    double m = 0;
+    for (uint32_t i : m_tris[si.prim]) m = std::max(m, max_abs_component(m_pos[i].to_double()));
+    return kFloatPositionError * m;
+}
+
 Vec2 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
     // Walk the Voronoi regions of the vertices, then the edges, then the face interior.
     auto ratio = [](double num, double den) { return den != 0 ? num / den : 0.0; };
@@ -330,6 +337,7 @@ ShapeSample TriangleMesh::sample_area(const Vec2& u) const {
     s.p = si.p;
     s.n = si.ng;
     s.uv = si.uv;
+    s.p_error = position_error(si);
     s.pdf = 1.0 / m_area;
     return s;
 }

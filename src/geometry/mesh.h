@@ -34,6 +34,9 @@ public:
     unsigned attach(RTCDevice device, RTCScene scene) override;
     Bounds3 bounds() const override { return m_bounds; }
     double area() const override { return m_area; }
+    /// From the hit triangle's vertices (pbrt-v4 bounds a triangle point by its barycentric
+    /// sum of |p_i|; the largest vertex magnitude bounds that sum).
+    double position_error(const SurfaceInteraction& si) const override;
     void compute_interaction(const Ray& ray, double t, uint32_t prim, const Vec2& uv,
                              SurfaceInteraction* si) const override;
     /// Exact closest point (double-precision point-triangle distance) within `radius`, found

@@ -1,6 +1,7 @@
 #pragma once
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
@@ -15,12 +16,21 @@ namespace snell {
 class BSDF;
 class Light;
 
+/// Bound on the rounding error of a surface point, per unit of the coordinate magnitudes it
+/// was computed from. Embree stores vertices and intersects in float (unit roundoff 2^-24)
+/// and its watertight test loses a few ulps more; 32 ulps clears that with margin. Used like
+/// pbrt-v4's error bounds (OffsetRayOrigin): a ray leaves a surface point offset by its own
+/// error, which depends on that point's geometry and never on the size of the whole scene.
+constexpr double kFloatPositionError = 32.0 * 0x1.0p-24;
+
 /// A point sampled on a shape, with its density.
 struct ShapeSample {
     Vec3 p;
     Vec3 n;          ///< unit (shading-side) normal at p
     double pdf = 0;  ///< area measure for sample_area; solid angle for sample_from
     Vec2 uv;         ///< surface parameterisation at p (textured emitters read it)
+    /// Bound on the rounding error of p (Shape::position_error); negative: the shape's default.
+    double p_error = -1;
 };
 
 /// Interface of a geometric primitive (sphere, triangle mesh). Shapes own their BSDF and,
@@ -31,6 +41,15 @@ public:
     virtual unsigned attach(RTCDevice device, RTCScene scene) = 0;
     virtual Bounds3 bounds() const = 0;
     virtual double area() const = 0;
+    /// Distance within which the computed position of `si` (a point of this shape) may lie
+    /// off the true surface, as Embree sees it. Default: shape_position_error(); meshes use
+    /// the hit triangle's vertices.
+    virtual double position_error(const SurfaceInteraction& /*si*/) const { return shape_position_error(); }
+    /// The same bound for any point of the shape: from its coordinates' largest magnitude.
+    double shape_position_error() const {
+        const Bounds3 b = bounds();
+        return kFloatPositionError * std::max(max_abs_component(b.lo), max_abs_component(b.hi));
+    }
 
     /// Fills `si` from an Embree hit on primitive `prim` at barycentrics/parameters `uv`
     /// (as Embree reports them) at ray distance t. Full differential geometry, ng and n

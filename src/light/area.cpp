@@ -49,6 +49,7 @@ std::optional<LightSample> AreaLight::sample_li(const LightSampleContext& ref, c
     ls.wi = d;
     ls.dist = dist;
     ls.uv = ss->uv;
+    ls.p_error = ss->p_error >= 0 ? ss->p_error : m_shape->shape_position_error();
     ls.Le = radiance_at(ss->p, ss->n, ss->uv, wl);
     ls.pdf = ss->pdf;
     // Solid angle -> area: d(omega) = |cos_light| dA / dist^2.

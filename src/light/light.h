@@ -25,6 +25,9 @@ struct LightSample {
     Vec2 uv;                  ///< surface parameterisation at p (area lights; textured emission)
     Vec3 wi;                  ///< unit direction from the reference point towards the light
     double dist = kInfinity;  ///< distance to p (infinite for directional/infinite lights)
+    /// Bound on the rounding error of p on the light's shape (area lights; Shape::position_error):
+    /// a shadow ray stops this far short of p, so it does not hit the light itself.
+    double p_error = 0;
     /// Incident radiance for area and infinite lights. For delta lights the factor that makes
     /// the estimate f |cos| Le / pdf correct: point/spot intensity / dist^2, directional irradiance.
     SampledSpectrum Le;

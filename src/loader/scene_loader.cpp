@@ -306,6 +306,20 @@ private:
         if (!(near_clip > 0 && far_clip > near_clip && std::isfinite(far_clip)))
             p.raise_param("near_clip", "need 0 < near_clip < far_clip");
         const Transform to_world = p.get_transform("to_world");
+        // A projective camera's frame must be rigid, as Mitsuba 3 requires (Transform::has_scale,
+        // same 1e-3 tolerance): its clip planes, importance and lens are in world units, so a
+        // scale would silently change the picture (bdpt's light paths clipped at the wrong depth).
+        if (o.type != "orthographic") {
+            const auto& m = to_world.matrix();
+            for (int i = 0; i < 3; ++i)
+                for (int j = i; j < 3; ++j) {
+                    const double g = m[0][i] * m[0][j] + m[1][i] * m[1][j] + m[2][i] * m[2][j];
+                    if (!(std::abs(g - (i == j ? 1.0 : 0.0)) <= 1e-3))
+                        p.raise_param("to_world", "a " + o.type +
+                                                      " sensor's to_world must not scale or shear (Mitsuba 3 "
+                                                      "refuses it too); scale the scene instead");
+                }
+        }
         double fov = 0, aperture = 0, focus = 0;
         std::string axis;
         if (o.type != "orthographic") {

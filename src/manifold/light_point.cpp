@@ -14,6 +14,7 @@ LightPoint light_point(const Scene& scene, const Light& light, const LightSample
         lp.n = ls.n;
         lp.uv = ls.uv;
         lp.pdf = ls.delta ? 1.0 : ls.pdf_area;
+        lp.p_error = ls.p_error;
         return lp;
     }
     const double D = far_light_distance(scene);

@@ -19,6 +19,7 @@ struct LightPoint {
     Vec2 uv;             ///< surface coordinates on an area light (its texture reads them)
     double pdf = 0;      ///< area density of p, or 1 for delta positions
     bool delta = false;  ///< position (point, spot) or direction (directional) is a delta
+    double p_error = 0;  ///< rounding bound of p on an area light (LightSample::p_error)
 };
 
 /// Radius of the far sphere for lights at infinity.

@@ -59,9 +59,9 @@ bool project_vertex(const Scene* scene, const ManifoldVertex& from, const Vec3& 
         // Cast from the previous vertex through the displaced point; accept only hits on the
         // same shape near the displaced point.
         Ray r{prev_p, normalize(displaced - prev_p), 0.0, kInfinity};
-        r.tmin = scene->ray_epsilon();
+        r.tmin = Scene::ray_tmin(prev_p, length(displaced - prev_p));
         if (!scene->intersect(r, &si) || si.shape != from.shape) return false;
-        if (length(si.p - displaced) > 4.0 * step + scene->ray_epsilon()) return false;
+        if (length(si.p - displaced) > 4.0 * step + r.tmin) return false;
     }
     ManifoldVertex v = ManifoldVertex::from_interaction(si, from.eta);
     v.reflect = from.reflect;

@@ -182,9 +182,10 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
 
     // Self-occlusion was ignored for the seed; the admissible path must be visible (Sec. 3.1).
     const size_t k = chain.size();
-    bool visible = !scene.occluded(scene.spawn_ray_to(xb, chain[0].p));
+    bool visible = !scene.occluded(scene.spawn_ray_to(xb, chain[0].si));
     for (size_t i = 0; i < k && visible; ++i)
-        visible = !scene.occluded(scene.spawn_ray_to(chain[i].si, i + 1 < k ? chain[i + 1].p : xc));
+        visible = !scene.occluded(i + 1 < k ? scene.spawn_ray_to(chain[i].si, chain[i + 1].si)
+                                            : scene.spawn_ray_to(chain[i].si, xc, lp.p_error));
     if (!visible) {
         ++wc::walk_fail_occluded;
         wc::count_walk_end(false, wc::WalkEnd::Occluded);

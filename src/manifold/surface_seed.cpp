@@ -80,8 +80,8 @@ SurfaceSeedEnd trace_surface_seed(const Scene& scene, const SurfaceInteraction& 
                                   double lambda, const MneeSettings& settings, HalfVectorDraws& draws,
                                   std::vector<ManifoldVertex>* chain, PCG32* scatter, Vec3* exit_dir) {
     const auto y = caster.sample_from(xb.p, u);
-    const SurfaceSeedEnd end = y ? trace_through(scene, scene.spawn_ray_to(xb, y->p), caster, lambda, settings, &draws,
-                                                 scatter, chain, exit_dir)
+    const SurfaceSeedEnd end = y ? trace_through(scene, scene.spawn_ray_to(xb, y->p, std::max(0.0, y->p_error)), caster,
+                                                 lambda, settings, &draws, scatter, chain, exit_dir)
                                  : SurfaceSeedEnd::MissedCaster;
     walk_counters::surface_seed_end.add(uint32_t(end));
     return end;
@@ -93,7 +93,7 @@ SurfaceSeedEnd trace_light_seed(const Scene& scene, const Vec3& xc, const Shape&
     SurfaceSeedEnd end = SurfaceSeedEnd::MissedCaster;
     if (const auto y = caster.sample_from(xc, u)) {
         Ray ray{xc, normalize(y->p - xc), 0.0, kInfinity};
-        ray.tmin = scene.ray_epsilon();
+        ray.tmin = Scene::ray_tmin(xc, length(y->p - xc));
         end = trace_through(scene, ray, caster, lambda, settings, nullptr, scatter, chain, nullptr);
     }
     if (end == SurfaceSeedEnd::Ok) {

@@ -1,7 +1,10 @@
 #include "scene/scene.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 
 #include "geometry/embree_context.h"
 
@@ -10,20 +13,32 @@ namespace snell {
 namespace scene_stats {
 StatCounter rays{"scene.rays", "closest-hit ray queries"};
 StatCounter shadow_rays{"scene.shadow_rays", "any-hit (visibility) ray queries"};
+StatCounter untraceable_rays{"scene.untraceable_rays",
+                             "rays Embree cannot represent (origin beyond 1.8e18 or not finite), not traced"};
 }  // namespace scene_stats
 
 namespace {
 
-// Relative tolerances (project promise 5: a scene scaled by 1000 behaves identically).
-// Embree stores and intersects in float, whose unit roundoff is 2^-24 = 6e-8, and its
-// watertight triangle test loses a few ulps more; a ray origin handed to Embree is rounded
-// to float as well. Offsets of 1e-5 of the scene radius clear that error by two orders of
-// magnitude, yet stay far below any feature worth rendering (a glass shell 1% of the scene
-// thick is still 1000 offsets wide).
-constexpr double kRelSceneEps = 1e-5;
-// Term proportional to the coordinates themselves, for scenes far from the origin where the
-// float spacing of positions (6e-8 |p|) exceeds the scene-relative epsilon: 32 ulps.
-constexpr double kRelPositionEps = 32.0 * 0x1.0p-24;
+// Embree intersects in float and asserts that a ray's origin lies within +-1.844e18 and its
+// direction is finite (RayK::valid(), FLT_LARGE), aborting the process otherwise. Lights at
+// infinity become points 1e6 scene radii away (manifold/light_point.h), so the scene itself
+// must stay within 1e12 of the origin, well inside that limit.
+constexpr double kEmbreeMaxOrigin = 1.8e18;
+constexpr double kMaxSceneCoordinate = 1e12;
+
+bool embree_can_trace(const Ray& r) {
+    return max_abs_component(r.o) < kEmbreeMaxOrigin && std::isfinite(r.d.x) && std::isfinite(r.d.y) &&
+           std::isfinite(r.d.z) && !std::isnan(r.tmin) && !std::isnan(r.tmax);
+}
+
+std::string coordinate_error(const char* what, double extent) {
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "%s reaches %.3g from the origin; snell handles coordinates up to %.0e (Embree traces rays in "
+                  "single precision; scale the scene down or move it nearer the origin)",
+                  what, extent, kMaxSceneCoordinate);
+    return buf;
+}
 
 void embree_error(void*, RTCError code, const char* msg) {
     std::fprintf(stderr, "embree error %d: %s\n", int(code), msg ? msg : "");
@@ -87,13 +102,25 @@ void Scene::build() {
             m_bounds.expand(s->bounds());
         }
     }
+    // Checked before Embree builds its float BVH over these bounds.
+    if (!m_shapes.empty()) {
+        double extent = 0;
+        for (const Vec3& c : {m_bounds.lo, m_bounds.hi})
+            for (double x : {c.x, c.y, c.z})
+                extent = std::isnan(x) || std::isnan(extent) ? NAN : std::max(extent, std::abs(x));
+        if (!(extent <= kMaxSceneCoordinate))
+            throw std::runtime_error(coordinate_error("the scene's geometry", extent));
+    }
+    if (m_camera) {
+        const double cam = max_abs_component(m_camera->to_world().point(Vec3(0, 0, 0)));
+        if (!(cam <= kMaxSceneCoordinate)) throw std::runtime_error(coordinate_error("the sensor's position", cam));
+    }
     rtcCommitScene(m_scene);
     if (rtcGetDeviceError(m_device) != RTC_ERROR_NONE) throw std::runtime_error("Embree failed to build the scene");
 
     if (!m_bounds.valid()) m_bounds.expand(Vec3(0, 0, 0));  // empty scene
     m_radius = 0.5 * length(m_bounds.extent());
     if (!(m_radius > 0)) m_radius = 1;
-    m_eps = kRelSceneEps * m_radius;
 
     m_infinite.clear();
     for (const auto& l : m_lights) {
@@ -104,6 +131,10 @@ void Scene::build() {
 }
 
 bool Scene::intersect(const Ray& ray, SurfaceInteraction* si) const {
+    if (!embree_can_trace(ray)) {  // never for a validated scene; counted, never a crash
+        ++scene_stats::untraceable_rays;
+        return false;
+    }
     RayContext ctx(ray, &m_inst_to_local);
     RTCRayHit rh;
     to_embree(ray, rh.ray);
@@ -124,6 +155,10 @@ bool Scene::intersect(const Ray& ray, SurfaceInteraction* si) const {
 }
 
 bool Scene::occluded(const Ray& ray) const {
+    if (!embree_can_trace(ray)) {
+        ++scene_stats::untraceable_rays;
+        return true;
+    }
     RayContext ctx(ray, &m_inst_to_local);
     RTCRay r;
     to_embree(ray, r);
@@ -132,14 +167,13 @@ bool Scene::occluded(const Ray& ray) const {
     return r.tfar < 0;  // Embree sets tfar = -inf on any hit
 }
 
-namespace {
-double offset_at(const Vec3& p, double eps) {
-    return eps + kRelPositionEps * max_component(Vec3(std::abs(p.x), std::abs(p.y), std::abs(p.z)));
+double Scene::surface_offset(const SurfaceInteraction& si) {
+    const double own = point_offset(si.p);
+    return si.shape ? std::max(own, si.shape->position_error(si)) : own;
 }
-}  // namespace
 
 Ray Scene::spawn_ray(const SurfaceInteraction& si, const Vec3& d) const {
-    const double off = offset_at(si.p, m_eps);
+    const double off = surface_offset(si);
     Ray r;
     r.o = si.p + si.ng * (dot(d, si.ng) >= 0 ? off : -off);
     r.d = d;
@@ -148,15 +182,16 @@ Ray Scene::spawn_ray(const SurfaceInteraction& si, const Vec3& d) const {
     return r;
 }
 
-Ray Scene::spawn_ray_to(const SurfaceInteraction& si, const Vec3& target) const {
-    const double off = offset_at(si.p, m_eps);
+Ray Scene::spawn_ray_to(const SurfaceInteraction& si, const Vec3& target, double target_error) const {
+    const double off = surface_offset(si);
     Ray r;
     r.o = si.p + si.ng * (dot(target - si.p, si.ng) >= 0 ? off : -off);
     Vec3 d = target - r.o;
     const double dist = length(d);
     r.d = dist > 0 ? d / dist : si.ng;
     r.tmin = 0;
-    r.tmax = std::max(0.0, dist - offset_at(target, m_eps));
+    const double short_by = std::max({kShadowEpsilon * dist, target_error, point_offset(target)});
+    r.tmax = std::max(0.0, dist - short_by);
     return r;
 }
 

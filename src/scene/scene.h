@@ -18,11 +18,14 @@ namespace snell {
 namespace scene_stats {
 extern StatCounter rays;         ///< "scene.rays": closest-hit queries
 extern StatCounter shadow_rays;  ///< "scene.shadow_rays": any-hit queries
+/// "scene.untraceable_rays": rays beyond what Embree represents, answered without tracing
+extern StatCounter untraceable_rays;
 }  // namespace scene_stats
 
 /// The scene: shapes in an Embree BVH, lights and their sampler, the camera.
-/// Tolerances (ray offsets, projection radii) are relative to the scene's size
-/// (project promise 5): a scene scaled by 1000 behaves identically.
+/// Ray offsets come from each point's own rounding error (Shape::position_error, as pbrt-v4's
+/// OffsetRayOrigin), never from the scene's size: a scene scaled by 1e-4 or 1e4 renders the
+/// same, and a giant object far away does not change how rays leave the others.
 class Scene {
 public:
     Scene();
@@ -47,12 +50,26 @@ public:
         return shape.closest_point(p, radius, si);
     }
 
-    /// Ray leaving `si` in direction d, offset to the side of the geometric normal d points to.
+    /// Ray leaving `si` in direction d, its origin offset by surface_offset(si) to the side of
+    /// the geometric normal that d points to.
     Ray spawn_ray(const SurfaceInteraction& si, const Vec3& d) const;
-    /// Shadow ray from `si` to point `target`, shortened at both ends by the scene epsilon.
-    Ray spawn_ray_to(const SurfaceInteraction& si, const Vec3& target) const;
-    /// Offset distance for ray origins: a small multiple of the scene's extent.
-    double ray_epsilon() const { return m_eps; }
+    /// Shadow ray from `si` (offset as spawn_ray) to `target`, stopping short of it by the
+    /// larger of `target_error` (the target's own rounding bound) and a relative
+    /// kShadowEpsilon of the distance (pbrt-v4's ShadowEpsilon).
+    Ray spawn_ray_to(const SurfaceInteraction& si, const Vec3& target, double target_error = 0) const;
+    /// Shadow ray between two surface points, each end kept clear of its own surface.
+    Ray spawn_ray_to(const SurfaceInteraction& si, const SurfaceInteraction& target) const {
+        return spawn_ray_to(si, target.p, surface_offset(target));
+    }
+    /// How far a ray origin at `si` must move off its surface: the point's rounding-error bound
+    /// (its shape's, or its own coordinates' for a point without one).
+    static double surface_offset(const SurfaceInteraction& si);
+    /// Rounding bound of a bare point (a vertex of unknown surface, a light position).
+    static double point_offset(const Vec3& p) { return kFloatPositionError * max_abs_component(p); }
+    /// tmin for a ray cast from a bare point `o` towards something about `dist` away.
+    static double ray_tmin(const Vec3& o, double dist) { return point_offset(o) + kShadowEpsilon * dist; }
+    /// Relative shortening of shadow rays (pbrt-v4's ShadowEpsilon).
+    static constexpr double kShadowEpsilon = 1e-4;
     /// Radius of the bounding sphere of all shapes.
     double scene_radius() const { return m_radius; }
     const Bounds3& bounds() const { return m_bounds; }
@@ -80,7 +97,7 @@ private:
     LightSampler m_light_sampler;
     std::shared_ptr<Camera> m_camera;
     Bounds3 m_bounds;
-    double m_radius = 1, m_eps = 1e-5;
+    double m_radius = 1;
 };
 
 }  // namespace snell

@@ -446,6 +446,35 @@ TEST(SceneLoaderFull, IntegersAreRangeCheckedAndNestingIsLinear) {
     EXPECT_TRUE(wide.scene->shapes()[0]->bsdf()->flags() & kDiffuse);
 }
 
+// Issue 12: coordinates beyond what Embree represents (it asserts ray origins within 1.8e18 and
+// aborted the process) are a load error that says what reaches how far: a sphere of radius 1e25,
+// a camera at 1e19. Inside the limit (1e12) a scene loads.
+TEST(SceneLoaderFull, ExtremeCoordinatesAreAClearError) {
+    const std::string sphere = R"(<shape type="sphere"><float name="radius" value="1e25"/></shape>)";
+    expect_error(scene_with(sphere), "test.xml:", "the scene's geometry reaches 1e+25 from the origin");
+    const std::string camera = R"(<scene version="3.0.0">
+<sensor type="perspective"><transform name="to_world">
+<lookat origin="1e19, 0, 0" target="0, 0, 0" up="0, 1, 0"/></transform></sensor>
+<shape type="sphere"/>
+</scene>)";
+    expect_error(camera, "test.xml:", "the sensor's position reaches 1e+19");
+    EXPECT_NO_THROW(load_string(scene_with(R"(<shape type="sphere"><float name="radius" value="1e11"/></shape>)")));
+}
+
+// A perspective sensor's frame must be rigid (Mitsuba 3 refuses scale factors too): with a
+// scale its clip planes and importance were in mixed units and bdpt's light paths were clipped
+// (found by the scale-invariance test). A mirror (Mitsuba 0.5 scenes' scale x="-1") is rigid.
+TEST(SceneLoaderFull, ScaledPerspectiveSensorIsAnError) {
+    auto sensor = [](const std::string& ops) {
+        return "<scene version=\"3.0.0\">\n<sensor type=\"perspective\"><transform name=\"to_world\">" + ops +
+               "</transform></sensor>\n<shape type=\"sphere\"/>\n</scene>";
+    };
+    expect_error(sensor("<lookat origin=\"0, 0, 5\" target=\"0, 0, 0\" up=\"0, 1, 0\"/><scale value=\"10\"/>"),
+                 "test.xml:2: <sensor>", "must not scale or shear");
+    EXPECT_NO_THROW(
+        load_string(sensor("<scale x=\"-1\"/><lookat origin=\"0, 0, 5\" target=\"0, 0, 0\" up=\"0, 1, 0\"/>")));
+}
+
 // Issue 12: 100,000 nested elements overflowed the stack of the recursive parser. Any document
 // nested deeper than 256 levels is refused first, at the element where it crosses the limit;
 // 200 levels (far more than any scene needs) still load.

@@ -65,7 +65,7 @@ SampledSpectrum connect(const Scene& scene, const std::vector<Vertex>& cam, cons
     SampledSpectrum c = z.beta * fz * fy * y.beta / d2;
     if (c.is_zero()) return {};
     c *= edge_transmittance(z, d, dist, wl);
-    if (scene.occluded(scene.spawn_ray_to(z.si, y.si.p))) return {};
+    if (scene.occluded(scene.spawn_ray_to(z.si, y.si))) return {};
     return joined(c, z, y, wl);
 }
 
@@ -82,7 +82,7 @@ SampledSpectrum connect_camera(const Scene& scene, const Vertex& z0, const Verte
     SampledSpectrum c = y.beta * adjoint_f(y, d, wl) * (z0.pinhole->importance(cos_theta) * cos_theta / d2);
     if (c.is_zero()) return {};
     c *= edge_transmittance(y, d, dist, wl);
-    if (scene.occluded(scene.spawn_ray_to(y.si, z0.si.p))) return {};
+    if (scene.occluded(scene.spawn_ray_to(y.si, z0.si))) return {};
     return c;
 }
 

@@ -111,6 +111,10 @@ void light_subpath(const Scene& scene, const SceneDisk& disk, Sampler& sampler, 
         y0.si.p = ss.p;
         y0.si.n = y0.si.ng = ss.n;
         y0.si.shading = Frame::from_normal(ss.n);
+        // The shape (and no triangle) for the ray offsets: its rounding bound keeps rays
+        // leaving the light, and shadow rays reaching it, clear of its own surface.
+        y0.si.shape = shape;
+        y0.si.prim = ~0u;
         const Vec3 w_local = warp::square_to_cosine_hemisphere(u_dir);
         w = y0.si.to_world(w_local);
         pdf_dir = warp::square_to_cosine_hemisphere_pdf(w_local);

@@ -177,7 +177,7 @@ SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const S
     const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls->wi);
     const SampledSpectrum f = bsdf.eval(ctx.at(si), wo, wi);
     if (f.is_zero()) return {};
-    const Ray shadow = std::isinf(ls->dist) ? scene.spawn_ray(si, ls->wi) : scene.spawn_ray_to(si, ls->p);
+    const Ray shadow = std::isinf(ls->dist) ? scene.spawn_ray(si, ls->wi) : scene.spawn_ray_to(si, ls->p, ls->p_error);
     if (scene.occluded(shadow)) return {};
     // The path x_b, x_1..x_k = si, x_c in area measure (lights at infinity on MNEE's far sphere).
     const LightPoint lp = light_point_hit(scene, *light, ls->p, ls->n, ls->uv, ls->wi, s.xb.p);
