@@ -181,7 +181,7 @@ int cmd_compare(const CompareOptions& opt) {
     const uint64_t seed = opt.seed ? *opt.seed : prepared[0].ls.seed;
     rep.seed = seed;
     for (const Crop& c : rep.crops) {
-        if (c.x < 0 || c.y < 0 || c.w <= 0 || c.h <= 0 || c.x + c.w > rep.width || c.y + c.h > rep.height)
+        if (!crop_inside(c, rep.width, rep.height))
             throw std::runtime_error("--crop " + crop_text(c) + " is outside the " + std::to_string(rep.width) + "x" +
                                      std::to_string(rep.height) + " image");
         rep.crop_scales.push_back(enlargement_factor(c.w, c.h));

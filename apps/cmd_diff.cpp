@@ -23,7 +23,7 @@ int cmd_diff(const std::string& a_path, const std::string& b_path, const std::ve
     int ox = 0, oy = 0;
     if (!reference_offset.empty()) {
         const Crop o = parse_crop(reference_offset + "," + std::to_string(b.width) + "," + std::to_string(b.height));
-        if (o.x + b.width > a.width || o.y + b.height > a.height)
+        if (!crop_inside(o, a.width, a.height))
             throw std::runtime_error("--reference-offset " + reference_offset + ": the reference (" +
                                      std::to_string(b.width) + "x" + std::to_string(b.height) +
                                      ") does not fit inside the image (" + std::to_string(a.width) + "x" +
@@ -35,10 +35,10 @@ int cmd_diff(const std::string& a_path, const std::string& b_path, const std::ve
     std::vector<std::pair<std::string, Crop>> regions = {{"image", Crop{}}};
     for (const std::string& c : crops) {
         Crop r = parse_crop(c);
+        if (!crop_inside({r.x - ox, r.y - oy, r.w, r.h}, b.width, b.height))
+            throw std::runtime_error("--crop " + c + " lies outside the reference's window");
         r.x -= ox;
         r.y -= oy;
-        if (r.x < 0 || r.y < 0 || r.x + r.w > b.width || r.y + r.h > b.height)
-            throw std::runtime_error("--crop " + c + " lies outside the reference's window");
         regions.push_back({"crop " + c, r});
     }
     nlohmann::json out = nlohmann::json::array();

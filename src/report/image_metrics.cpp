@@ -15,10 +15,7 @@ ImageMetrics compare_images(const Image& img, const Image& ref, const Crop& crop
                                     std::to_string(ref.height));
     Crop c = crop_in;
     if (c.w == 0) c = {0, 0, img.width, img.height};
-    if (c.x < 0 || c.y < 0 || c.w <= 0 || c.h <= 0 || c.x + c.w > img.width || c.y + c.h > img.height)
-        throw std::invalid_argument("crop " + std::to_string(c.x) + "," + std::to_string(c.y) + "," +
-                                    std::to_string(c.w) + "," + std::to_string(c.h) + " is outside the " +
-                                    std::to_string(img.width) + "x" + std::to_string(img.height) + " image");
+    check_crop_inside(c, img.width, img.height);
     ImageMetrics m;
     double rel = 0, se = 0, se_clamped = 0, smape = 0, sa = 0, sr = 0;
     for (int y = c.y; y < c.y + c.h; ++y)
@@ -66,12 +63,24 @@ ImageMetrics compare_images(const Image& img, const Image& ref, const Crop& crop
     return m;
 }
 
+bool crop_inside(const Crop& c, int width, int height) {
+    return c.x >= 0 && c.y >= 0 && c.w > 0 && c.h > 0 && int64_t(c.x) + c.w <= width && int64_t(c.y) + c.h <= height;
+}
+
+void check_crop_inside(const Crop& c, int width, int height) {
+    if (!crop_inside(c, width, height))
+        throw std::invalid_argument("crop " + std::to_string(c.x) + "," + std::to_string(c.y) + "," +
+                                    std::to_string(c.w) + "," + std::to_string(c.h) + " is outside the " +
+                                    std::to_string(width) + "x" + std::to_string(height) + " image");
+}
+
 Crop parse_crop(const std::string& text) {
     Crop c;
     char s1, s2, s3;
     std::istringstream in(text);
-    if (!(in >> c.x >> s1 >> c.y >> s2 >> c.w >> s3 >> c.h) || s1 != ',' || s2 != ',' || s3 != ',' || !in.eof())
-        throw std::invalid_argument("crop must be x,y,w,h (pixels), got '" + text + "'");
+    if (!(in >> c.x >> s1 >> c.y >> s2 >> c.w >> s3 >> c.h) || s1 != ',' || s2 != ',' || s3 != ',' || !in.eof() ||
+        c.x < 0 || c.y < 0 || c.w <= 0 || c.h <= 0)
+        throw std::invalid_argument("crop must be x,y,w,h (pixels; x, y >= 0, w, h >= 1), got '" + text + "'");
     return c;
 }
 

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 // Error metrics between an image and a reference, as used in rendering comparisons (the paper
 // reports PSNR; relative MSE is the usual figure for Monte Carlo noise). Part of report/, as io/
 // holds file formats only.
@@ -13,6 +14,12 @@ namespace snell {
 struct Crop {
     int x = 0, y = 0, w = 0, h = 0;
 };
+
+/// Whether `c` (w, h > 0) lies inside a width x height image. The sums are taken in 64 bits:
+/// x + w overflowed int for x = 2147483647, and the crop passed (issue 12).
+bool crop_inside(const Crop& c, int width, int height);
+/// Throws std::invalid_argument "crop x,y,w,h is outside the WxH image" unless crop_inside().
+void check_crop_inside(const Crop& c, int width, int height);
 
 struct ImageMetrics {
     double rel_mse = 0;  ///< mean of (a - r)^2 / (r^2 + 0.01) over pixels and channels

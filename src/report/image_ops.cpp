@@ -9,10 +9,7 @@ namespace snell {
 Image crop_image(const Image& img, const Crop& crop_in) {
     Crop c = crop_in;
     if (c.w == 0) c = {0, 0, img.width, img.height};
-    if (c.x < 0 || c.y < 0 || c.w <= 0 || c.h <= 0 || c.x + c.w > img.width || c.y + c.h > img.height)
-        throw std::invalid_argument("crop " + std::to_string(c.x) + "," + std::to_string(c.y) + "," +
-                                    std::to_string(c.w) + "," + std::to_string(c.h) + " is outside the " +
-                                    std::to_string(img.width) + "x" + std::to_string(img.height) + " image");
+    check_crop_inside(c, img.width, img.height);
     Image out;
     out.width = c.w;
     out.height = c.h;

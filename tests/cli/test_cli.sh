@@ -82,6 +82,13 @@ check "crop render equals that window of the full render" "echo \"\$out\" | grep
 check "diff --crop in image coordinates" "echo \"\$out\" | grep -q '^crop 12,8,6,4 .*relMSE 0 '"
 out=$("$SNELL" diff "$TMP/ok.exr" "$TMP/crop.exr" --reference-offset 50,40 2>&1); rc=$?
 check "a reference window outside the image is an error" "[ $rc -ne 0 ] && echo \"\$out\" | grep -q 'does not fit'"
+# Issue 12: crop rectangles are checked in 64 bits (x = 2147483647 overflowed int and crashed).
+for crop in 2147483647,0,10,10 0,2147483647,1,1 2147483647,2147483647,2147483647,2147483647 -1,0,2,2 1,1,0,1; do
+  out=$("$SNELL" diff "$TMP/ok.exr" "$TMP/crop.exr" --reference-offset 10,6 --crop $crop 2>&1); rc=$?
+  check "diff --crop $crop is an error" "[ $rc -eq 1 ] && echo \"\$out\" | grep -q 'crop'"
+done
+out=$("$SNELL" diff "$TMP/ok.exr" "$TMP/ok.exr" --reference-offset 2147483647,0 2>&1); rc=$?
+check "diff --reference-offset 2147483647,0 is an error" "[ $rc -eq 1 ] && echo \"\$out\" | grep -q 'does not fit'"
 
 # 10. -a adds a folder to find the scene's files in (Mitsuba's -a), after the scene's own; a
 #     mesh found only there loads, and without it the error names the mesh.
