@@ -23,14 +23,14 @@ if(SNELL_BUILD_BENCH)
   target_link_libraries(snell_bench PRIVATE snell_loader snell_integrators benchmark::benchmark PkgConfig::OIIO)
 endif()
 
-if(SNELL_BUILD_TESTS)
+if(SNELL_BUILD_TESTS AND NOT SNELL_SANITIZE)
   add_test(NAME cli.end_to_end COMMAND bash ${PROJECT_SOURCE_DIR}/tests/cli/test_cli.sh $<TARGET_FILE:snell>)
   set_tests_properties(cli.end_to_end PROPERTIES TIMEOUT 300)
 endif()
 
 # `snell compare` end to end: cli.compare writes a report (and checks report.json and the error
 # messages); cli.compare_html opens that report in headless Chromium.
-if(SNELL_BUILD_TESTS)
+if(SNELL_BUILD_TESTS AND NOT SNELL_SANITIZE)
   add_executable(test_compare_cli tests/cli/test_compare.cpp)
   target_link_libraries(test_compare_cli PRIVATE snell_report GTest::gtest GTest::gtest_main)
   target_compile_options(test_compare_cli PRIVATE ${SNELL_WARNINGS})
@@ -45,12 +45,12 @@ if(SNELL_BUILD_TESTS)
 endif()
 
 # The layout of every tracked C++ source against .clang-format (STYLE.md habit 9).
-if(SNELL_BUILD_TESTS)
+if(SNELL_BUILD_TESTS AND NOT SNELL_SANITIZE)
   add_test(NAME style.clang_format COMMAND bash ${PROJECT_SOURCE_DIR}/scripts/check-format.sh)
 endif()
 
 # Includes in src/ and library links run from higher layers to lower ones only, and each folder
 # is one library (scripts/check-layers.sh; the layer order is listed there).
-if(SNELL_BUILD_TESTS)
+if(SNELL_BUILD_TESTS AND NOT SNELL_SANITIZE)
   add_test(NAME style.layers COMMAND bash ${PROJECT_SOURCE_DIR}/scripts/check-layers.sh)
 endif()

@@ -23,7 +23,7 @@ else()
                  "(scripts/install-deps.sh installs nodejs and npm); scenes/glass_sphere has a cube instead")
 endif()
 
-if(SNELL_BUILD_TESTS)
+if(SNELL_BUILD_TESTS AND NOT SNELL_SANITIZE)
   add_test(NAME scenes.render_all
            COMMAND bash ${PROJECT_SOURCE_DIR}/tests/scenes/test_scenes.sh $<TARGET_FILE:snell> ${PROJECT_SOURCE_DIR}/scenes)
   set_tests_properties(scenes.render_all PROPERTIES TIMEOUT 120)

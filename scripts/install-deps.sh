@@ -7,6 +7,7 @@ set -euo pipefail
 PACKAGES=(
   g++ cmake ninja-build make pkg-config
   clang-format         # tests: the layout check (scripts/check-format.sh)
+  clang libclang-rt-14-dev # tests: the sanitizer build and the fuzz target (ASan, UBSan, libFuzzer)
   libembree-dev        # BVH and ray/triangle intersection (Embree 3)
   libopenexr-dev       # EXR images (film output, environment maps)
   libtbb-dev           # oneTBB: tile scheduling

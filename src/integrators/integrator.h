@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 // Integrators own their render loop (pbrt-v4's Integrator::Render): most estimate one pixel
 // sample at a time and share the tile loop (TileIntegrator); Metropolis places its samples
 // anywhere on the film and brings its own loop (PSSMLT).
@@ -12,6 +13,10 @@
 #include "render/sample_tracer.h"
 
 namespace snell {
+
+/// Upper bound on the bootstrap paths of the Metropolis integrators (pssmlt, erpt): each keeps
+/// one double per path, so 2^24 is 128 MiB, 168 times Mitsuba's default of 100,000.
+constexpr int64_t kMaxBootstrapSamples = int64_t(1) << 24;
 
 class Scene;
 class Props;

@@ -220,6 +220,17 @@ MeshData load_ply(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::runtime_error(path + ": cannot open mesh file");
     auto fail = [&](const std::string& msg) -> void { throw std::runtime_error(path + ": " + msg); };
+    // Every vertex takes at least one byte of the file: a bound on what a header's count may
+    // make us reserve (a count of 10^12 asked for terabytes before reading a single vertex).
+    std::error_code size_ec;
+    const uintmax_t file_bytes = std::filesystem::file_size(path, size_ec);
+    // A list's length, read as a double: a whole number within [0, 10^6] (a negative, NaN or
+    // huge length converted to size_t is undefined behaviour).
+    auto list_length = [&](double c, const std::string& element) -> size_t {
+        if (!(c >= 0 && c <= 1e6) || c != std::floor(c))
+            fail("bad PLY list length " + std::to_string(c) + " in element '" + element + "'");
+        return size_t(c);
+    };
 
     // ---- header
     std::string line;
@@ -323,14 +334,14 @@ MeshData load_ply(const std::string& path) {
             std::vector<AttributeGroup> groups = attribute_groups(e, "vertex",
                                                                   {"x", "y", "z", "nx", "ny", "nz", "u", "v", "s", "t",
                                                                    "texture_u", "texture_v", "texture_s", "texture_t"});
-            m.positions.reserve(e.count);
+            m.positions.reserve(size_ec ? 0 : std::min<uintmax_t>(e.count, file_bytes));
             std::vector<double> row(e.props.size());
             for (size_t k = 0; k < e.count; ++k) {
                 double v[8] = {};
                 for (size_t i = 0; i < e.props.size(); ++i) {
                     const PlyProperty& p = e.props[i];
                     if (p.is_list) {
-                        const size_t c = size_t(body.read(p.count_type, e.name));
+                        const size_t c = list_length(body.read(p.count_type, e.name), e.name);
                         for (size_t j = 0; j < c; ++j) body.read(p.type, e.name);
                         continue;
                     }
@@ -389,7 +400,7 @@ MeshData load_ply(const std::string& path) {
             for (size_t k = 0; k < e.count; ++k)
                 for (const PlyProperty& p : e.props) {
                     if (p.is_list) {
-                        const size_t c = size_t(body.read(p.count_type, e.name));
+                        const size_t c = list_length(body.read(p.count_type, e.name), e.name);
                         for (size_t j = 0; j < c; ++j) body.read(p.type, e.name);
                     } else {
                         body.read(p.type, e.name);

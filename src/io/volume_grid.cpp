@@ -34,6 +34,13 @@ VolumeGrid read_volume_grid(const std::string& path) {
     if (!in) fail("truncated .vol header");
     const uint64_t n = uint64_t(g.xres) * uint64_t(g.yres) * uint64_t(g.zres) * uint64_t(g.channels);
     if (n > (uint64_t(1) << 31)) fail(".vol grid too large");
+    // Checked against the file's size before allocating: a 48-byte file could ask for 8 GiB.
+    const std::streamoff header_end = in.tellg();
+    in.seekg(0, std::ios::end);
+    const std::streamoff file_end = in.tellg();
+    in.seekg(header_end);
+    if (header_end < 0 || file_end < header_end || uint64_t(file_end - header_end) / sizeof(float) < n)
+        fail("truncated .vol data (expected " + std::to_string(n) + " values)");
     g.data.resize(size_t(n));
     in.read(reinterpret_cast<char*>(g.data.data()), std::streamsize(n * sizeof(float)));
     if (!in) fail("truncated .vol data (expected " + std::to_string(n) + " values)");

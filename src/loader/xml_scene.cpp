@@ -115,8 +115,13 @@ public:
         m_main_dir = f.dir;
         if (!canonical.empty()) m_include_stack.push_back(canonical);
         parse_document(text, f, *scene, /*is_root=*/true);
-        resolve_refs();
-        check_cycles(*scene);
+        try {
+            resolve_refs();
+            check_cycles(*scene);
+        } catch (...) {
+            break_ref_links();
+            throw;
+        }
         for (const auto& [name, value] : m_defines)
             if (!m_declared.count(name) && !m_used.count(name))
                 throw SceneError("-D " + name + "=" + value + ": the scene has no parameter '" + name +
@@ -677,6 +682,12 @@ private:
             r.parent->children[r.index].obj = it->second;
             it->second->referenced = true;
         }
+    }
+
+    /// Resolved refs may form a cycle of shared_ptrs, which would never be freed: on an error
+    /// the objects with an id drop their children (every cycle passes through one of them).
+    void break_ref_links() {
+        for (auto& [id, obj] : m_ids) obj->children.clear();
     }
 
     /// A <ref> to an enclosing object would make instantiation recurse forever.

@@ -247,7 +247,8 @@ TEST(BsdfFactory, BuildsEveryTypeWithMitsubaParameters) {
         p.set("alpha_u", 0.1, kLoc);
         p.set("alpha_v", 0.3, kLoc);
         p.set("material", std::string("Au"), kLoc);
-        auto* rc = dynamic_cast<RoughConductorBSDF*>(create_bsdf(p).get());
+        const auto bsdf = create_bsdf(p);  // alive while rc is used
+        auto* rc = dynamic_cast<RoughConductorBSDF*>(bsdf.get());
         ASSERT_NE(rc, nullptr);
         EXPECT_DOUBLE_EQ(rc->distribution().alpha_v(), 0.3);
     }

@@ -174,6 +174,27 @@ TEST(MeshIo, PlyErrorsNameThePath) {
           "float z\nelement face 1\nproperty list double int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 "
           "0\nnan 0 1 2\n");
     expect_throws_naming([&] { load_ply(count.string()); }, count.string(), "bad PLY face vertex count");
+    // Found by fuzz_loader under UBSan: a list length of -1 or NaN in a vertex or an unknown
+    // element was converted to size_t (undefined behaviour), now it is an error naming the element.
+    for (const std::string element : {"vertex", "edge"}) {
+        const fs::path f = temp_dir() / "bad_list_length.ply";
+        const bool in_vertex = element == "vertex";
+        write(f, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n" +
+                     std::string(in_vertex ? "property list double int extra\n" : "") +
+                     (in_vertex ? "" : "element edge 1\nproperty list double int ends\n") + "end_header\n" +
+                     (in_vertex ? "0 0 0 -1\n1 0 0 0\n0 1 0 0\n" : "0 0 0\n1 0 0\n0 1 0\nnan 0 1\n"));
+        expect_throws_naming([&] { load_ply(f.string()); }, f.string(), "bad PLY list length");
+    }
+}
+
+// Found by fuzz_loader: a header claiming 10^12 vertices reserved terabytes (an abort under
+// ASan, std::bad_alloc at best) before reading any vertex; now the file ends first, an error.
+TEST(MeshIO, PlyHugeVertexCountIsAnErrorNotAnAllocation) {
+    const fs::path f = temp_dir() / "huge_count.ply";
+    write(f,
+          "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\nproperty float x\n"
+          "property float y\nproperty float z\nend_header\n");
+    expect_throws_naming([&] { load_ply(f.string()); }, f.string(), "");
 }
 
 namespace {

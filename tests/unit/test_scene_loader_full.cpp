@@ -461,6 +461,23 @@ TEST(SceneLoaderFull, ExtremeCoordinatesAreAClearError) {
     EXPECT_NO_THROW(load_string(scene_with(R"(<shape type="sphere"><float name="radius" value="1e11"/></shape>)")));
 }
 
+// Issue 12 (found by the fuzzer): the Metropolis integrators' counts are range-checked before
+// use: pssmlt's bootstrap_samples of 2^31 allocated 16 GiB, and its chains were narrowed to int.
+TEST(SceneLoaderFull, MetropolisCountsAreRangeChecked) {
+    auto with = [](const std::string& type, const std::string& param) {
+        return "<scene version=\"3.0.0\">\n<integrator type=\"" + type + "\">" + param +
+               "</integrator>\n<sensor type=\"perspective\"/>\n</scene>";
+    };
+    expect_error(with("pssmlt", "<integer name=\"bootstrap_samples\" value=\"2147483648\"/>"),
+                 "test.xml:2: <integrator>", "bootstrap_samples must lie in [1, 16777216]");
+    expect_error(with("pssmlt", "<integer name=\"chains\" value=\"4294967297\"/>"), "test.xml:2: <integrator>",
+                 "chains must lie in [0, 65536]");
+    expect_error(with("pssmlt", "<integer name=\"mutations_per_pixel\" value=\"-1\"/>"), "test.xml:2: <integrator>",
+                 "mutations_per_pixel must lie in");
+    expect_error(with("erpt", "<integer name=\"bootstrap_samples\" value=\"2147483648\"/>"), "test.xml:2: <integrator>",
+                 "bootstrap_samples must lie in [1, 16777216]");
+}
+
 // A perspective sensor's frame must be rigid (Mitsuba 3 refuses scale factors too): with a
 // scale its clip planes and importance were in mixed units and bdpt's light paths were clipped
 // (found by the scale-invariance test). A mirror (Mitsuba 0.5 scenes' scale x="-1") is rigid.

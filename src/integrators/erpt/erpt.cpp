@@ -41,7 +41,8 @@ ErptSettings ErptSettings::from_props(const Props& props) {
     if (!(s.chains_per_sample > 0) || std::isinf(s.chains_per_sample))
         props.raise_param("chains_per_sample", "erpt: chains_per_sample must be finite and > 0");
     s.bootstrap_samples = props.get_int("bootstrap_samples", s.bootstrap_samples);
-    if (s.bootstrap_samples < 1) props.raise_param("bootstrap_samples", "erpt: bootstrap_samples must be >= 1");
+    if (s.bootstrap_samples < 1 || s.bootstrap_samples > kMaxBootstrapSamples)  // one double each
+        props.raise_param("bootstrap_samples", "erpt: bootstrap_samples must lie in [1, 16777216]");
     const int64_t mc = props.get_int("max_chains", s.max_chains);
     if (mc < 1 || mc > (int64_t(1) << 30)) props.raise_param("max_chains", "erpt: max_chains must be >= 1");
     s.max_chains = int(mc);

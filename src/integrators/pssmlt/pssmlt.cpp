@@ -29,11 +29,17 @@ PssmltSettings PssmltSettings::from_props(const Props& props) {
     if (!(s.large_step_probability >= 0 && s.large_step_probability <= 1))
         props.raise("pssmlt: large_step_probability must lie in [0, 1]");
     s.kelemen_weights = props.get_bool("kelemen_weights", s.kelemen_weights);
+    // Range-checked as 64-bit integers before use (issue 12: the fuzzer's bootstrap_samples of
+    // 2^31 allocated 16 GiB; chains were narrowed to int).
     s.mutations_per_pixel = props.get_int("mutations_per_pixel", s.mutations_per_pixel);
+    if (s.mutations_per_pixel < 0 || s.mutations_per_pixel > (int64_t(1) << 30))
+        props.raise_param("mutations_per_pixel", "pssmlt: mutations_per_pixel must lie in [0, 1073741824]");
     s.bootstrap_samples = props.get_int("bootstrap_samples", s.bootstrap_samples);
-    if (s.bootstrap_samples < 1) props.raise("pssmlt: bootstrap_samples must be positive");
-    s.chains = int(props.get_int("chains", s.chains));
-    if (s.chains < 0 || s.mutations_per_pixel < 0) props.raise("pssmlt: chains and mutations_per_pixel must be >= 0");
+    if (s.bootstrap_samples < 1 || s.bootstrap_samples > kMaxBootstrapSamples)
+        props.raise_param("bootstrap_samples", "pssmlt: bootstrap_samples must lie in [1, 16777216]");
+    const int64_t chains = props.get_int("chains", s.chains);
+    if (chains < 0 || chains > 65536) props.raise_param("chains", "pssmlt: chains must lie in [0, 65536]");
+    s.chains = int(chains);
     s.path = PathSettings::from_props(props);
     if (s.sampler == "mnee") s.mnee = MneeIntegrator::settings_from_props(props);
     return s;
