@@ -102,7 +102,8 @@ check "without -a the mesh is missing" "[ $rc -ne 0 ] && echo \"\$out\" | grep -
 
 # 11. Issue 12: bad numbers on the command line exit 1 with a message that says what is expected
 #     (they exited 104/105 with a 300-digit bound, and --time nan was accepted); a radiance of
-#     1e300 gives an image without Inf (the largest float instead), counted in the stats.
+#     1e300 gives an image without Inf (the largest float instead), counted in the stats, and so
+#     do an environment map of FLT_MAX texels and one scaled by 1e300.
 for args in "--spp 0" "--threads -1" "--threads 1000000" "--time nan" "--time -1"; do
   out=$("$SNELL" render builtin:droplet -o "$TMP/bad.exr" -q $args 2>&1); rc=$?
   check "$args exits 1 with a clear message" "[ $rc -eq 1 ] && echo \"\$out\" | grep -q 'range\\|expected a positive'"
@@ -115,6 +116,16 @@ XML
 "$SNELL" render "$TMP/huge.xml" -o "$TMP/huge.exr" --spp 2 -q; rc=$?
 check "radiance 1e300 renders" "[ $rc -eq 0 ]"
 check "values beyond float32 are counted" "grep -q '\"beyond_float32\": 192' $TMP/huge.json"
+# An environment map whose texels are the largest RGBE value (1.7e38, about FLT_MAX), and the
+# same map with scale 1e300: the images hold no Inf and the samples that were are counted.
+{ printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n'; for i in $(seq 32); do printf '\377\377\377\377'; done; } > "$TMP/max.hdr"
+for scale in 1 1e300; do
+  sed "s|<emitter type=\"constant\"><float name=\"radiance\" value=\"1e300\"/></emitter>|<emitter type=\"envmap\"><string name=\"filename\" value=\"max.hdr\"/><float name=\"scale\" value=\"$scale\"/></emitter>|" "$TMP/huge.xml" > "$TMP/env_max.xml"
+  "$SNELL" render "$TMP/env_max.xml" -o "$TMP/env_max.exr" --spp 2 -q; rc=$?
+  out=$("$SNELL" diff "$TMP/env_max.exr" "$TMP/env_max.exr" 2>&1)
+  check "envmap of FLT_MAX texels, scale $scale: renders, no Inf in the image" "[ $rc -eq 0 ] && echo \"\$out\" | grep -q '^image .* mean [0-9.e+]* (reference' && ! echo \"\$out\" | grep -qi 'inf (ref\|nan'"
+done
+check "envmap scale 1e300: the infinite samples are counted" "grep -q '\"inf\": 128' $TMP/env_max.json"
 
 # 12. Issue 12: an <include> of a FIFO blocked forever (the file was opened before it was checked
 #     to be a regular file); it is an error now, as is a scene file that is a folder.
