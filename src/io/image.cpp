@@ -28,6 +28,20 @@ namespace {
     throw std::runtime_error(what + " '" + path + "': " + reason);
 }
 
+}  // namespace
+
+void check_image_size(const std::string& what, const std::string& path, int64_t w, int64_t h, int64_t channels) {
+    if (w <= 0 || h <= 0 || channels <= 0)
+        fail(what, path, "empty image (" + std::to_string(w) + "x" + std::to_string(h) + ")");
+    if (w > kMaxImagePixels / h || w * h > kMaxImageFloats / channels)
+        fail(what, path,
+             "the header says " + std::to_string(w) + "x" + std::to_string(h) + " pixels of " +
+                 std::to_string(channels) + " channels; snell reads at most " + std::to_string(kMaxImagePixels) +
+                 " pixels (16384 x 8192) and " + std::to_string(kMaxImageFloats) + " values");
+}
+
+namespace {
+
 void check_image(const std::string& what, const std::string& path, const Image& img) {
     if (img.width <= 0 || img.height <= 0)
         fail(what, path, "image has non-positive size " + std::to_string(img.width) + "x" + std::to_string(img.height));
@@ -76,8 +90,9 @@ Image read_exr(const std::string& path) {
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
-        const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
-        if (w <= 0 || h <= 0) fail("cannot read EXR", path, "empty data window");
+        const int64_t w64 = int64_t(dw.max.x) - dw.min.x + 1, h64 = int64_t(dw.max.y) - dw.min.y + 1;
+        check_image_size("cannot read EXR", path, w64, h64, 3);
+        const int w = int(w64), h = int(h64);
         Image img;
         img.width = w;
         img.height = h;
@@ -144,6 +159,15 @@ Image read_hdr(const std::string& path) {
     if (!f) throw std::runtime_error("cannot open image '" + path + "'");
     const bool is_hdr = stbi_is_hdr_from_file(f);
     int w = 0, h = 0, n = 0;
+    // The size from the header first: stb allocates the whole image before reading a pixel.
+    if (is_hdr && stbi_info_from_file(f, &w, &h, &n)) {
+        try {
+            check_image_size("cannot read HDR image", path, w, h, 3);
+        } catch (...) {
+            std::fclose(f);
+            throw;
+        }
+    }
     float* data = is_hdr ? stbi_loadf_from_file(f, &w, &h, &n, 3) : nullptr;
     std::fclose(f);
     if (!is_hdr) throw std::runtime_error(path + ": not a Radiance HDR (RGBE) file");

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,13 @@ struct Image {
 void write_exr(const std::string& path, const Image& img);
 /// Reads an RGB(A) OpenEXR file (missing channels are zero); throws naming the path.
 Image read_exr(const std::string& path);
+/// Largest image snell reads (textures, environment maps, references): 2^27 pixels (16384 x 8192)
+/// and 2^29 floats in all channels. Checked from the header, before any pixel buffer is allocated
+/// (issue 12: a tiny file whose header claimed 7 GB of pixels made the allocation fail).
+constexpr int64_t kMaxImagePixels = int64_t(1) << 27;
+constexpr int64_t kMaxImageFloats = int64_t(1) << 29;
+/// Throws "<what> '<path>': ..." unless a w x h image of `channels` channels is within the limits.
+void check_image_size(const std::string& what, const std::string& path, int64_t w, int64_t h, int64_t channels);
 /// Reads a Radiance RGBE (.hdr) file; throws naming the path.
 Image read_hdr(const std::string& path);
 /// read_exr or read_hdr by the file's extension (.exr, .hdr); anything else throws naming it.

@@ -1,7 +1,10 @@
 #include "io/texture_image.h"
 
+#include "io/image.h"
+
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 
@@ -15,10 +18,23 @@ TextureImage read_texture_image(const std::string& path) {
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1)
         throw std::runtime_error("image '" + path + "' has no 2D pixels");
+    check_image_size("cannot read image", path, spec.width, spec.height, spec.nchannels);
     const int nc = spec.nchannels;
     std::vector<float> all(size_t(spec.width) * size_t(spec.height) * size_t(nc));
-    if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, all.data()))
-        throw std::runtime_error("cannot read image '" + path + "': " + in->geterror());
+    const auto failed = [&] { return std::runtime_error("cannot read image '" + path + "': " + in->geterror()); };
+    if (spec.tile_width == 0) {
+        // Row by row: OpenImageIO 2.4's read_image converts chunks of up to 256 scanlines through
+        // a buffer of that size whatever the image's height, so a 2-row image 2.4 million pixels
+        // wide asked for 7 GB (found by the fuzzer).
+        const size_t row = size_t(spec.width) * size_t(nc);
+        for (int y = 0; y < spec.height; ++y)
+            if (!in->read_scanline(spec.y + y, spec.z, OIIO::TypeDesc::FLOAT, all.data() + size_t(y) * row))
+                throw failed();
+    } else {
+        check_image_size("cannot read image", path, spec.tile_width, spec.tile_height,
+                         int64_t(nc) * std::max(1, spec.tile_depth));
+        if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, all.data())) throw failed();
+    }
 
     TextureImage img;
     img.width = spec.width;

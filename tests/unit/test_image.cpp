@@ -17,6 +17,7 @@
 
 #include "io/atomic_file.h"
 #include "io/image.h"
+#include "io/texture_image.h"
 
 using namespace snell;
 namespace fs = std::filesystem;
@@ -66,6 +67,25 @@ void write_raw_exr(const std::string& path, int w, int h, const std::vector<std:
 }
 
 }  // namespace
+
+// Issue 12 (found by the fuzzer): an image's size is checked from its header before a pixel
+// buffer is allocated; a small file whose header claimed 7 GB of pixels made the allocation fail.
+TEST_F(ImageIO, HugeImageHeadersAreAnErrorNotAnAllocation) {
+    std::ofstream(path("huge.hdr"), std::ios::binary) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 30000 +X 30000\n"
+                                                      << std::string(64, '\x80');
+    for (const auto& read : {+[](const std::string& p) { (void)read_hdr(p); },
+                             +[](const std::string& p) { (void)read_texture_image(p); }}) {
+        try {
+            read(path("huge.hdr"));
+            ADD_FAILURE() << "a 30000 x 30000 header loaded";
+        } catch (const std::runtime_error& e) {
+            EXPECT_NE(std::string(e.what()).find("the header says 30000x30000 pixels"), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_NO_THROW(check_image_size("read", "x", 16384, 8192, 3));
+    EXPECT_THROW(check_image_size("read", "x", 16384, 8193, 3), std::runtime_error);
+    EXPECT_THROW(check_image_size("read", "x", 1 << 20, 1 << 20, 1), std::runtime_error);
+}
 
 TEST_F(ImageIO, ExrFloatRoundTripIsExact) {
     Image img = make_image(7, 5);  // non-square, odd sizes catch stride/transposition errors
