@@ -57,6 +57,7 @@ InstancedShape::InstancedShape(const Shape& base, const Transform& to_world)
       m_area_scale(std::pow(std::abs(to_world.det3()), 2.0 / 3.0)),
       m_length_scale(max_stretch(to_world.inverse())) {
     m_bsdf = base.bsdf_ptr();
+    m_position_error = shape_position_error();
 }
 
 Bounds3 InstancedShape::bounds() const { return transform_bounds(m_to_world, m_base.bounds()); }

@@ -46,6 +46,9 @@ public:
     /// Exact for rigid motions and uniform scales; otherwise the area of the transformed
     /// tangent planes at the group shape's uniform samples would be needed (see area.cpp).
     double area() const override { return m_base.area() * m_area_scale; }
+    /// The placed shape's bound, computed once: the default would transform the base shape's
+    /// box on every ray spawned from it.
+    double position_error(const SurfaceInteraction& /*si*/) const override { return m_position_error; }
     void compute_interaction(const Ray& ray, double t, uint32_t prim, const Vec2& uv,
                              SurfaceInteraction* si) const override;
     /// The group shape's closest point to the point carried into its space, carried back: exact
@@ -70,6 +73,7 @@ private:
     const Shape& m_base;
     Transform m_to_world, m_to_local;
     double m_area_scale, m_length_scale;  ///< |det|^(2/3), largest stretch of to_local
+    double m_position_error = 0;          ///< shape_position_error(), fixed at construction
 };
 
 /// `<shape type="instance">`: a group placed in the scene.

@@ -1,9 +1,9 @@
 #pragma once
-#include <cstdint>
 // Integrators own their render loop (pbrt-v4's Integrator::Render): most estimate one pixel
 // sample at a time and share the tile loop (TileIntegrator); Metropolis places its samples
 // anywhere on the film and brings its own loop (PSSMLT).
 #include <atomic>
+#include <cstdint>
 #include <memory>
 #include <string>
 

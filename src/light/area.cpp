@@ -49,7 +49,13 @@ std::optional<LightSample> AreaLight::sample_li(const LightSampleContext& ref, c
     ls.wi = d;
     ls.dist = dist;
     ls.uv = ss->uv;
-    ls.p_error = ss->p_error >= 0 ? ss->p_error : m_shape->shape_position_error();
+    if (ss->p_error >= 0) {
+        ls.p_error = ss->p_error;
+    } else {
+        SurfaceInteraction anywhere;  // no triangle: the bound for any point of the shape
+        anywhere.prim = ~0u;
+        ls.p_error = m_shape->position_error(anywhere);
+    }
     ls.Le = radiance_at(ss->p, ss->n, ss->uv, wl);
     ls.pdf = ss->pdf;
     // Solid angle -> area: d(omega) = |cos_light| dA / dist^2.

@@ -104,11 +104,9 @@ void Scene::build() {
     }
     // Checked before Embree builds its float BVH over these bounds.
     if (!m_shapes.empty()) {
-        double extent = 0;
-        for (const Vec3& c : {m_bounds.lo, m_bounds.hi})
-            for (double x : {c.x, c.y, c.z})
-                extent = std::isnan(x) || std::isnan(extent) ? NAN : std::max(extent, std::abs(x));
-        if (!(extent <= kMaxSceneCoordinate))
+        const double extent = std::max(max_abs_component(m_bounds.lo), max_abs_component(m_bounds.hi));
+        const bool finite = std::isfinite(length_squared(m_bounds.lo) + length_squared(m_bounds.hi));
+        if (!finite || !(extent <= kMaxSceneCoordinate))
             throw std::runtime_error(coordinate_error("the scene's geometry", extent));
     }
     if (m_camera) {

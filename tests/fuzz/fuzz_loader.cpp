@@ -44,10 +44,6 @@ size_t copy_out(const std::string& out, uint8_t* data, size_t max_size) {
     return out.size();
 }
 
-}  // namespace
-
-namespace {
-
 struct Counts {
     uint64_t cases = 0, loaded = 0, rendered = 0, scene_errors = 0, other_errors = 0;
 };
