@@ -82,6 +82,8 @@ RenderReport make_report(const std::string& scene, const std::string& integrator
     rep.pixels_dominated = r.dominance.dominated;
     rep.max_sample_share = r.dominance.max_share;
     rep.pixels_outlier = r.dominance.outliers;
+    rep.pixels_clamped = r.dominance.clamped;
+    rep.clamped_share = r.dominance.clamped_share;
     rep.set_counters(r.counters);
     if (has_mnee_stats(r.counters)) rep.extra["mnee"] = mnee_stats_json(r.counters);
     return rep;

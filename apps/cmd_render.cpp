@@ -107,6 +107,9 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
                      (unsigned long long)rep.discarded_nan, (unsigned long long)rep.discarded_inf,
                      (unsigned long long)rep.discarded_negative, (unsigned long long)rep.beyond_float, out_path.c_str(),
                      png_path.c_str(), stats_path.c_str());
+    if (!quiet && r.film.max_sample_share() > 0)
+        std::fprintf(stderr, "  outlier clamp (max_sample_share %.2g): %llu pixels, %.3g %% of the luminance removed\n",
+                     r.film.max_sample_share(), (unsigned long long)rep.pixels_clamped, 100 * rep.clamped_share);
     return r.interrupted ? 130 : 0;
 }
 

@@ -21,32 +21,48 @@ public:
           m_h(height),
           m_xyz(size_t(width) * height),
           m_n(size_t(width) * height, 0),
-          m_max_y(size_t(width) * height, 0.0) {}
+          m_max_y(size_t(width) * height, 0.0),
+          m_max_xyz(size_t(width) * height) {}
     int width() const { return m_w; }
     int height() const { return m_h; }
-    void add(int x, int y, const Vec3& xyz) {
-        const size_t i = size_t(y) * m_w + x;
-        m_xyz[i] += xyz;
-        m_n[i] += 1;
-        m_max_y[i] = std::max(m_max_y[i], xyz.y);
-    }
-    /// Adds `count` samples at once (whole-pixel sums from a tile); `max_y` is the largest
-    /// luminance (Y) one of them carried.
-    void add_sum(int x, int y, const Vec3& xyz_sum, uint64_t count, double max_y = 0) {
+    void add(int x, int y, const Vec3& xyz) { add_sum(x, y, xyz, 1, xyz); }
+    /// Adds `count` samples at once (whole-pixel sums from a tile); `largest` is the one of
+    /// them with the largest luminance (Y); its XYZ is kept for max_sample_share.
+    void add_sum(int x, int y, const Vec3& xyz_sum, uint64_t count, const Vec3& largest = Vec3()) {
         const size_t i = size_t(y) * m_w + x;
         m_xyz[i] += xyz_sum;
         m_n[i] += count;
-        m_max_y[i] = std::max(m_max_y[i], max_y);
+        if (largest.y > m_max_y[i]) {
+            m_max_y[i] = largest.y;
+            m_max_xyz[i] = largest;
+        }
+    }
+    /// Outlier clamp (issue 10, mnee `biased`): a pixel's largest sample is scaled down so that
+    /// it carries at most the share `s` of the pixel's luminance, i.e. to s / (1 - s) times the
+    /// sum of the others. Biased, and consistent: with a finite mean the largest of n samples
+    /// grows slower than their sum, so the clamp stops acting as n grows. 0: off.
+    void set_max_sample_share(double s) { m_max_share = s; }
+    double max_sample_share() const { return m_max_share; }
+    /// The luminance (Y) the clamp removes from the pixel's sample sum (0 when it is off).
+    double clamped_y(int x, int y) const {
+        const size_t i = size_t(y) * m_w + x;
+        if (!(m_max_share > 0) || m_n[i] < 2 || !(m_xyz[i].y > 0)) return 0;
+        const double cap = m_max_share / (1 - m_max_share) * std::max(0.0, m_xyz[i].y - m_max_y[i]);
+        return std::max(0.0, m_max_y[i] - cap);
     }
     uint64_t samples(int x, int y) const { return m_n[size_t(y) * m_w + x]; }
     /// The share of the pixel's summed luminance that its largest single sample carries (0 when
     /// the sum is not positive): near 1 / samples in a converging pixel, near 1 when one
     /// sample (a firefly) makes the pixel. Splats are not samples of a pixel and are left out.
+    /// With max_sample_share, the share after the clamp (at most that share).
     double largest_sample_share(int x, int y) const {
         const size_t i = size_t(y) * m_w + x;
-        return m_xyz[i].y > 0 ? std::min(1.0, m_max_y[i] / m_xyz[i].y) : 0.0;
+        const double c = clamped_y(x, y), sum = m_xyz[i].y - c;
+        return sum > 0 ? std::min(1.0, (m_max_y[i] - c) / sum) : 0.0;
     }
-    /// The largest luminance (Y) one of the pixel's samples carried.
+    /// The summed luminance (Y) of the pixel's own samples (before any clamp; no splats).
+    double sample_sum_y(int x, int y) const { return m_xyz[size_t(y) * m_w + x].y; }
+    /// The largest luminance (Y) one of the pixel's samples carried (before any clamp).
     double largest_sample_y(int x, int y) const { return m_max_y[size_t(y) * m_w + x]; }
     /// Adds a splat to `layer` (0: the image, k > 0: debug layer k).
     void add_splat(int x, int y, const Vec3& xyz, int layer = 0) {
@@ -59,7 +75,9 @@ public:
     /// Pixel value: mean XYZ of the pixel's own samples (zero if none) plus its scaled splats.
     Vec3 xyz(int x, int y) const {
         const size_t i = size_t(y) * m_w + x;
-        Vec3 v = m_n[i] ? m_xyz[i] / double(m_n[i]) : Vec3();
+        Vec3 sum = m_xyz[i];
+        if (const double c = clamped_y(x, y); c > 0) sum -= m_max_xyz[i] * (c / m_max_y[i]);
+        Vec3 v = m_n[i] ? sum / double(m_n[i]) : Vec3();
         if (!m_splats.empty() && !m_splats[0].empty()) v += m_splats[0][i] * m_splat_scale;
         return v;
     }
@@ -80,6 +98,8 @@ private:
     std::vector<Vec3> m_xyz;
     std::vector<uint64_t> m_n;
     std::vector<double> m_max_y;              // largest single-sample luminance per pixel
+    std::vector<Vec3> m_max_xyz;              // that sample's XYZ
+    double m_max_share = 0;                   // set_max_sample_share
     std::vector<std::vector<Vec3>> m_splats;  // per layer; empty until first splat
     double m_splat_scale = 0;
 };
@@ -97,6 +117,10 @@ struct PixelDominance {
     /// sample, but the sample is no brighter than the lit pixels beside it; a firefly is.
     static constexpr double kOutlierRatio = 10;
     uint64_t outliers = 0;  ///< dominated pixels whose largest sample is an outlier
+    /// With Film::max_sample_share: pixels whose largest sample the clamp scaled down, and the
+    /// share of the image's (camera-sample) luminance it removed: the clamp's bias.
+    uint64_t clamped = 0;
+    double clamped_share = 0;
 };
 /// Film::largest_sample_share over the film's pixels.
 PixelDominance pixel_dominance(const Film& film);

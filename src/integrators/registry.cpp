@@ -31,7 +31,7 @@ const std::map<std::string, Factory>& registry() {
         {"pt", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), false, "pt"); }},
         {"mnee",
          [](const Props& p) {
-             return std::make_shared<MneeIntegrator>(PathSettings::from_props(p),
+             return std::make_shared<MneeIntegrator>(MneeIntegrator::path_settings_from_props(p),
                                                      MneeIntegrator::settings_from_props(p));
          }},
         {"pssmlt", [](const Props& p) { return std::make_shared<PssmltIntegrator>(PssmltSettings::from_props(p)); }},

@@ -66,7 +66,9 @@ void to_json(nlohmann::json& j, const RenderReport& r) {
          {{"pixels", r.pixels},
           {"dominated", r.pixels_dominated},
           {"outliers", r.pixels_outlier},
-          {"max_share", r.max_sample_share}}},
+          {"max_share", r.max_sample_share},
+          {"clamped", r.pixels_clamped},
+          {"clamped_share", r.clamped_share}}},
         {"extra", r.extra},
         {"counters", r.counters},
     };
@@ -102,6 +104,8 @@ void from_json(const nlohmann::json& j, RenderReport& r) {
         if (auto it = d->find("dominated"); it != d->end()) it->get_to(r.pixels_dominated);
         if (auto it = d->find("max_share"); it != d->end()) it->get_to(r.max_sample_share);
         if (auto it = d->find("outliers"); it != d->end()) it->get_to(r.pixels_outlier);
+        if (auto it = d->find("clamped"); it != d->end()) it->get_to(r.pixels_clamped);
+        if (auto it = d->find("clamped_share"); it != d->end()) it->get_to(r.clamped_share);
     }
     if (auto it = j.find("extra"); it != j.end()) r.extra = *it;
     if (auto it = j.find("counters"); it != j.end()) r.counters = *it;

@@ -32,9 +32,10 @@ struct RenderReport {
     uint64_t beyond_float = 0;        ///< image values beyond float32's range, written as its largest
     /// Pixel dominance (render/renderer.h PixelDominance), written under "dominance": pixels
     /// with a positive sum, those where one sample carries more than half of it, and the
-    /// largest such share.
-    uint64_t pixels = 0, pixels_dominated = 0, pixels_outlier = 0;
-    double max_sample_share = 0;
+    /// largest such share; with an outlier clamp (max_sample_share), the pixels it scaled
+    /// down and the share of the luminance it removed.
+    uint64_t pixels = 0, pixels_dominated = 0, pixels_outlier = 0, pixels_clamped = 0;
+    double max_sample_share = 0, clamped_share = 0;
     /// Free-form technique statistics (e.g. MNEE walk outcomes); written under "extra".
     nlohmann::json extra = nlohmann::json::object();
     /// Every registered statistic by name (core/stats.h): a count, nanoseconds, a histogram's

@@ -128,8 +128,7 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
                         }
                         for (int x = t.x0; x < t.x1; ++x) {
                             const int fx = x + spec.crop_x, fy = y + spec.crop_y;  // full-film pixel
-                            Vec3 sum;
-                            double max_y = 0;
+                            Vec3 sum, largest;
                             for (uint64_t s = s0; s < s1; ++s) {
                                 sampler->start_pixel_sample(fx, fy, s);
                                 // Filter importance sampling: the film position around the
@@ -143,9 +142,9 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
                                                      .xyz *
                                                  fs.weight;
                                 sum += xyz;
-                                max_y = std::max(max_y, xyz.y);
+                                if (xyz.y > largest.y) largest = xyz;
                             }
-                            result.film.add_sum(x, y, sum, s1 - s0, max_y);
+                            result.film.add_sum(x, y, sum, s1 - s0, largest);
                         }
                     }
                     if (bar) bar->add(timed ? 0 : (s1 - s0) * uint64_t(t.x1 - t.x0) * uint64_t(t.y1 - t.y0));
@@ -173,6 +172,7 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
     // Splat estimators divide by the camera samples each pixel received (total / pixels).
     result.film.set_splat_scale(total > 0 ? double(w) * double(h) / double(total) : 0.0);
     result.interrupted = cancel && cancel->load() && (timed || done_spp < uint64_t(opt.spp));
+    result.film.set_max_sample_share(tracer.max_sample_share());
     result.dominance = pixel_dominance(result.film);
     result.counters = stat_totals();
     result.layer_names = tracer.layer_names();

@@ -49,6 +49,8 @@ public:
     virtual bool splats() const { return false; }
     /// Names of the debug layers 1, 2, ... that splats may target (empty: none).
     virtual std::vector<std::string> layer_names() const { return {}; }
+    /// The film's outlier clamp (Film::set_max_sample_share) for this estimator; 0: none.
+    virtual double max_sample_share() const { return 0; }
 };
 
 }  // namespace snell

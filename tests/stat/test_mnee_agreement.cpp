@@ -161,6 +161,32 @@ TEST(MneeAgreement, BiasedModeDropsInternalReflectionsAndKeepsTheRefractedLight)
     EXPECT_LT(b[2], u[2]);
 }
 
+// The biased mode's outlier clamp (max_sample_share 0.5 by default): no pixel is dominated by one
+// sample, the clamp removes little of the image, and without it (max_sample_share=0) the same
+// render has dominated pixels (MNEE's own samples at the droplet caustic's fold).
+TEST(MneeAgreement, BiasedModeLetsNoSampleDominateAPixel) {
+    const auto run = [](const std::string& extra) {
+        LoadedScene ls = load_xml(scene_with(smooth_water(), R"(<boolean name="biased" value="true"/>)" + extra),
+                                  {{"integrator", "mnee"}});
+        RenderOptions opt;
+        opt.spp = 32;
+        opt.progress = false;
+        return render(*ls.scene, *ls.integrator, ls.film, opt);
+    };
+    const RenderResult clamped = run(""), raw = run(R"(<float name="max_sample_share" value="0"/>)");
+    std::cout << "[biased] dominated pixels " << raw.dominance.dominated << " -> " << clamped.dominance.dominated
+              << ", clamped " << clamped.dominance.clamped << " removing " << clamped.dominance.clamped_share
+              << " of the luminance\n";
+    EXPECT_GT(raw.dominance.dominated, 0u);
+    EXPECT_EQ(raw.dominance.clamped, 0u);
+    EXPECT_EQ(clamped.dominance.dominated, 0u);
+    EXPECT_GT(clamped.dominance.clamped, 0u);
+    EXPECT_LT(clamped.dominance.clamped_share, 0.05);
+    EXPECT_THROW(
+        load_xml(scene_with(smooth_water(), R"(<float name="max_sample_share" value="1"/>)"), {{"integrator", "mnee"}}),
+        SceneError);
+}
+
 // Lights at infinity: MNEE connects to a far point in the sampled direction (light_point.h).
 TEST(MneeAgreement, EnvironmentThroughDropletMatchesNee) {
     const std::string env = R"(<emitter type="constant"><rgb name="radiance" value="1, 1, 1"/></emitter>)";

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 
 #include "camera/film.h"
 #include "core/rng.h"
@@ -97,10 +98,10 @@ TEST(Film, SampledWavelengthsConvergeToSpectrumXyz) {
 TEST(Film, LargestSampleShareAndDominance) {
     Film film(4, 1);
     for (int i = 0; i < 4; ++i) film.add(0, 0, Vec3(0.1, 1.0, 0.2));  // four equal samples
-    film.add_sum(1, 0, Vec3(0, 3.0, 0), 3, 1.0);                      // three samples, largest 1
+    film.add_sum(1, 0, Vec3(0, 3.0, 0), 3, Vec3(0, 1.0, 0));          // three samples, largest 1
     film.add(1, 0, Vec3(0, 0, 0));
-    film.add_sum(2, 0, Vec3(0, 10.0, 0), 8, 9.0);  // one sample of 9 among 8: a firefly
-    film.add_sum(3, 0, Vec3(0, 2.0, 0), 4, 2.0);   // one lit sample of 4, beside a bright pixel
+    film.add_sum(2, 0, Vec3(0, 10.0, 0), 8, Vec3(0, 9.0, 0));  // one sample of 9 among 8: a firefly
+    film.add_sum(3, 0, Vec3(0, 2.0, 0), 4, Vec3(0, 2.0, 0));   // one lit sample of 4, beside a bright pixel
     EXPECT_DOUBLE_EQ(film.largest_sample_share(0, 0), 0.25);
     EXPECT_DOUBLE_EQ(film.largest_sample_share(1, 0), 1.0 / 3.0);
     EXPECT_DOUBLE_EQ(film.largest_sample_share(2, 0), 0.9);
@@ -113,4 +114,64 @@ TEST(Film, LargestSampleShareAndDominance) {
     EXPECT_EQ(d.outliers, 1u);
     EXPECT_DOUBLE_EQ(d.max_share, 1.0);
     EXPECT_EQ(Film(1, 1).largest_sample_share(0, 0), 0.0) << "an empty pixel has no share";
+}
+
+// The outlier clamp (mnee's biased mode): a pixel's largest sample is scaled, colour and all,
+// to max_sample_share / (1 - max_sample_share) times the sum of the others; pixels without a
+// dominating sample, and pixels of one sample, are unchanged; the order samples arrive in does
+// not matter; pixel_dominance reports the clamped pixels and the luminance removed.
+TEST(Film, MaxSampleShareClampsTheLargestSampleOnly) {
+    const Vec3 firefly(2.0, 9.0, 4.0), plain(0.5, 1.0, 0.25);
+    Film a(3, 1), b(3, 1);
+    for (int i = 0; i < 3; ++i) a.add(0, 0, plain);
+    a.add(0, 0, firefly);
+    b.add(0, 0, firefly);  // the same samples in another order, and a whole-pixel sum
+    b.add_sum(0, 0, plain * 3.0, 3, plain);
+    for (Film* f : {&a, &b}) {
+        for (int i = 0; i < 4; ++i) f->add(1, 0, plain * (1.0 + 0.1 * i));  // largest share 0.28
+        f->add(2, 0, firefly);                                              // one sample: nothing to compare
+        f->set_max_sample_share(0.5);
+    }
+    // Pixel 0: Y = 3 + 9; the firefly is scaled to 3 (the sum of the others): factor 1/3.
+    const Vec3 expect = (plain * 3.0 + firefly * (3.0 / 9.0)) / 4.0;
+    for (const Film* f : {&a, &b}) {
+        const Vec3 v = f->xyz(0, 0);
+        EXPECT_NEAR(v.x, expect.x, 1e-12);
+        EXPECT_NEAR(v.y, expect.y, 1e-12);
+        EXPECT_NEAR(v.z, expect.z, 1e-12);
+        EXPECT_DOUBLE_EQ(f->largest_sample_share(0, 0), 0.5);
+        EXPECT_DOUBLE_EQ(f->clamped_y(0, 0), 6.0);
+        EXPECT_EQ(f->clamped_y(1, 0), 0.0);
+        EXPECT_NEAR(f->xyz(1, 0).y, 1.15, 1e-12);
+        EXPECT_EQ(f->clamped_y(2, 0), 0.0);
+        EXPECT_DOUBLE_EQ(f->xyz(2, 0).y, 9.0);
+        const PixelDominance d = pixel_dominance(*f);
+        EXPECT_EQ(d.dominated, 1u) << "the single-sample pixel is all one sample";
+        EXPECT_EQ(d.clamped, 1u);
+        EXPECT_NEAR(d.clamped_share, 6.0 / (12.0 + 4.6 + 9.0), 1e-12);
+    }
+    // A tighter share: the firefly carries at most 0.25, i.e. a third of the others (1).
+    a.set_max_sample_share(0.25);
+    EXPECT_DOUBLE_EQ(a.largest_sample_share(0, 0), 0.25);
+    EXPECT_NEAR(a.xyz(0, 0).y, 4.0 / 4.0, 1e-12);
+    a.set_max_sample_share(0);
+    EXPECT_NEAR(a.xyz(0, 0).y, 12.0 / 4.0, 1e-12) << "0 turns the clamp off";
+}
+
+// The clamp is consistent: on heavy-tailed samples (Pareto, index 1.5: finite mean 3, infinite
+// variance) the luminance it removes shrinks as the pixels' sample count grows.
+TEST(Film, MaxSampleShareBiasVanishesWithMoreSamples) {
+    PCG32 rng(7, 11);
+    const auto bias = [&](int n) {
+        Film f(256, 1);
+        for (int x = 0; x < 256; ++x)
+            for (int i = 0; i < n; ++i) f.add(x, 0, Vec3(0, std::pow(1.0 - rng.next_double(), -1.0 / 1.5), 0));
+        f.set_max_sample_share(0.5);
+        return pixel_dominance(f).clamped_share;
+    };
+    const double b4 = bias(4), b64 = bias(64), b1024 = bias(1024);
+    std::cout << "[clamp] luminance removed at 4, 64, 1024 samples: " << b4 << ", " << b64 << ", " << b1024 << "\n";
+    EXPECT_GT(b4, 0.02);
+    EXPECT_LT(b64, b4 / 3);
+    EXPECT_LT(b1024, b64 / 3);
 }

@@ -105,6 +105,12 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
     return s;
 }
 
+PathSettings MneeIntegrator::path_settings_from_props(const Props& p) {
+    PathSettings s = PathSettings::from_props(p);
+    if (p.get_bool("biased", false) && !p.has("max_sample_share")) s.max_sample_share = kBiasedMaxSampleShare;
+    return s;
+}
+
 void MneeIntegrator::on_arrival(PathState& state, const SurfaceInteraction& si, const Ray& ray,
                                 const BSDFContext& ctx) const {
     RefractiveSuffix& s = static_cast<MneePathState&>(state).suffix;

@@ -14,6 +14,12 @@ struct MneePathState : PathState {
     RefractiveSuffix suffix;
 };
 
+/// The biased mode's outlier clamp (Film::set_max_sample_share): the largest sample of a pixel
+/// carries at most half of it. The fireflies that remain after Sec. 3.5's rule are MNEE's own
+/// (a fold's penumbra, rare solutions in a lens's aberration halo; docs/mnee.md), which no rule
+/// on the paths can tell from the caustic; the clamp is relative to the pixel, so scale-free.
+inline constexpr double kBiasedMaxSampleShare = 0.5;
+
 class MneeIntegrator : public PathTracer {
 public:
     MneeIntegrator(const PathSettings& path, const MneeSettings& mnee) : PathTracer(path, true), m_mnee(mnee) {}
@@ -25,6 +31,9 @@ public:
     std::string name() const override { return m_mnee.biased ? "mnee-biased" : "mnee"; }
     const MneeSettings& mnee_settings() const { return m_mnee; }
     static MneeSettings settings_from_props(const Props& props);
+    /// The path tracer's settings; `biased` defaults max_sample_share to 0.5, so that no single
+    /// sample carries more than half of a pixel (docs/mnee.md, "Biased mode").
+    static PathSettings path_settings_from_props(const Props& props);
 
 protected:
     void connect_to_light(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,

@@ -22,6 +22,10 @@ struct PathSettings {
     int max_depth = -1;          ///< longest path in segments; -1: unbounded; 1: visible emitters only
     int rr_depth = 5;            ///< Russian roulette starts at this depth
     bool hide_emitters = false;  ///< directly visible emitters are black
+    /// (max_sample_share) the film's outlier clamp (Film::set_max_sample_share): a pixel's
+    /// largest sample carries at most this share of it. Biased; 0 (default): off. mnee's
+    /// `biased` mode defaults it to 0.5 (MneeIntegrator::path_settings_from_props).
+    double max_sample_share = 0;
     static PathSettings from_props(const Props& props);
 };
 
@@ -83,6 +87,7 @@ public:
                              SplatList& /*splats*/) const override {
         return m_estimator.li(ray, scene, sampler, cs.wl);
     }
+    double max_sample_share() const override { return m_estimator.settings().max_sample_share; }
 
 private:
     const PathTracer& m_estimator;
