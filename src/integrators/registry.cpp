@@ -25,10 +25,12 @@ const std::map<std::string, Factory>& registry() {
         {"direct", [](const Props& p) { return std::make_shared<DirectIntegrator>(DirectSettings::from_props(p)); }},
         // `path` means what it means in Mitsuba and pbrt: emitter sampling and BSDF sampling, MIS.
         {"path",
-         [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), true, "path"); }},
-        {"nee", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), true, "nee"); }},
+         [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::tracer_from_props(p), true, "path"); }},
+        {"nee",
+         [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::tracer_from_props(p), true, "nee"); }},
         // The paper's pure path tracing: BSDF sampling alone.
-        {"pt", [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::from_props(p), false, "pt"); }},
+        {"pt",
+         [](const Props& p) { return std::make_shared<PathTracer>(PathSettings::tracer_from_props(p), false, "pt"); }},
         {"mnee",
          [](const Props& p) {
              return std::make_shared<MneeIntegrator>(MneeIntegrator::path_settings_from_props(p),

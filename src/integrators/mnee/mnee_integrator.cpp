@@ -106,7 +106,7 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
 }
 
 PathSettings MneeIntegrator::path_settings_from_props(const Props& p) {
-    PathSettings s = PathSettings::from_props(p);
+    PathSettings s = PathSettings::tracer_from_props(p);
     if (p.get_bool("biased", false) && !p.has("max_sample_share")) s.max_sample_share = kBiasedMaxSampleShare;
     return s;
 }

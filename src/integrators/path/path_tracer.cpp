@@ -19,6 +19,11 @@ PathSettings PathSettings::from_props(const Props& props) {
     s.hide_emitters = props.get_bool("hide_emitters", false);
     if (s.max_depth < -1 || s.max_depth == 0) props.raise_param("max_depth", "must be -1 (unbounded) or >= 1");
     if (s.rr_depth < 1) props.raise_param("rr_depth", "must be >= 1");
+    return s;
+}
+
+PathSettings PathSettings::tracer_from_props(const Props& props) {
+    PathSettings s = from_props(props);
     s.max_sample_share = props.get_float("max_sample_share", 0.0);
     if (!(s.max_sample_share >= 0 && s.max_sample_share < 1))
         props.raise_param("max_sample_share", "must lie in [0, 1) (0: no clamp)");

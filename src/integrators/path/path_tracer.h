@@ -26,7 +26,11 @@ struct PathSettings {
     /// largest sample carries at most this share of it. Biased; 0 (default): off. mnee's
     /// `biased` mode defaults it to 0.5 (MneeIntegrator::path_settings_from_props).
     double max_sample_share = 0;
+    /// The settings every integrator built on paths reads (bdpt, pssmlt and erpt too).
     static PathSettings from_props(const Props& props);
+    /// from_props plus max_sample_share: the integrators whose samples the film clamps (the
+    /// RadianceTracer family: pt, path, nee, mnee); elsewhere the parameter is not read.
+    static PathSettings tracer_from_props(const Props& props);
 };
 
 /// Unidirectional path tracer. With `nee`, next event estimation combined with BSDF sampling by
