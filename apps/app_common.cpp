@@ -84,6 +84,11 @@ RenderReport make_report(const std::string& scene, const std::string& integrator
     rep.pixels_outlier = r.dominance.outliers;
     rep.pixels_clamped = r.dominance.clamped;
     rep.clamped_share = r.dominance.clamped_share;
+    for (size_t t = 0; t < r.dominance.dominated_by_technique.size(); ++t)
+        if (r.dominance.dominated_by_technique[t] > 0)
+            rep.dominated_by_technique[t < r.technique_names.size() ? r.technique_names[t]
+                                                                    : "technique " + std::to_string(t)] =
+                r.dominance.dominated_by_technique[t];
     rep.set_counters(r.counters);
     if (has_mnee_stats(r.counters)) rep.extra["mnee"] = mnee_stats_json(r.counters);
     return rep;

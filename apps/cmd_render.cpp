@@ -110,6 +110,13 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
     if (!quiet && r.film.max_sample_share() > 0)
         std::fprintf(stderr, "  outlier clamp (max_sample_share %.2g): %llu pixels, %.3g %% of the luminance removed\n",
                      r.film.max_sample_share(), (unsigned long long)rep.pixels_clamped, 100 * rep.clamped_share);
+    if (!quiet && !rep.dominated_by_technique.empty()) {
+        std::string by;
+        for (const auto& [name, n] : rep.dominated_by_technique)
+            by += (by.empty() ? "" : ", ") + name + " " + std::to_string(n);
+        std::fprintf(stderr, "  pixels dominated by one sample: %llu; by technique: %s\n",
+                     (unsigned long long)rep.pixels_dominated, by.c_str());
+    }
     return r.interrupted ? 130 : 0;
 }
 

@@ -62,6 +62,10 @@ PixelDominance pixel_dominance(const Film& film) {
             d.max_share = std::max(d.max_share, share);
             if (!(share > PixelDominance::kThreshold)) continue;
             ++d.dominated;
+            if (const int t = film.largest_sample_technique(x, y); t >= 0) {
+                if (size_t(t) >= d.dominated_by_technique.size()) d.dominated_by_technique.resize(size_t(t) + 1, 0);
+                ++d.dominated_by_technique[size_t(t)];
+            }
             double around = 0;
             int n = 0;
             for (int dy = -1; dy <= 1; ++dy)

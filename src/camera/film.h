@@ -1,5 +1,6 @@
 #pragma once
 #include <algorithm>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,19 +23,23 @@ public:
           m_xyz(size_t(width) * height),
           m_n(size_t(width) * height, 0),
           m_max_y(size_t(width) * height, 0.0),
-          m_max_xyz(size_t(width) * height) {}
+          m_max_xyz(size_t(width) * height),
+          m_max_technique(size_t(width) * height, -1) {}
     int width() const { return m_w; }
     int height() const { return m_h; }
     void add(int x, int y, const Vec3& xyz) { add_sum(x, y, xyz, 1, xyz); }
     /// Adds `count` samples at once (whole-pixel sums from a tile); `largest` is the one of
-    /// them with the largest luminance (Y); its XYZ is kept for max_sample_share.
-    void add_sum(int x, int y, const Vec3& xyz_sum, uint64_t count, const Vec3& largest = Vec3()) {
+    /// them with the largest luminance (Y); its XYZ is kept for max_sample_share, and the
+    /// technique that delivered it (SampleTracer::technique_names index, -1: unknown) for the
+    /// dominance statistics.
+    void add_sum(int x, int y, const Vec3& xyz_sum, uint64_t count, const Vec3& largest = Vec3(), int technique = -1) {
         const size_t i = size_t(y) * m_w + x;
         m_xyz[i] += xyz_sum;
         m_n[i] += count;
         if (largest.y > m_max_y[i]) {
             m_max_y[i] = largest.y;
             m_max_xyz[i] = largest;
+            m_max_technique[i] = int8_t(std::clamp(technique, -1, 127));
         }
     }
     /// Outlier clamp (issue 10, mnee `biased`): a pixel's largest sample is scaled down so that
@@ -64,6 +69,8 @@ public:
     double sample_sum_y(int x, int y) const { return m_xyz[size_t(y) * m_w + x].y; }
     /// The largest luminance (Y) one of the pixel's samples carried (before any clamp).
     double largest_sample_y(int x, int y) const { return m_max_y[size_t(y) * m_w + x]; }
+    /// The technique that delivered that sample (-1: not known).
+    int largest_sample_technique(int x, int y) const { return m_max_technique[size_t(y) * m_w + x]; }
     /// Adds a splat to `layer` (0: the image, k > 0: debug layer k).
     void add_splat(int x, int y, const Vec3& xyz, int layer = 0) {
         if (size_t(layer) >= m_splats.size()) m_splats.resize(size_t(layer) + 1);
@@ -99,6 +106,7 @@ private:
     std::vector<uint64_t> m_n;
     std::vector<double> m_max_y;              // largest single-sample luminance per pixel
     std::vector<Vec3> m_max_xyz;              // that sample's XYZ
+    std::vector<int8_t> m_max_technique;      // and its technique (-1: unknown)
     double m_max_share = 0;                   // set_max_sample_share
     std::vector<std::vector<Vec3>> m_splats;  // per layer; empty until first splat
     double m_splat_scale = 0;
@@ -117,6 +125,9 @@ struct PixelDominance {
     /// sample, but the sample is no brighter than the lit pixels beside it; a firefly is.
     static constexpr double kOutlierRatio = 10;
     uint64_t outliers = 0;  ///< dominated pixels whose largest sample is an outlier
+    /// Dominated pixels by the technique of their largest sample (Film::largest_sample_technique
+    /// as the index; pixels with an unknown technique are not counted here).
+    std::vector<uint64_t> dominated_by_technique;
     /// With Film::max_sample_share: pixels whose largest sample the clamp scaled down, and the
     /// share of the image's (camera-sample) luminance it removed: the clamp's bias.
     uint64_t clamped = 0;

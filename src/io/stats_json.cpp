@@ -68,7 +68,8 @@ void to_json(nlohmann::json& j, const RenderReport& r) {
           {"outliers", r.pixels_outlier},
           {"max_share", r.max_sample_share},
           {"clamped", r.pixels_clamped},
-          {"clamped_share", r.clamped_share}}},
+          {"clamped_share", r.clamped_share},
+          {"by_technique", r.dominated_by_technique}}},
         {"extra", r.extra},
         {"counters", r.counters},
     };
@@ -106,6 +107,7 @@ void from_json(const nlohmann::json& j, RenderReport& r) {
         if (auto it = d->find("outliers"); it != d->end()) it->get_to(r.pixels_outlier);
         if (auto it = d->find("clamped"); it != d->end()) it->get_to(r.pixels_clamped);
         if (auto it = d->find("clamped_share"); it != d->end()) it->get_to(r.clamped_share);
+        if (auto it = d->find("by_technique"); it != d->end()) it->get_to(r.dominated_by_technique);
     }
     if (auto it = j.find("extra"); it != j.end()) r.extra = *it;
     if (auto it = j.find("counters"); it != j.end()) r.counters = *it;

@@ -2,6 +2,7 @@
 // Machine-readable summary of one render, written beside the image so that experiments can
 // be tabulated (time, sample counts, throughput, discarded samples, technique statistics).
 #include <cstdint>
+#include <map>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -36,6 +37,9 @@ struct RenderReport {
     /// down and the share of the luminance it removed.
     uint64_t pixels = 0, pixels_dominated = 0, pixels_outlier = 0, pixels_clamped = 0;
     double max_sample_share = 0, clamped_share = 0;
+    /// Dominated pixels by the technique that delivered their largest sample (integrators that
+    /// name their techniques: pt, path, nee, mnee); "dominance.by_technique".
+    std::map<std::string, uint64_t> dominated_by_technique;
     /// Free-form technique statistics (e.g. MNEE walk outcomes); written under "extra".
     nlohmann::json extra = nlohmann::json::object();
     /// Every registered statistic by name (core/stats.h): a count, nanoseconds, a histogram's

@@ -26,8 +26,9 @@ bool is_valid_radiance(const SampledSpectrum& L);
 
 struct TracedSample {
     CameraSample cs;
-    SampledSpectrum L;  ///< sanitised radiance at cs.wl
-    Vec3 xyz;           ///< its CIE XYZ estimate (cs.wl.to_xyz(L))
+    SampledSpectrum L;   ///< sanitised radiance at cs.wl
+    Vec3 xyz;            ///< its CIE XYZ estimate (cs.wl.to_xyz(L))
+    int technique = -1;  ///< what the tracer noted with note_sample_technique (-1: nothing)
 };
 
 /// Draws the path's `spectral_samples` wavelengths from the pair `u_lambda`, traces the

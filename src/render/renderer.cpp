@@ -129,6 +129,7 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
                         for (int x = t.x0; x < t.x1; ++x) {
                             const int fx = x + spec.crop_x, fy = y + spec.crop_y;  // full-film pixel
                             Vec3 sum, largest;
+                            int largest_technique = -1;
                             for (uint64_t s = s0; s < s1; ++s) {
                                 sampler->start_pixel_sample(fx, fy, s);
                                 // Filter importance sampling: the film position around the
@@ -137,14 +138,16 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
                                 const Vec2 centre(fx + 0.5, fy + 0.5);
                                 const Vec2 raster = centre + fs.offset;
                                 const Vec2 u_lambda = sampler->next_2d();
-                                const Vec3 xyz = trace_camera_sample(scene, *camera, tracer, spectral_samples, centre,
-                                                                     raster, u_lambda, *sampler, splats)
-                                                     .xyz *
-                                                 fs.weight;
+                                const TracedSample ts = trace_camera_sample(scene, *camera, tracer, spectral_samples,
+                                                                            centre, raster, u_lambda, *sampler, splats);
+                                const Vec3 xyz = ts.xyz * fs.weight;
                                 sum += xyz;
-                                if (xyz.y > largest.y) largest = xyz;
+                                if (xyz.y > largest.y) {
+                                    largest = xyz;
+                                    largest_technique = ts.technique;
+                                }
                             }
-                            result.film.add_sum(x, y, sum, s1 - s0, largest);
+                            result.film.add_sum(x, y, sum, s1 - s0, largest, largest_technique);
                         }
                     }
                     if (bar) bar->add(timed ? 0 : (s1 - s0) * uint64_t(t.x1 - t.x0) * uint64_t(t.y1 - t.y0));
@@ -176,6 +179,7 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
     result.dominance = pixel_dominance(result.film);
     result.counters = stat_totals();
     result.layer_names = tracer.layer_names();
+    result.technique_names = tracer.technique_names();
     return result;
 }
 

@@ -31,8 +31,9 @@ struct RenderResult {
     bool interrupted = false;    ///< cancelled (Ctrl-C) before the requested spp
     /// Every registered statistic (core/stats.h), summed over the threads of the render.
     StatTotals counters;
-    std::vector<std::string> layer_names;  ///< names of the film's debug layers 1, 2, ...
-    PixelDominance dominance;              ///< camera samples only (splats are not a pixel's samples)
+    std::vector<std::string> layer_names;      ///< names of the film's debug layers 1, 2, ...
+    PixelDominance dominance;                  ///< camera samples only (splats are not a pixel's samples)
+    std::vector<std::string> technique_names;  ///< of dominance.dominated_by_technique's indices
 };
 
 /// The shared render loop of per-pixel-sample estimators: progressive passes over tiles with

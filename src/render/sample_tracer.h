@@ -51,6 +51,14 @@ public:
     virtual std::vector<std::string> layer_names() const { return {}; }
     /// The film's outlier clamp (Film::set_max_sample_share) for this estimator; 0: none.
     virtual double max_sample_share() const { return 0; }
+    /// Names of the techniques li_splat() reports with note_sample_technique() (empty: none).
+    virtual std::vector<std::string> technique_names() const { return {}; }
 };
+
+/// Called by a tracer inside li_splat(): the technique (an index into technique_names()) that
+/// delivered the largest part of this camera sample's luminance. The render loop keeps the
+/// technique of each pixel's largest sample, so that dominated pixels are counted by the
+/// technique behind them (issue 10) in every render, not only in an instrumented build.
+void note_sample_technique(int technique);
 
 }  // namespace snell

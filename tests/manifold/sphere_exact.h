@@ -55,12 +55,14 @@ struct TwoRefractions {
 };
 
 /// Every admissible path from x_b outside a smooth glass sphere (centre c, radius r, IOR eta > 1)
-/// through it to a point light, by exhaustive search in the plane of c, x_b and the light (both
-/// refractions keep the path in it): a scan of the entry point v1 over the great circle, the ray
-/// refracted in, along the chord to v2 and out, and bisection on the angle between the leaving
-/// ray and the direction to the light. Vertices and x_b -> v1 above the plane y = 0.
-inline std::vector<TwoRefractions> sphere_two_refraction_roots(const Vec3& c, double r, double eta, const Vec3& xb,
-                                                               const Vec3& light, int scan = 200000) {
+/// through it to a point light with `reflections` internal reflections between entering and
+/// leaving, by exhaustive search in the plane of c, x_b and the light (refraction and reflection
+/// about the sphere's normals keep the path in it): a scan of the entry point v1 over the great
+/// circle, the ray refracted in, along chords reflected about the normal `reflections` times and
+/// out, and bisection on the angle between the leaving ray and the direction to the light. Each
+/// path's vertices in order (entry, reflections, exit); vertices and x_b -> v1 above y = 0.
+inline std::vector<std::vector<Vec3>> sphere_through_roots(const Vec3& c, double r, double eta, const Vec3& xb,
+                                                           const Vec3& light, int reflections, int scan = 200000) {
     const Vec3 e1 = normalize(xb - c);
     const Vec3 e2 = normalize((light - c) - e1 * dot(light - c, e1));
     const Vec3 e3 = cross(e1, e2);
@@ -71,23 +73,32 @@ inline std::vector<TwoRefractions> sphere_two_refraction_roots(const Vec3& c, do
         return true;
     };
     // The path from entry angle phi: false where it does not exist (v1 not facing x_b).
-    const auto path = [&](double phi, TwoRefractions* p, double* residual) {
+    const auto path = [&](double phi, std::vector<Vec3>* p, double* residual) {
+        p->clear();
         const Vec3 n1 = e1 * std::cos(phi) + e2 * std::sin(phi);
-        p->v1 = c + n1 * r;
-        const Vec3 d0 = normalize(p->v1 - xb);
+        p->push_back(c + n1 * r);
+        const Vec3 d0 = normalize(p->back() - xb);
         if (dot(d0, n1) >= 0) return false;
-        Vec3 d1, d2;
-        if (!refract(d0, n1, 1 / eta, &d1)) return false;
-        p->v2 = p->v1 + d1 * (-2 * dot(d1, p->v1 - c));
-        if (!refract(d1, -normalize(p->v2 - c), eta, &d2)) return false;
-        const Vec3 to_light = normalize(light - p->v2);
-        if (dot(d2, to_light) <= 0) return false;
-        *residual = dot(cross(d2, to_light), e3);
+        Vec3 d;
+        if (!refract(d0, n1, 1 / eta, &d)) return false;
+        for (int k = 0; k <= reflections; ++k) {  // along a chord to the next vertex
+            const Vec3 v = p->back() + d * (-2 * dot(d, p->back() - c));
+            p->push_back(v);
+            if (k < reflections) d = d - normalize(v - c) * (2 * dot(d, normalize(v - c)));
+        }
+        Vec3 out;
+        if (!refract(d, -normalize(p->back() - c), eta, &out)) return false;
+        const Vec3 to_light = normalize(light - p->back());
+        if (dot(out, to_light) <= 0) return false;
+        *residual = dot(cross(out, to_light), e3);
         return true;
     };
-    std::vector<TwoRefractions> roots;
+    const auto above_ground = [](const std::vector<Vec3>& p) {
+        return std::all_of(p.begin(), p.end(), [](const Vec3& v) { return v.y > 0; });
+    };
+    std::vector<std::vector<Vec3>> roots;
     const double step = 2 * kPi / scan;
-    TwoRefractions p;
+    std::vector<Vec3> p;
     double prev = 0;
     bool prev_ok = path(0, &p, &prev);
     for (int i = 1; i <= scan; ++i) {
@@ -103,13 +114,20 @@ inline std::vector<TwoRefractions> sphere_two_refraction_roots(const Vec3& c, do
                 ((rm > 0) == lo_pos ? lo : hi) = mid;
             }
             double rm = 0;
-            if (valid && path(0.5 * (lo + hi), &p, &rm) && std::abs(rm) < 1e-9 && p.v1.y > 0 && p.v2.y > 0)
-                roots.push_back(p);
+            if (valid && path(0.5 * (lo + hi), &p, &rm) && std::abs(rm) < 1e-9 && above_ground(p)) roots.push_back(p);
         }
         prev = cur;
         prev_ok = ok;
     }
     return roots;
+}
+
+/// The paths of sphere_through_roots without internal reflections.
+inline std::vector<TwoRefractions> sphere_two_refraction_roots(const Vec3& c, double r, double eta, const Vec3& xb,
+                                                               const Vec3& light, int scan = 200000) {
+    std::vector<TwoRefractions> out;
+    for (const auto& p : sphere_through_roots(c, r, eta, xb, light, 0, scan)) out.push_back({p[0], p[1]});
+    return out;
 }
 
 }  // namespace snell::test

@@ -4,6 +4,7 @@
 #include <array>
 #include <iostream>
 
+#include "integrators/path/technique_stats.h"
 #include "manifold/walk_counters.h"
 #include "stat/render_stats.h"
 
@@ -179,6 +180,16 @@ TEST(MneeAgreement, BiasedModeLetsNoSampleDominateAPixel) {
               << " of the luminance\n";
     EXPECT_GT(raw.dominance.dominated, 0u);
     EXPECT_EQ(raw.dominance.clamped, 0u);
+    // Every dominated pixel names the technique of its largest sample.
+    ASSERT_EQ(raw.technique_names.size(), size_t(kTechniqueCount));
+    uint64_t attributed = 0;
+    std::cout << "[biased] dominated pixels by technique without the clamp:";
+    for (size_t t = 0; t < raw.dominance.dominated_by_technique.size(); ++t) {
+        attributed += raw.dominance.dominated_by_technique[t];
+        std::cout << " " << raw.technique_names[t] << " " << raw.dominance.dominated_by_technique[t];
+    }
+    std::cout << "\n";
+    EXPECT_EQ(attributed, raw.dominance.dominated);
     EXPECT_EQ(clamped.dominance.dominated, 0u);
     EXPECT_GT(clamped.dominance.clamped, 0u);
     EXPECT_LT(clamped.dominance.clamped_share, 0.05);

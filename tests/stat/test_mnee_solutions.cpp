@@ -769,3 +769,81 @@ TEST(ManifoldSolutions, ReflectionsFindPathsWithAnInternalReflection) {
     EXPECT_GT(with_reflection, 0);
     EXPECT_EQ(without, 0);
 }
+
+// Per point, paths with internal reflections: at the floor point behind the glass sphere with the
+// most exact paths x_b -> enter -> k reflections inside -> leave -> light (an exhaustive search in
+// the meridian plane, sphere_through_roots; no path with one reflection reaches the floor from
+// this light: such paths turn back within the sphere's rainbow angle), `all` with reflecting
+// surface seeds finds every one of them, each where the search puts its vertices, and no
+// solution with k reflections that the search does not have.
+TEST(ManifoldSolutions, ReflectionsMatchBruteForceBehindAGlassSphere) {
+    const LoadedScene ls = glass_sphere();
+    const Scene& scene = *ls.scene;
+    const Light& light = *scene.lights()[0];
+    Vec3 at;
+    size_t count = 0;
+    int k = 0;
+    for (int reflections = 1; reflections <= 3; ++reflections) {
+        std::map<size_t, int> histogram;
+        for (double x = -0.5; x < 2.01; x += 0.1)
+            for (double z = -0.5; z < 2.01; z += 0.1) {
+                const Vec3 p(x, 0, z);
+                const auto roots =
+                    sphere_through_roots(kGlassCentre, 1.0, kGlassEta, p, kGlassLight, reflections, 4000);
+                histogram[roots.size()]++;
+                double gap = kInfinity;
+                for (size_t i = 0; i < roots.size(); ++i)
+                    for (size_t j = i + 1; j < roots.size(); ++j)
+                        gap = std::min(gap, length(roots[i][1] - roots[j][1]));
+                if (roots.size() > count && gap > 0.02 &&
+                    !sphere_two_refraction_roots(kGlassCentre, 1.0, kGlassEta, p, kGlassLight, 4000).empty()) {
+                    count = roots.size();
+                    at = p;
+                    k = reflections;
+                }
+            }
+        std::cout << "[reflections] receivers by number of exact paths with " << reflections << ":";
+        for (const auto& [n, m] : histogram) std::cout << " " << n << ": " << m;
+        std::cout << "\n";
+    }
+    std::cout << "[reflections] most at (" << at.x << ", " << at.z << "): " << count << " with " << k << "\n";
+    ASSERT_GE(count, 1u);
+
+    const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z, 0.5);
+    const auto exact = sphere_through_roots(kGlassCentre, 1.0, kGlassEta, xb.p, kGlassLight, k);
+    ASSERT_EQ(exact.size(), count);
+    const SampledWavelengths wl = SampledWavelengths::single(550);
+    IndependentSampler smp(11);
+    smp.start_pixel_sample(0, 0, 0);
+    const LightPoint lp = first_light_point(scene, xb, smp);
+    std::vector<ManifoldVertex> seed;
+    ASSERT_EQ(trace_seed_path(scene, xb, lp.p, 550, MneeSettings(), &seed), SeedStatus::Refractive);
+    MneeSettings st = all_solutions(20000);
+    st.reflections = true;
+    const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false};
+    const SolutionSet set = ManifoldTechnique(scene, st).solve(q, light, 1.0, lp, seed, smp);
+    const size_t n = size_t(k) + 2;  // entry, k reflections, exit
+    std::vector<bool> matched(count, false);
+    int found = 0;
+    for (const ManifoldSolution& s : set.solutions) {
+        if (s.chain.size() != n || s.chain.front().reflect || s.chain.back().reflect) continue;
+        if (!std::all_of(s.chain.begin() + 1, s.chain.end() - 1, [](const ManifoldVertex& v) { return v.reflect; }))
+            continue;
+        ++found;
+        const auto dist = [&](size_t i) {
+            double d = 0;
+            for (size_t v = 0; v < n; ++v) d = std::max(d, length(exact[i][v] - s.chain[v].p));
+            return d;
+        };
+        size_t best = 0;
+        for (size_t i = 1; i < count; ++i)
+            if (dist(i) < dist(best)) best = i;
+        EXPECT_LT(dist(best), 1e-6) << "a path the exhaustive search does not have";
+        EXPECT_FALSE(matched[best]) << "two solutions at one exact path";
+        matched[best] = true;
+        EXPECT_GT(s.value[0], 0.0);
+        EXPECT_GT(s.density, 0.0);
+    }
+    std::cout << "[reflections] found " << found << " of " << count << " exact paths\n";
+    EXPECT_EQ(size_t(std::count(matched.begin(), matched.end(), true)), count) << "an exact path not found";
+}

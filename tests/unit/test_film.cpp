@@ -100,8 +100,10 @@ TEST(Film, LargestSampleShareAndDominance) {
     for (int i = 0; i < 4; ++i) film.add(0, 0, Vec3(0.1, 1.0, 0.2));  // four equal samples
     film.add_sum(1, 0, Vec3(0, 3.0, 0), 3, Vec3(0, 1.0, 0));          // three samples, largest 1
     film.add(1, 0, Vec3(0, 0, 0));
-    film.add_sum(2, 0, Vec3(0, 10.0, 0), 8, Vec3(0, 9.0, 0));  // one sample of 9 among 8: a firefly
-    film.add_sum(3, 0, Vec3(0, 2.0, 0), 4, Vec3(0, 2.0, 0));   // one lit sample of 4, beside a bright pixel
+    // One sample of 9 among 8: a firefly, delivered by technique 3 (SampleTracer::technique_names).
+    film.add_sum(2, 0, Vec3(0, 10.0, 0), 8, Vec3(0, 9.0, 0), 3);
+    film.add_sum(3, 0, Vec3(0, 2.0, 0), 4, Vec3(0, 2.0, 0), 1);  // one lit sample of 4, beside a bright pixel
+    film.add_sum(3, 0, Vec3(), 0, Vec3(0, 1.5, 0), 5);           // a smaller largest keeps technique 1
     EXPECT_DOUBLE_EQ(film.largest_sample_share(0, 0), 0.25);
     EXPECT_DOUBLE_EQ(film.largest_sample_share(1, 0), 1.0 / 3.0);
     EXPECT_DOUBLE_EQ(film.largest_sample_share(2, 0), 0.9);
@@ -113,6 +115,10 @@ TEST(Film, LargestSampleShareAndDominance) {
     // is not (its neighbour is 1.25).
     EXPECT_EQ(d.outliers, 1u);
     EXPECT_DOUBLE_EQ(d.max_share, 1.0);
+    // Dominated pixels by the technique of their largest sample.
+    EXPECT_EQ(film.largest_sample_technique(0, 0), -1);
+    EXPECT_EQ(film.largest_sample_technique(3, 0), 1);
+    EXPECT_EQ(d.dominated_by_technique, (std::vector<uint64_t>{0, 1, 0, 1}));
     EXPECT_EQ(Film(1, 1).largest_sample_share(0, 0), 0.0) << "an empty pixel has no share";
 }
 

@@ -43,6 +43,8 @@ RenderReport sample_report() {
     g_histogram.add(3);
     r.set_counters(stat_totals());
     r.extra = {{"walks", {{"attempted", 1000}, {"converged", 640}, {"mean_iterations", 4.25}}}};
+    r.pixels_dominated = 7;
+    r.dominated_by_technique = {{"mnee_straight", 5}, {"bsdf_refracted", 2}};
     return r;
 }
 }  // namespace
@@ -83,6 +85,8 @@ TEST(StatsJson, FileRoundTrip) {
     EXPECT_EQ(j.at("discarded").at("inf"), 2u);
     EXPECT_EQ(j.at("discarded").at("negative"), 1u);
     EXPECT_EQ(j.at("extra").at("walks").at("converged"), 640);
+    EXPECT_EQ(j.at("dominance").at("dominated"), 7u);
+    EXPECT_EQ(j.at("dominance").at("by_technique").at("mnee_straight"), 5u);
     // Every registered statistic by name; a histogram without its trailing empty bins.
     EXPECT_EQ(j.at("counters").at("render.paths"), 46080000u);
     EXPECT_EQ(j.at("counters").at("scene.shadow_rays"), 25000000u);

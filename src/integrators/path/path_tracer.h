@@ -92,6 +92,7 @@ public:
         return m_estimator.li(ray, scene, sampler, cs.wl);
     }
     double max_sample_share() const override { return m_estimator.settings().max_sample_share; }
+    std::vector<std::string> technique_names() const override { return path_technique_names(); }
 
 private:
     const PathTracer& m_estimator;

@@ -3,6 +3,7 @@
 #include <iterator>
 
 #include "core/stats.h"
+#include "render/sample_tracer.h"
 
 namespace snell {
 
@@ -31,8 +32,15 @@ const char* technique_name(Technique t) {
     return names[size_t(t)];
 }
 
+std::vector<std::string> path_technique_names() {
+    std::vector<std::string> names;
+    for (int t = 0; t < kTechniqueCount; ++t) names.emplace_back(technique_name(Technique(t)));
+    return names;
+}
+
 void TechniqueLog::record(const SampledWavelengths& wl) const {
-    double sum = 0;
+    double sum = 0, largest = 0;
+    int largest_technique = -1;
     for (int i = 0; i < kTechniqueCount; ++i) {
         const SampledSpectrum& v = m_by[size_t(i)];
         if (v.is_zero()) {
@@ -42,8 +50,13 @@ void TechniqueLog::record(const SampledWavelengths& wl) const {
         const double y = wl.to_xyz(v).y;
         kStats[size_t(i)]->add(y);
         sum += y;
+        if (y > largest) {
+            largest = y;
+            largest_technique = i;
+        }
     }
     total.add(sum);
+    note_sample_technique(largest_technique);
 }
 
 }  // namespace snell

@@ -5,6 +5,8 @@
 // say which technique they come from before anyone tunes anything.
 #include <array>
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include "core/sampled_spectrum.h"
 
@@ -23,6 +25,8 @@ inline constexpr int kTechniqueCount = 7;
 
 /// The short names used in the statistics ("path.technique.<name>").
 const char* technique_name(Technique t);
+/// All of them in Technique's order (SampleTracer::technique_names).
+std::vector<std::string> path_technique_names();
 
 /// What one light connection contributes, by technique (to be multiplied by the path's
 /// throughput).
@@ -37,7 +41,8 @@ public:
     void add(Technique t, const SampledSpectrum& v) { m_by[size_t(t)] += v; }
     /// Adds this sample's luminance (CIE Y, divided by the wavelengths' density) of every
     /// technique (zeros included) to the render's statistics ("path.technique.<name>",
-    /// StatMoments), and their sum to "path.sample".
+    /// StatMoments), and their sum to "path.sample"; notes the technique with the largest
+    /// part (note_sample_technique) for the film's dominance statistics.
     void record(const SampledWavelengths& wl) const;
 
 private:
