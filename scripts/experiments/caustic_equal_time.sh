@@ -8,14 +8,20 @@
 #   caustic_equal_time.sh reference [seconds per case=2400]   results/caustics/ref_<case>.exr
 #   caustic_equal_time.sh render LABEL [seconds=30]            results/caustics/LABEL/<case>_<integ>.exr
 #   caustic_equal_time.sh score LABEL                          a table per case and crop
+#   caustic_equal_time.sh noise LABEL1 LABEL2                 each technique's own noise without a
+#       reference: LABEL2 rendered like LABEL1 with another SEED, scored against LABEL1; for two
+#       independent renders of equal variance the figure is twice either's relMSE, and half of it
+#       is printed (the technique's relMSE at that time, its bias left out)
 #   caustic_equal_time.sh refcheck [seconds=600]               the references' own noise: a second
 #       reference (seed 78) for SECONDS, scored against the first; with the first's time T, the
 #       first's own relMSE is about that figure x SECONDS / (SECONDS + T)
 # CASES="droplet_a002" (say) limits the cases; droplet_smooth is the droplet with alpha 0.
-# SNELL=path/to/snell renders with another build (e.g. the one before issue 10); THREADS (2).
+# SNELL=path/to/snell renders with another build (e.g. the one before issue 10); THREADS (2);
+# SEED (1) the renders' seed.
 source "$(dirname "$0")/common.sh"
 MODE=${1:?reference, render or score}
 THREADS=${THREADS:-2}
+SEED=${SEED:-1}
 OUT=results/caustics
 mkdir -p "$OUT"
 
@@ -91,7 +97,7 @@ render)
         scene="$OUT/$LABEL/${c}_$integ.xml"
       fi
       # shellcheck disable=SC2046
-      "$SNELL" render "$scene" $(defines_of "$c") -D integrator=$name --time "$T" -t "$THREADS" -q --seed 1 \
+      "$SNELL" render "$scene" $(defines_of "$c") -D integrator=$name --time "$T" -t "$THREADS" -q --seed "$SEED" \
         -o "$OUT/$LABEL/${c}_$integ.exr"
     done
   done
@@ -107,6 +113,20 @@ score)
       for crop in $(crops_of "$c"); do
         "$SNELL" diff "$img" "$OUT/ref_$c.exr" --reference-offset "$rx,$ry" --crop "${crop#*:}" | grep "^crop" \
           | sed "s|^crop [0-9,]*|$c $integ ${crop%%:*} ($spp spp)|"
+      done
+    done
+  done
+  ;;
+noise)
+  A=${2:?label}
+  B=${3:?second label}
+  for c in "${CASES[@]}"; do
+    for integ in nee mnee mnee_biased mnee_paper mnee_paperbiased mnee_unbiased mnee_unbiased_biased mnee_reflections mnee_fallback mnee_fallback_biased; do
+      a="$OUT/$A/${c}_$integ.exr" b="$OUT/$B/${c}_$integ.exr"
+      [ -f "$a" ] && [ -f "$b" ] || continue
+      for crop in $(crops_of "$c"); do
+        "$SNELL" diff "$b" "$a" --crop "${crop#*:}" --json \
+          | python3 -c "import json,sys; j=json.load(sys.stdin); m=j[1]; print('$c $integ ${crop%%:*}: relMSE %.4g (half of %.4g, %s against %s)' % (m['rel_mse'] / 2, m['rel_mse'], '$B', '$A'))"
       done
     done
   done
