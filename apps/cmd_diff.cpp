@@ -1,8 +1,11 @@
-// `snell diff a.exr b.exr [--crop x,y,w,h]... [--reference-offset x,y] [--json]`: error metrics
-// against a reference. A reference rendered on a crop of the film (a long render of the region
-// that matters) is placed with --reference-offset; the image is cut to that window, and --crop
-// rectangles stay in the image's own coordinates.
+// `snell diff a.exr b.exr [--crop x,y,w,h]... [--reference-offset x,y] [--normalise-by r.exr]
+// [--json]`: error metrics against a reference. A reference rendered on a crop of the film (a long
+// render of the region that matters) is placed with --reference-offset; the image is cut to that
+// window, and --crop rectangles stay in the image's own coordinates. --normalise-by gives relMSE
+// another denominator: two noisy renders compared with each other divide by a converged image,
+// not by one of the noisy two (a firefly divided by itself would count as about 1).
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -17,21 +20,33 @@
 namespace snell {
 
 int cmd_diff(const std::string& a_path, const std::string& b_path, const std::vector<std::string>& crops,
-             const std::string& reference_offset, bool json) {
+             const std::string& reference_offset, const std::string& normalise_by, bool json) {
     Image a = read_exr(a_path);
-    const Image b = read_exr(b_path);
+    Image b = read_exr(b_path);
+    std::optional<Image> norm;
+    if (!normalise_by.empty()) norm = read_exr(normalise_by);
+    // The window: the normaliser's size where there is one, else the reference's.
+    const Image& window = norm ? *norm : b;
     int ox = 0, oy = 0;
     if (!reference_offset.empty()) {
-        const Crop o = parse_crop(reference_offset + "," + std::to_string(b.width) + "," + std::to_string(b.height));
-        if (!crop_inside(o, a.width, a.height))
-            throw std::runtime_error("--reference-offset " + reference_offset + ": the reference (" +
-                                     std::to_string(b.width) + "x" + std::to_string(b.height) +
-                                     ") does not fit inside the image (" + std::to_string(a.width) + "x" +
-                                     std::to_string(a.height) + ")");
+        const Crop o =
+            parse_crop(reference_offset + "," + std::to_string(window.width) + "," + std::to_string(window.height));
+        for (Image* im : {&a, &b}) {
+            if (im->width == window.width && im->height == window.height && im == &b) continue;
+            if (!crop_inside(o, im->width, im->height))
+                throw std::runtime_error("--reference-offset " + reference_offset + ": the window (" +
+                                         std::to_string(window.width) + "x" + std::to_string(window.height) +
+                                         ") does not fit inside the image (" + std::to_string(im->width) + "x" +
+                                         std::to_string(im->height) + ")");
+            *im = crop_image(*im, o);
+        }
         ox = o.x;
         oy = o.y;
-        a = crop_image(a, o);
     }
+    if (norm && (norm->width != b.width || norm->height != b.height))
+        throw std::runtime_error("--normalise-by " + normalise_by + ": its size (" + std::to_string(norm->width) + "x" +
+                                 std::to_string(norm->height) + ") is not the reference's (" + std::to_string(b.width) +
+                                 "x" + std::to_string(b.height) + ")");
     std::vector<std::pair<std::string, Crop>> regions = {{"image", Crop{}}};
     for (const std::string& c : crops) {
         Crop r = parse_crop(c);
@@ -43,7 +58,7 @@ int cmd_diff(const std::string& a_path, const std::string& b_path, const std::ve
     }
     nlohmann::json out = nlohmann::json::array();
     for (const auto& [name, crop] : regions) {
-        const ImageMetrics m = compare_images(a, b, crop);
+        const ImageMetrics m = compare_images(a, b, crop, norm ? &*norm : nullptr);
         if (json) {
             out.push_back({{"region", name},
                            {"rel_mse", m.rel_mse},

@@ -8,10 +8,12 @@
 #   caustic_equal_time.sh reference [seconds per case=2400]   results/caustics/ref_<case>.exr
 #   caustic_equal_time.sh render LABEL [seconds=30]            results/caustics/LABEL/<case>_<integ>.exr
 #   caustic_equal_time.sh score LABEL                          a table per case and crop
-#   caustic_equal_time.sh noise LABEL1 LABEL2                 each technique's own noise without a
-#       reference: LABEL2 rendered like LABEL1 with another SEED, scored against LABEL1; for two
+#   caustic_equal_time.sh noise LABEL1 LABEL2                 each technique's own noise: LABEL2
+#       rendered like LABEL1 with another SEED, scored against LABEL1 with relMSE's denominators
+#       from the reference (`snell diff --normalise-by`, so that no noisy render divides); for two
 #       independent renders of equal variance the figure is twice either's relMSE, and half of it
-#       is printed (the technique's relMSE at that time, its bias left out)
+#       is printed (the technique's relMSE at that time, its bias left out, the reference's noise
+#       only in the denominators)
 #   caustic_equal_time.sh refcheck [seconds=600]               the references' own noise: a second
 #       reference (seed 78) for SECONDS, scored against the first; with the first's time T, the
 #       first's own relMSE is about that figure x SECONDS / (SECONDS + T)
@@ -19,7 +21,7 @@
 # SNELL=path/to/snell renders with another build (e.g. the one before issue 10); THREADS (2);
 # SEED (1) the renders' seed.
 source "$(dirname "$0")/common.sh"
-MODE=${1:?reference, render or score}
+MODE=${1:?reference, render, score, noise or refcheck}
 THREADS=${THREADS:-2}
 SEED=${SEED:-1}
 OUT=results/caustics
@@ -44,6 +46,8 @@ with_params() {
 }
 # The techniques compared; INTEGRATORS overrides (mnee_unbiased needs a snell with `solutions`).
 INTEGRATORS=${INTEGRATORS:-nee mnee mnee_biased}
+# Every technique `score` and `noise` look for.
+ALL_TECHNIQUES="nee mnee mnee_biased mnee_paper mnee_paperbiased mnee_unbiased mnee_unbiased_biased mnee_reflections mnee_fallback mnee_fallback_biased"
 params_of() {
   case $1 in
     mnee_biased) echo '<boolean name="biased" value="true"/>' ;;
@@ -106,7 +110,7 @@ score)
   LABEL=${2:?label}
   for c in "${CASES[@]}"; do
     IFS=, read -r rx ry _ _ <<<"$(ref_crop_of "$c")"
-    for integ in nee mnee mnee_biased mnee_paper mnee_paperbiased mnee_unbiased mnee_unbiased_biased mnee_reflections mnee_fallback mnee_fallback_biased; do
+    for integ in $ALL_TECHNIQUES; do
       img="$OUT/$LABEL/${c}_$integ.exr"
       [ -f "$img" ] || continue
       spp=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['spp_reached'])" "${img%.exr}.json")
@@ -121,11 +125,12 @@ noise)
   A=${2:?label}
   B=${3:?second label}
   for c in "${CASES[@]}"; do
-    for integ in nee mnee mnee_biased mnee_paper mnee_paperbiased mnee_unbiased mnee_unbiased_biased mnee_reflections mnee_fallback mnee_fallback_biased; do
+    for integ in $ALL_TECHNIQUES; do
       a="$OUT/$A/${c}_$integ.exr" b="$OUT/$B/${c}_$integ.exr"
       [ -f "$a" ] && [ -f "$b" ] || continue
+      IFS=, read -r rx ry _ _ <<<"$(ref_crop_of "$c")"
       for crop in $(crops_of "$c"); do
-        "$SNELL" diff "$b" "$a" --crop "${crop#*:}" --json \
+        "$SNELL" diff "$b" "$a" --reference-offset "$rx,$ry" --normalise-by "$OUT/ref_$c.exr" --crop "${crop#*:}" --json \
           | python3 -c "import json,sys; j=json.load(sys.stdin); m=j[1]; print('$c $integ ${crop%%:*}: relMSE %.4g (half of %.4g, %s against %s)' % (m['rel_mse'] / 2, m['rel_mse'], '$B', '$A'))"
       done
     done

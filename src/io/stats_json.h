@@ -38,7 +38,8 @@ struct RenderReport {
     uint64_t pixels = 0, pixels_dominated = 0, pixels_outlier = 0, pixels_clamped = 0;
     double max_sample_share = 0, clamped_share = 0;
     /// Dominated pixels by the technique that delivered their largest sample (integrators that
-    /// name their techniques: pt, path, nee, mnee); "dominance.by_technique".
+    /// name their techniques: the path-tracing family, pt, path, nee, direct, mnee; empty for
+    /// the others); "dominance.by_technique".
     std::map<std::string, uint64_t> dominated_by_technique;
     /// Free-form technique statistics (e.g. MNEE walk outcomes); written under "extra".
     nlohmann::json extra = nlohmann::json::object();

@@ -71,6 +71,9 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
     // in tile order after every group of tiles, so the image does not depend on scheduling.
     // Groups bound the memory the buffers take; without splats one group holds every tile.
     const bool splatting = tracer.splats();
+    // Techniques count only for a tracer that names them (an ERPT or PSSMLT sample may come from
+    // an inner path tracer that noted one).
+    const bool named_techniques = !tracer.technique_names().empty();
     const size_t group = splatting ? std::max<size_t>(64, size_t(threads) * 8) : tiles.size();
     std::vector<SplatList> tile_splats(splatting ? std::min(group, tiles.size()) : 0);
     const auto merge_splats = [&](size_t n) {
@@ -144,7 +147,7 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
                                 sum += xyz;
                                 if (xyz.y > largest.y) {
                                     largest = xyz;
-                                    largest_technique = ts.technique;
+                                    largest_technique = named_techniques ? ts.technique : -1;
                                 }
                             }
                             result.film.add_sum(x, y, sum, s1 - s0, largest, largest_technique);

@@ -8,11 +8,13 @@
 
 namespace snell {
 
-ImageMetrics compare_images(const Image& img, const Image& ref, const Crop& crop_in) {
-    if (img.width != ref.width || img.height != ref.height)
-        throw std::invalid_argument("image sizes differ: " + std::to_string(img.width) + "x" +
-                                    std::to_string(img.height) + " vs " + std::to_string(ref.width) + "x" +
-                                    std::to_string(ref.height));
+ImageMetrics compare_images(const Image& img, const Image& ref, const Crop& crop_in, const Image* normaliser) {
+    for (const Image* other : {&ref, normaliser})
+        if (other && (img.width != other->width || img.height != other->height))
+            throw std::invalid_argument("image sizes differ: " + std::to_string(img.width) + "x" +
+                                        std::to_string(img.height) + " vs " + std::to_string(other->width) + "x" +
+                                        std::to_string(other->height));
+    const Image& norm = normaliser ? *normaliser : ref;
     Crop c = crop_in;
     if (c.w == 0) c = {0, 0, img.width, img.height};
     check_crop_inside(c, img.width, img.height);
@@ -21,8 +23,8 @@ ImageMetrics compare_images(const Image& img, const Image& ref, const Crop& crop
     for (int y = c.y; y < c.y + c.h; ++y)
         for (int x = c.x; x < c.x + c.w; ++x)
             for (int ch = 0; ch < 3; ++ch) {
-                const double a = img.at(x, y, ch), r = ref.at(x, y, ch), d = a - r;
-                rel += d * d / (r * r + 0.01);
+                const double a = img.at(x, y, ch), r = ref.at(x, y, ch), d = a - r, q = norm.at(x, y, ch);
+                rel += d * d / (q * q + 0.01);
                 se += d * d;
                 se_clamped += std::pow(std::clamp(a, 0.0, 1.0) - std::clamp(r, 0.0, 1.0), 2);
                 smape += std::abs(d) / (std::abs(a) + std::abs(r) + 0.01);

@@ -37,9 +37,11 @@ struct ImageMetrics {
     long pixels = 0;
 };
 
-/// Metrics of `img` against `ref` over `crop`. Throws std::invalid_argument on size mismatch or
-/// a crop outside the image.
-ImageMetrics compare_images(const Image& img, const Image& ref, const Crop& crop = {});
+/// Metrics of `img` against `ref` over `crop`; relMSE divides by (r^2 + 0.01) with r from
+/// `normaliser` where given (same size), else from `ref`. Throws std::invalid_argument on size
+/// mismatch or a crop outside the image.
+ImageMetrics compare_images(const Image& img, const Image& ref, const Crop& crop = {},
+                            const Image* normaliser = nullptr);
 
 /// Parses "x,y,w,h"; throws std::invalid_argument with the offending text.
 Crop parse_crop(const std::string& text);

@@ -89,6 +89,18 @@ for crop in 2147483647,0,10,10 0,2147483647,1,1 2147483647,2147483647,2147483647
 done
 out=$("$SNELL" diff "$TMP/ok.exr" "$TMP/ok.exr" --reference-offset 2147483647,0 2>&1); rc=$?
 check "diff --reference-offset 2147483647,0 is an error" "[ $rc -eq 1 ] && echo \"\$out\" | grep -q 'does not fit'"
+# --normalise-by: relMSE's denominators from a third image. Normalised by the reference itself it
+# is the plain figure; by another image it differs; two full renders of different seeds, cut to a
+# crop reference's window and normalised by it, compare; a normaliser of another size is an error.
+"$SNELL" render "$TMP/ok.xml" -o "$TMP/ok2.exr" --spp 4 --seed 2 -q
+relmse() { "$SNELL" diff "$@" | grep '^image' | sed 's/.*relMSE \([^ ]*\) .*/\1/'; }
+plain=$(relmse "$TMP/ok2.exr" "$TMP/ok.exr")
+check "diff --normalise-by the reference is the plain relMSE" "[ \"$plain\" = \"$(relmse "$TMP/ok2.exr" "$TMP/ok.exr" --normalise-by "$TMP/ok.exr")\" ]"
+check "diff --normalise-by another image changes relMSE" "[ \"$plain\" != \"$(relmse "$TMP/ok2.exr" "$TMP/ok.exr" --normalise-by "$TMP/timed.exr" 2>/dev/null || echo err)\" ]"
+out=$("$SNELL" diff "$TMP/ok2.exr" "$TMP/ok.exr" --reference-offset 10,6 --normalise-by "$TMP/crop.exr" --crop 12,8,6,4 2>&1); rc=$?
+check "diff of two renders normalised by a crop reference" "[ $rc -eq 0 ] && echo \"\$out\" | grep -q '^crop 12,8,6,4 .*relMSE [0-9]'"
+out=$("$SNELL" diff "$TMP/ok2.exr" "$TMP/ok.exr" --normalise-by "$TMP/crop.exr" 2>&1); rc=$?
+check "a normaliser of another size is an error" "[ $rc -eq 1 ] && echo \"\$out\" | grep -q 'normalise-by'"
 
 # 10. -a adds a folder to find the scene's files in (Mitsuba's -a), after the scene's own; a
 #     mesh found only there loads, and without it the error names the mesh.

@@ -459,30 +459,32 @@ struct MostPaths {
     std::map<size_t, int> histogram;  ///< grid points by their number of paths
 };
 
-// The floor point (on a 0.05 grid) with the most exact paths through the glass, at least 0.02
-// apart; searched once for every test that needs it.
-const MostPaths& glass_receiver_with_most_paths() {
-    static const MostPaths found = [] {
-        MostPaths m;
-        size_t* count = &m.count;
-        Vec3& at = m.at;
-        std::map<size_t, int>* histogram = &m.histogram;
-        for (double x = -0.5; x < 2.01; x += 0.05)
-            for (double z = -0.5; z < 2.01; z += 0.05) {
-                const auto roots =
-                    sphere_two_refraction_roots(kGlassCentre, 1.0, kGlassEta, Vec3(x, 0, z), kGlassLight, 4000);
-                (*histogram)[roots.size()]++;
-                double gap = kInfinity;
-                for (size_t i = 0; i < roots.size(); ++i)
-                    for (size_t j = i + 1; j < roots.size(); ++j)
-                        gap = std::min(gap, length(roots[i].v1 - roots[j].v1));
-                if (roots.size() > *count && gap > 0.02) {
-                    *count = roots.size();
-                    at = Vec3(x, 0, z);
-                }
+// The floor point (on a grid of spacing `step`) with the most exact paths through the glass with
+// `reflections` internal reflections, their entry points at least 0.02 apart; with
+// `behind_glass`, only points whose straight segment to the light refracts through it.
+MostPaths receiver_with_most_paths(int reflections, double step, bool behind_glass) {
+    MostPaths m;
+    for (double x = -0.5; x < 2.01; x += step)
+        for (double z = -0.5; z < 2.01; z += step) {
+            const Vec3 p(x, 0, z);
+            const auto roots = sphere_through_roots(kGlassCentre, 1.0, kGlassEta, p, kGlassLight, reflections, 4000);
+            m.histogram[roots.size()]++;
+            double gap = kInfinity;
+            for (size_t i = 0; i < roots.size(); ++i)
+                for (size_t j = i + 1; j < roots.size(); ++j) gap = std::min(gap, length(roots[i][0] - roots[j][0]));
+            if (roots.size() > m.count && gap > 0.02 &&
+                (!behind_glass ||
+                 !sphere_two_refraction_roots(kGlassCentre, 1.0, kGlassEta, p, kGlassLight, 4000).empty())) {
+                m.count = roots.size();
+                m.at = p;
             }
-        return m;
-    }();
+        }
+    return m;
+}
+
+// The same for refracted paths, searched once for every test that needs it.
+const MostPaths& glass_receiver_with_most_paths() {
+    static const MostPaths found = receiver_with_most_paths(0, 0.05, false);
     return found;
 }
 
@@ -780,36 +782,25 @@ TEST(ManifoldSolutions, ReflectionsMatchBruteForceBehindAGlassSphere) {
     const LoadedScene ls = glass_sphere();
     const Scene& scene = *ls.scene;
     const Light& light = *scene.lights()[0];
-    Vec3 at;
-    size_t count = 0;
+    MostPaths most;
     int k = 0;
     for (int reflections = 1; reflections <= 3; ++reflections) {
-        std::map<size_t, int> histogram;
-        for (double x = -0.5; x < 2.01; x += 0.1)
-            for (double z = -0.5; z < 2.01; z += 0.1) {
-                const Vec3 p(x, 0, z);
-                const auto roots =
-                    sphere_through_roots(kGlassCentre, 1.0, kGlassEta, p, kGlassLight, reflections, 4000);
-                histogram[roots.size()]++;
-                double gap = kInfinity;
-                for (size_t i = 0; i < roots.size(); ++i)
-                    for (size_t j = i + 1; j < roots.size(); ++j)
-                        gap = std::min(gap, length(roots[i][1] - roots[j][1]));
-                if (roots.size() > count && gap > 0.02 &&
-                    !sphere_two_refraction_roots(kGlassCentre, 1.0, kGlassEta, p, kGlassLight, 4000).empty()) {
-                    count = roots.size();
-                    at = p;
-                    k = reflections;
-                }
-            }
+        const MostPaths m = receiver_with_most_paths(reflections, 0.1, true);
         std::cout << "[reflections] receivers by number of exact paths with " << reflections << ":";
-        for (const auto& [n, m] : histogram) std::cout << " " << n << ": " << m;
+        for (const auto& [n, count] : m.histogram) std::cout << " " << n << ": " << count;
         std::cout << "\n";
+        if (m.count > most.count) {
+            most = m;
+            k = reflections;
+        }
     }
+    const Vec3 at = most.at;
+    const size_t count = most.count;
     std::cout << "[reflections] most at (" << at.x << ", " << at.z << "): " << count << " with " << k << "\n";
     ASSERT_GE(count, 1u);
 
     const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z, 0.5);
+    ASSERT_NEAR(xb.p.y, 0.0, 1e-6);
     const auto exact = sphere_through_roots(kGlassCentre, 1.0, kGlassEta, xb.p, kGlassLight, k);
     ASSERT_EQ(exact.size(), count);
     const SampledWavelengths wl = SampledWavelengths::single(550);

@@ -22,6 +22,7 @@ enum class Technique : uint8_t {
     MneeSurface,    ///< MNEE: solutions walked from seeds sampled on the caster shapes (SMS)
 };
 inline constexpr int kTechniqueCount = 7;
+static_assert(kTechniqueCount < 128, "the film keeps a pixel's technique in an int8_t");
 
 /// The short names used in the statistics ("path.technique.<name>").
 const char* technique_name(Technique t);
