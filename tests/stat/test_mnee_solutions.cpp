@@ -453,6 +453,14 @@ LightPoint first_light_point(const Scene& scene, const SurfaceInteraction& xb, S
                        light.sample_li({xb.p, xb.n}, smp.next_2d(), SampledWavelengths::single(550)).value(), xb.p);
 }
 
+// The scene's first light point for the sampler's next pair (at 550 nm), and the straight seed
+// path from x_b to it.
+SeedStatus straight_seed_to_light(const Scene& scene, const SurfaceInteraction& xb, Sampler& smp, LightPoint* lp,
+                                  std::vector<ManifoldVertex>* seed) {
+    *lp = first_light_point(scene, xb, smp);
+    return trace_seed_path(scene, xb, lp->p, 550, MneeSettings(), seed);
+}
+
 struct MostPaths {
     Vec3 at;
     size_t count = 0;
@@ -699,9 +707,9 @@ TEST(ManifoldSolutions, Alg2CreditsOnlyTheSolutionTheStraightSeedReaches) {
     const SampledWavelengths wl = SampledWavelengths::single(550);
     IndependentSampler smp(9);
     smp.start_pixel_sample(0, 0, 0);
-    const LightPoint lp = first_light_point(scene, xb, smp);
+    LightPoint lp;
     std::vector<ManifoldVertex> seed;
-    ASSERT_EQ(trace_seed_path(scene, xb, lp.p, 550, MneeSettings(), &seed), SeedStatus::Refractive);
+    ASSERT_EQ(straight_seed_to_light(scene, xb, smp, &lp, &seed), SeedStatus::Refractive);
     const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false};
     const MneeSettings paper;
     const SolutionSet straight = ManifoldTechnique(scene, paper).solve(q, light, 1.0, lp, seed, smp);
@@ -806,9 +814,9 @@ TEST(ManifoldSolutions, ReflectionsMatchBruteForceBehindAGlassSphere) {
     const SampledWavelengths wl = SampledWavelengths::single(550);
     IndependentSampler smp(11);
     smp.start_pixel_sample(0, 0, 0);
-    const LightPoint lp = first_light_point(scene, xb, smp);
+    LightPoint lp;
     std::vector<ManifoldVertex> seed;
-    ASSERT_EQ(trace_seed_path(scene, xb, lp.p, 550, MneeSettings(), &seed), SeedStatus::Refractive);
+    ASSERT_EQ(straight_seed_to_light(scene, xb, smp, &lp, &seed), SeedStatus::Refractive);
     MneeSettings st = all_solutions(20000);
     st.reflections = true;
     const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false};
