@@ -84,6 +84,9 @@ RenderReport make_report(const std::string& scene, const std::string& integrator
     rep.pixels_outlier = r.dominance.outliers;
     rep.pixels_clamped = r.dominance.clamped;
     rep.clamped_share = r.dominance.clamped_share;
+    rep.spread_share = r.dominance.spread_share;
+    rep.spread_radius = r.dominance.spread_radius;
+    rep.spread_dropped = r.dominance.spread_dropped;
     for (size_t t = 0; t < r.dominance.dominated_by_technique.size(); ++t)
         if (r.dominance.dominated_by_technique[t] > 0)
             rep.dominated_by_technique[t < r.technique_names.size() ? r.technique_names[t]

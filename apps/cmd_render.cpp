@@ -107,9 +107,19 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
                      (unsigned long long)rep.discarded_nan, (unsigned long long)rep.discarded_inf,
                      (unsigned long long)rep.discarded_negative, (unsigned long long)rep.beyond_float, out_path.c_str(),
                      png_path.c_str(), stats_path.c_str());
-    if (!quiet && r.film.max_sample_share() > 0)
-        std::fprintf(stderr, "  outlier clamp (max_sample_share %.2g): %llu pixels, %.3g %% of the luminance removed\n",
-                     r.film.max_sample_share(), (unsigned long long)rep.pixels_clamped, 100 * rep.clamped_share);
+    if (!quiet && r.film.max_sample_share() > 0) {
+        if (r.film.spread_radius() > 0)
+            std::fprintf(stderr,
+                         "  outlier clamp (max_sample_share %.2g): %llu pixels, %.3g %% of the luminance spread over "
+                         "neighbours (discs up to %d px; clamp_spread %d), %.3g %% removed (%llu pixels)\n",
+                         r.film.max_sample_share(), (unsigned long long)rep.pixels_clamped, 100 * rep.spread_share,
+                         rep.spread_radius, r.film.spread_radius(), 100 * (rep.clamped_share - rep.spread_share),
+                         (unsigned long long)rep.spread_dropped);
+        else
+            std::fprintf(stderr,
+                         "  outlier clamp (max_sample_share %.2g): %llu pixels, %.3g %% of the luminance removed\n",
+                         r.film.max_sample_share(), (unsigned long long)rep.pixels_clamped, 100 * rep.clamped_share);
+    }
     if (!quiet && !rep.dominated_by_technique.empty()) {
         std::string by;
         for (const auto& [name, n] : rep.dominated_by_technique)

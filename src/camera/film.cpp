@@ -49,13 +49,16 @@ uint64_t Film::values_beyond_float(int layer) const {
 
 PixelDominance pixel_dominance(const Film& film) {
     PixelDominance d;
-    double total = 0, clamped = 0;
+    double total = 0, clamped = 0, spread = 0;
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) {
             const double c = film.clamped_y(x, y);
             total += film.sample_sum_y(x, y);
             clamped += c;
             d.clamped += c > 0;
+            spread += film.spread_xyz(x, y).y * double(film.samples(x, y));
+            d.spread_radius = std::max(d.spread_radius, film.spread_radius_at(x, y));
+            d.spread_dropped += c > 0 && film.spread_radius() > 0 && film.spread_radius_at(x, y) == 0;
             const double share = film.largest_sample_share(x, y);
             if (!(share > 0)) continue;
             ++d.pixels;
@@ -75,11 +78,11 @@ PixelDominance pixel_dominance(const Film& film) {
                     around += film.xyz(u, v).y;
                     ++n;
                 }
-            if (film.largest_sample_y(x, y) - film.clamped_y(x, y) >
-                PixelDominance::kOutlierRatio * around / std::max(n, 1))
+            if (film.largest_contribution_y(x, y) > PixelDominance::kOutlierRatio * around / std::max(n, 1))
                 ++d.outliers;
         }
     d.clamped_share = total > 0 ? clamped / total : 0.0;
+    d.spread_share = total > 0 ? spread / total : 0.0;
     return d;
 }
 

@@ -46,8 +46,18 @@ public:
     /// it carries at most the share `s` of the pixel's luminance, i.e. to s / (1 - s) times the
     /// sum of the others. Biased, and consistent: with a finite mean the largest of n samples
     /// grows slower than their sum, so the clamp stops acting as n grows. 0: off.
-    void set_max_sample_share(double s) { m_max_share = s; }
+    /// With `spread_radius` > 0 the light the clamp takes is not dropped but spread evenly over
+    /// the smallest disc around its pixel (radius at most spread_radius pixels) in which its
+    /// share of every pixel is at most `s` too: the image keeps its light and the bias is a local
+    /// blur of the fireflies (film_spread.cpp). Only light that no such disc hides (a lone
+    /// firefly on black) is dropped. Call it after the last sample: the spread is computed here.
+    void set_max_sample_share(double s, int spread_radius = 0) {
+        m_max_share = s;
+        m_spread_radius = spread_radius;
+        spread_clamped_light();
+    }
     double max_sample_share() const { return m_max_share; }
+    int spread_radius() const { return m_spread_radius; }
     /// The luminance (Y) the clamp removes from the pixel's sample sum (0 when it is off).
     double clamped_y(int x, int y) const {
         const size_t i = size_t(y) * m_w + x;
@@ -56,21 +66,39 @@ public:
         return std::max(0.0, m_max_y[i] - cap);
     }
     uint64_t samples(int x, int y) const { return m_n[size_t(y) * m_w + x]; }
-    /// The share of the pixel's summed luminance that its largest single sample carries (0 when
-    /// the sum is not positive): near 1 / samples in a converging pixel, near 1 when one
-    /// sample (a firefly) makes the pixel. Splats are not samples of a pixel and are left out.
-    /// With max_sample_share, the share after the clamp (at most that share).
+    /// The share of the pixel's luminance that its largest single contribution carries (0 when
+    /// the pixel is black): near 1 / samples in a converging pixel, near 1 when one sample (a
+    /// firefly) makes the pixel. A contribution is one of the pixel's samples or, with the
+    /// clamp's spread, the piece of one other pixel's clamped sample. Splats are not samples of
+    /// a pixel and are left out. With max_sample_share, the share after the clamp (at most that
+    /// share, for the pixel's own samples and for spread pieces alike).
     double largest_sample_share(int x, int y) const {
         const size_t i = size_t(y) * m_w + x;
-        const double c = clamped_y(x, y), sum = m_xyz[i].y - c;
-        return sum > 0 ? std::min(1.0, (m_max_y[i] - c) / sum) : 0.0;
+        if (!m_n[i]) return 0;
+        const double n = double(m_n[i]), c = clamped_y(x, y);
+        const double total = (m_xyz[i].y - c) / n + (m_spread.empty() ? 0.0 : m_spread[i].y);
+        return total > 0 ? std::min(1.0, largest_contribution_y(x, y) / n / total) : 0.0;
     }
     /// The summed luminance (Y) of the pixel's own samples (before any clamp; no splats).
     double sample_sum_y(int x, int y) const { return m_xyz[size_t(y) * m_w + x].y; }
     /// The largest luminance (Y) one of the pixel's samples carried (before any clamp).
     double largest_sample_y(int x, int y) const { return m_max_y[size_t(y) * m_w + x]; }
-    /// The technique that delivered that sample (-1: not known).
+    /// The largest contribution to the pixel after the clamp, as a sample's luminance (the
+    /// pixel's mean is the sum of these over its sample count): its largest own sample, clamped,
+    /// or the largest piece of a spread sample, whichever is larger.
+    double largest_contribution_y(int x, int y) const {
+        const size_t i = size_t(y) * m_w + x;
+        const double own = m_max_y[i] - clamped_y(x, y);
+        return m_piece_y.empty() ? own : std::max(own, m_piece_y[i] * double(m_n[i]));
+    }
+    /// The technique that delivered the pixel's largest sample (-1: not known). (A spread piece
+    /// never dominates a pixel: set_max_sample_share widens its disc or drops it.)
     int largest_sample_technique(int x, int y) const { return m_max_technique[size_t(y) * m_w + x]; }
+    /// The light the clamp's spread added to the pixel (XYZ, a mean; 0 without spread).
+    Vec3 spread_xyz(int x, int y) const { return m_spread.empty() ? Vec3() : m_spread[size_t(y) * m_w + x]; }
+    /// The radius the clamped light of this pixel was spread over (0: not spread; a clamped
+    /// pixel with 0 had its light dropped: no disc up to spread_radius hid it).
+    int spread_radius_at(int x, int y) const { return m_spread_r.empty() ? 0 : m_spread_r[size_t(y) * m_w + x]; }
     /// Adds a splat to `layer` (0: the image, k > 0: debug layer k).
     void add_splat(int x, int y, const Vec3& xyz, int layer = 0) {
         if (size_t(layer) >= m_splats.size()) m_splats.resize(size_t(layer) + 1);
@@ -85,6 +113,7 @@ public:
         Vec3 sum = m_xyz[i];
         if (const double c = clamped_y(x, y); c > 0) sum -= m_max_xyz[i] * (c / m_max_y[i]);
         Vec3 v = m_n[i] ? sum / double(m_n[i]) : Vec3();
+        if (!m_spread.empty()) v += m_spread[i];
         if (!m_splats.empty() && !m_splats[0].empty()) v += m_splats[0][i] * m_splat_scale;
         return v;
     }
@@ -104,10 +133,18 @@ private:
     int m_w, m_h;
     std::vector<Vec3> m_xyz;
     std::vector<uint64_t> m_n;
-    std::vector<double> m_max_y;              // largest single-sample luminance per pixel
-    std::vector<Vec3> m_max_xyz;              // that sample's XYZ
-    std::vector<int8_t> m_max_technique;      // and its technique (-1: unknown)
-    double m_max_share = 0;                   // set_max_sample_share
+    std::vector<double> m_max_y;          // largest single-sample luminance per pixel
+    std::vector<Vec3> m_max_xyz;          // that sample's XYZ
+    std::vector<int8_t> m_max_technique;  // and its technique (-1: unknown)
+    double m_max_share = 0;               // set_max_sample_share
+    int m_spread_radius = 0;              // and its spread_radius
+    // The clamp's spread (empty without): light added per pixel (a mean), the largest piece
+    // of one sample among it (luminance, a mean), and per clamped pixel the radius its light
+    // was spread over.
+    std::vector<Vec3> m_spread;
+    std::vector<double> m_piece_y;
+    std::vector<uint8_t> m_spread_r;
+    void spread_clamped_light();
     std::vector<std::vector<Vec3>> m_splats;  // per layer; empty until first splat
     double m_splat_scale = 0;
 };
@@ -132,6 +169,12 @@ struct PixelDominance {
     /// share of the image's (camera-sample) luminance it removed: the clamp's bias.
     uint64_t clamped = 0;
     double clamped_share = 0;
+    /// With spread_radius: the share of the image's luminance spread back over neighbours (the
+    /// light lost is clamped_share - spread_share), the widest disc used, and the clamped
+    /// pixels whose light no disc hid and was dropped.
+    double spread_share = 0;
+    int spread_radius = 0;
+    uint64_t spread_dropped = 0;
 };
 /// Film::largest_sample_share over the film's pixels.
 PixelDominance pixel_dominance(const Film& film);

@@ -69,6 +69,9 @@ void to_json(nlohmann::json& j, const RenderReport& r) {
           {"max_share", r.max_sample_share},
           {"clamped", r.pixels_clamped},
           {"clamped_share", r.clamped_share},
+          {"spread_share", r.spread_share},
+          {"spread_radius", r.spread_radius},
+          {"spread_dropped", r.spread_dropped},
           {"by_technique", r.dominated_by_technique}}},
         {"extra", r.extra},
         {"counters", r.counters},
@@ -107,6 +110,9 @@ void from_json(const nlohmann::json& j, RenderReport& r) {
         if (auto it = d->find("outliers"); it != d->end()) it->get_to(r.pixels_outlier);
         if (auto it = d->find("clamped"); it != d->end()) it->get_to(r.pixels_clamped);
         if (auto it = d->find("clamped_share"); it != d->end()) it->get_to(r.clamped_share);
+        if (auto it = d->find("spread_share"); it != d->end()) it->get_to(r.spread_share);
+        if (auto it = d->find("spread_radius"); it != d->end()) it->get_to(r.spread_radius);
+        if (auto it = d->find("spread_dropped"); it != d->end()) it->get_to(r.spread_dropped);
         if (auto it = d->find("by_technique"); it != d->end()) it->get_to(r.dominated_by_technique);
     }
     if (auto it = j.find("extra"); it != j.end()) r.extra = *it;

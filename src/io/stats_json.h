@@ -34,9 +34,12 @@ struct RenderReport {
     /// Pixel dominance (render/renderer.h PixelDominance), written under "dominance": pixels
     /// with a positive sum, those where one sample carries more than half of it, and the
     /// largest such share; with an outlier clamp (max_sample_share), the pixels it scaled
-    /// down and the share of the luminance it removed.
+    /// down and the share of the luminance it took from them; with its spread, the share of
+    /// the luminance spread back over neighbours and the widest disc (pixels) used.
     uint64_t pixels = 0, pixels_dominated = 0, pixels_outlier = 0, pixels_clamped = 0;
-    double max_sample_share = 0, clamped_share = 0;
+    double max_sample_share = 0, clamped_share = 0, spread_share = 0;
+    int spread_radius = 0;
+    uint64_t spread_dropped = 0;
     /// Dominated pixels by the technique that delivered their largest sample (integrators that
     /// name their techniques: the path-tracing family, pt, path, nee, direct, mnee; empty for
     /// the others); "dominance.by_technique".

@@ -178,7 +178,7 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
     // Splat estimators divide by the camera samples each pixel received (total / pixels).
     result.film.set_splat_scale(total > 0 ? double(w) * double(h) / double(total) : 0.0);
     result.interrupted = cancel && cancel->load() && (timed || done_spp < uint64_t(opt.spp));
-    result.film.set_max_sample_share(tracer.max_sample_share());
+    result.film.set_max_sample_share(tracer.max_sample_share(), tracer.clamp_spread());
     result.dominance = pixel_dominance(result.film);
     result.counters = stat_totals();
     result.layer_names = tracer.layer_names();

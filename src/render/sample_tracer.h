@@ -51,6 +51,9 @@ public:
     virtual std::vector<std::string> layer_names() const { return {}; }
     /// The film's outlier clamp (Film::set_max_sample_share) for this estimator; 0: none.
     virtual double max_sample_share() const { return 0; }
+    /// The clamp's spread radius in pixels (Film::set_max_sample_share); 0: the clamped light
+    /// is dropped.
+    virtual int clamp_spread() const { return 0; }
     /// Names of the techniques li_splat() reports with note_sample_technique() (empty: none).
     virtual std::vector<std::string> technique_names() const { return {}; }
 };

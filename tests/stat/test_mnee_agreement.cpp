@@ -163,8 +163,11 @@ TEST(MneeAgreement, BiasedModeDropsInternalReflectionsAndKeepsTheRefractedLight)
 }
 
 // The biased mode's outlier clamp (max_sample_share 0.5 by default): no pixel is dominated by one
-// sample, the clamp removes little of the image, and without it (max_sample_share=0) the same
-// render has dominated pixels (MNEE's own samples at the droplet caustic's fold).
+// sample, the clamp takes little of the image and its spread (clamp_spread 8 by default) puts
+// nearly all of that back on neighbouring pixels, and without it (max_sample_share=0) the same
+// render has dominated pixels (MNEE's own samples at the droplet caustic's fold). The renders
+// share their samples (fixed seeds), so the images' sums differ by exactly the light the clamp
+// drops: with the spread, what no disc hid; with clamp_spread=0, all it takes.
 TEST(MneeAgreement, BiasedModeLetsNoSampleDominateAPixel) {
     const auto run = [](const std::string& extra) {
         LoadedScene ls = load_xml(scene_with(smooth_water(), R"(<boolean name="biased" value="true"/>)" + extra),
@@ -176,8 +179,8 @@ TEST(MneeAgreement, BiasedModeLetsNoSampleDominateAPixel) {
     };
     const RenderResult clamped = run(""), raw = run(R"(<float name="max_sample_share" value="0"/>)");
     std::cout << "[biased] dominated pixels " << raw.dominance.dominated << " -> " << clamped.dominance.dominated
-              << ", clamped " << clamped.dominance.clamped << " removing " << clamped.dominance.clamped_share
-              << " of the luminance\n";
+              << ", clamped " << clamped.dominance.clamped << " taking " << clamped.dominance.clamped_share
+              << " of the luminance, " << clamped.dominance.spread_share << " spread back\n";
     EXPECT_GT(raw.dominance.dominated, 0u);
     EXPECT_EQ(raw.dominance.clamped, 0u);
     // Every dominated pixel names the technique of its largest sample.
@@ -193,6 +196,19 @@ TEST(MneeAgreement, BiasedModeLetsNoSampleDominateAPixel) {
     EXPECT_EQ(clamped.dominance.dominated, 0u);
     EXPECT_GT(clamped.dominance.clamped, 0u);
     EXPECT_LT(clamped.dominance.clamped_share, 0.05);
+    EXPECT_GT(clamped.dominance.spread_share, 0.9 * clamped.dominance.clamped_share);
+    const RenderResult dropped = run(R"(<integer name="clamp_spread" value="0"/>)");
+    EXPECT_EQ(dropped.dominance.dominated, 0u);
+    EXPECT_EQ(dropped.dominance.spread_share, 0.0);
+    const auto image_y = [](const Film& f) {
+        double s = 0;
+        for (int y = 0; y < f.height(); ++y)
+            for (int x = 0; x < f.width(); ++x) s += f.xyz(x, y).y;
+        return s;
+    };
+    const double lost = clamped.dominance.clamped_share - clamped.dominance.spread_share;
+    EXPECT_NEAR(image_y(clamped.film) / image_y(raw.film), 1 - lost, 1e-9);
+    EXPECT_NEAR(image_y(dropped.film) / image_y(raw.film), 1 - dropped.dominance.clamped_share, 1e-9);
     EXPECT_THROW(
         load_xml(scene_with(smooth_water(), R"(<float name="max_sample_share" value="1"/>)"), {{"integrator", "mnee"}}),
         SceneError);

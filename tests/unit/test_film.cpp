@@ -181,3 +181,91 @@ TEST(Film, MaxSampleShareBiasVanishesWithMoreSamples) {
     EXPECT_LT(b64, b4 / 3);
     EXPECT_LT(b1024, b64 / 3);
 }
+
+namespace {
+/// The image's summed luminance (pixel means).
+double image_y(const Film& f) {
+    double s = 0;
+    for (int y = 0; y < f.height(); ++y)
+        for (int x = 0; x < f.width(); ++x) s += f.xyz(x, y).y;
+    return s;
+}
+}  // namespace
+
+// The clamp's spread on a firefly amid an even background (4 samples of Y = 1 per pixel; one
+// pixel's fourth sample is 40): the clamp takes 37 of its 40 (9.25 of the pixel's mean). Over the
+// 3x3 disc each piece (1.03) would carry half of a pixel of mean 1; over the 21 pixels of radius
+// 2 a piece (0.44) carries 0.31. So the smallest disc that leaves no pixel dominated is radius 2,
+// the image keeps all its light, and no pixel is dominated; radius 0 drops the light instead.
+TEST(Film, ClampSpreadKeepsTheLightOnTheSmallestUndominatedDisc) {
+    const auto make = [] {
+        Film f(16, 16);
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x)
+                for (int i = 0; i < 4; ++i)
+                    f.add(x, y, Vec3(0.5, 1.0, 0.5) * (x == 7 && y == 8 && i == 3 ? 40.0 : 1.0));
+        return f;
+    };
+    Film raw = make(), dropped = make(), spread = make();
+    dropped.set_max_sample_share(0.5);
+    spread.set_max_sample_share(0.5, 8);
+    EXPECT_NEAR(image_y(raw) - image_y(dropped), 37.0 / 4.0, 1e-9);
+    EXPECT_NEAR(image_y(spread), image_y(raw), 1e-9) << "the spread keeps the light the clamp takes";
+    EXPECT_EQ(spread.spread_radius_at(7, 8), 2);
+    EXPECT_EQ(spread.spread_radius_at(0, 0), 0) << "unclamped pixels spread nothing";
+    EXPECT_NEAR(spread.xyz(9, 9).y, 1.0 + 9.25 / 21.0, 1e-12) << "(2, 1) from the firefly: in the disc";
+    EXPECT_DOUBLE_EQ(spread.xyz(9, 10).y, 1.0) << "(2, 2): outside it";
+    EXPECT_NEAR(spread.xyz(9, 9).x / spread.xyz(9, 9).y, 0.5, 1e-12) << "the pieces keep the firefly's colour";
+    const PixelDominance d = pixel_dominance(spread);
+    EXPECT_EQ(d.dominated, 0u);
+    EXPECT_EQ(d.clamped, 1u);
+    EXPECT_EQ(d.spread_radius, 2);
+    EXPECT_NEAR(d.spread_share, d.clamped_share, 1e-12);
+    EXPECT_EQ(pixel_dominance(dropped).spread_share, 0.0);
+}
+
+// A caustic's dim halo at a few samples per pixel: each of 16 samples lands in the light with
+// probability 1/16 and then carries 16 (mean 1). Most lit pixels have one such sample, which the
+// clamp alone takes whole (the others sum to 0): the halo loses 40 % of its light. Spread, the
+// pieces of neighbouring samples add up to an image whose mean is the halo's, in which no pixel
+// is dominated; only a few samples at the image's edge find too little light around them. A
+// lone firefly on black would dominate every pixel
+// of any disc: its light is dropped, as by the clamp alone, and counted.
+TEST(Film, ClampSpreadTurnsARareSampleHaloIntoItsMean) {
+    PCG32 rng(3, 5);
+    const auto halo = [&] {
+        Film f(64, 64);
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x)
+                for (int i = 0; i < 16; ++i) f.add(x, y, Vec3(0, rng.next_double() < 1.0 / 16 ? 16.0 : 0.0, 0));
+        return f;
+    };
+    Film dropped = halo(), spread = halo();
+    dropped.set_max_sample_share(0.5);
+    spread.set_max_sample_share(0.5, 8);
+    const double pixels = 64.0 * 64.0;
+    std::cout << "[spread] halo mean " << image_y(spread) / pixels << " (clamp alone " << image_y(dropped) / pixels
+              << "), widest disc " << pixel_dominance(spread).spread_radius << "\n";
+    EXPECT_LT(image_y(dropped) / pixels, 0.7) << "the clamp alone takes the light of every one-sample pixel";
+    EXPECT_NEAR(image_y(spread) / pixels, 1.0, 0.03);
+    const PixelDominance d = pixel_dominance(spread);
+    EXPECT_EQ(d.dominated, 0u);
+    EXPECT_GT(d.spread_radius, 1);
+    EXPECT_LT(d.clamped_share - d.spread_share, 0.01) << "little is dropped (at the image's edge)";
+
+    Film lone(32, 32);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x)
+            if (x == 10 && y == 10)
+                lone.add_sum(x, y, Vec3(0, 50, 0), 4, Vec3(0, 50, 0), 3);  // one sample of 50, three of 0
+            else
+                lone.add_sum(x, y, Vec3(), 4, Vec3(), 0);
+    lone.set_max_sample_share(0.5, 3);
+    EXPECT_EQ(lone.spread_radius_at(10, 10), 0);
+    EXPECT_EQ(image_y(lone), 0.0);
+    const PixelDominance l = pixel_dominance(lone);
+    EXPECT_EQ(l.dominated, 0u);
+    EXPECT_EQ(l.clamped, 1u);
+    EXPECT_EQ(l.spread_dropped, 1u);
+    EXPECT_EQ(l.spread_share, 0.0);
+}

@@ -44,6 +44,10 @@ RenderReport sample_report() {
     r.set_counters(stat_totals());
     r.extra = {{"walks", {{"attempted", 1000}, {"converged", 640}, {"mean_iterations", 4.25}}}};
     r.pixels_dominated = 7;
+    r.clamped_share = 0.03;
+    r.spread_share = 0.025;
+    r.spread_radius = 6;
+    r.spread_dropped = 4;
     r.dominated_by_technique = {{"mnee_straight", 5}, {"bsdf_refracted", 2}};
     return r;
 }
@@ -87,6 +91,9 @@ TEST(StatsJson, FileRoundTrip) {
     EXPECT_EQ(j.at("extra").at("walks").at("converged"), 640);
     EXPECT_EQ(j.at("dominance").at("dominated"), 7u);
     EXPECT_EQ(j.at("dominance").at("by_technique").at("mnee_straight"), 5u);
+    EXPECT_EQ(j.at("dominance").at("spread_share"), 0.025);
+    EXPECT_EQ(j.at("dominance").at("spread_radius"), 6);
+    EXPECT_EQ(j.at("dominance").at("spread_dropped"), 4u);
     // Every registered statistic by name; a histogram without its trailing empty bins.
     EXPECT_EQ(j.at("counters").at("render.paths"), 46080000u);
     EXPECT_EQ(j.at("counters").at("scene.shadow_rays"), 25000000u);

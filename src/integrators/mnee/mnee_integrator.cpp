@@ -108,6 +108,7 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
 PathSettings MneeIntegrator::path_settings_from_props(const Props& p) {
     PathSettings s = PathSettings::tracer_from_props(p);
     if (p.get_bool("biased", false) && !p.has("max_sample_share")) s.max_sample_share = kBiasedMaxSampleShare;
+    if (p.get_bool("biased", false) && !p.has("clamp_spread")) s.clamp_spread = kBiasedClampSpread;
     return s;
 }
 

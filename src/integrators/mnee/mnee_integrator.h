@@ -19,6 +19,10 @@ struct MneePathState : PathState {
 /// (a fold's penumbra, rare solutions in a lens's aberration halo; docs/mnee.md), which no rule
 /// on the paths can tell from the caustic; the clamp is relative to the pixel, so scale-free.
 inline constexpr double kBiasedMaxSampleShare = 0.5;
+/// ... and the light the clamp takes is spread over discs of up to this many pixels rather than
+/// dropped (Film::set_max_sample_share): a caustic's dim halo, which at a few samples per pixel
+/// is all rare bright samples, keeps its light (docs/mnee.md, "Biased mode").
+inline constexpr int kBiasedClampSpread = 8;
 
 class MneeIntegrator : public PathTracer {
 public:

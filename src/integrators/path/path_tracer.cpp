@@ -27,6 +27,10 @@ PathSettings PathSettings::tracer_from_props(const Props& props) {
     s.max_sample_share = props.get_float("max_sample_share", 0.0);
     if (!(s.max_sample_share >= 0 && s.max_sample_share < 1))
         props.raise_param("max_sample_share", "must lie in [0, 1) (0: no clamp)");
+    const int64_t spread = props.get_int("clamp_spread", 0);
+    if (spread < 0 || spread > 255)
+        props.raise_param("clamp_spread", "must lie in [0, 255] pixels (0: the clamped light is dropped)");
+    s.clamp_spread = int(spread);
     return s;
 }
 

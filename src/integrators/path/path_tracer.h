@@ -26,6 +26,10 @@ struct PathSettings {
     /// largest sample carries at most this share of it. Biased; 0 (default): off. mnee's
     /// `biased` mode defaults it to 0.5 (MneeIntegrator::path_settings_from_props).
     double max_sample_share = 0;
+    /// (clamp_spread) with the clamp, the widest disc (pixels) its light is spread over instead
+    /// of being dropped (Film::set_max_sample_share); 0 (default): dropped. mnee's `biased` mode
+    /// defaults it to kBiasedClampSpread.
+    int clamp_spread = 0;
     /// The settings every integrator built on paths reads (bdpt, pssmlt and erpt too).
     static PathSettings from_props(const Props& props);
     /// from_props plus max_sample_share: the integrators whose samples the film clamps (the
@@ -92,6 +96,7 @@ public:
         return m_estimator.li(ray, scene, sampler, cs.wl);
     }
     double max_sample_share() const override { return m_estimator.settings().max_sample_share; }
+    int clamp_spread() const override { return m_estimator.settings().clamp_spread; }
     std::vector<std::string> technique_names() const override { return path_technique_names(); }
 
 private:
