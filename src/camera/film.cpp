@@ -49,21 +49,21 @@ uint64_t Film::values_beyond_float(int layer) const {
 
 PixelDominance pixel_dominance(const Film& film) {
     PixelDominance d;
-    double total = 0, clamped = 0, spread = 0;
+    double total = 0, clamped = 0;
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) {
             const double c = film.clamped_y(x, y);
             total += film.sample_sum_y(x, y);
             clamped += c;
             d.clamped += c > 0;
-            spread += film.spread_xyz(x, y).y * double(film.samples(x, y));
+
             d.spread_radius = std::max(d.spread_radius, film.spread_radius_at(x, y));
-            d.spread_dropped += c > 0 && film.spread_radius() > 0 && film.spread_radius_at(x, y) == 0;
             const double share = film.largest_sample_share(x, y);
             if (!(share > 0)) continue;
             ++d.pixels;
             d.max_share = std::max(d.max_share, share);
-            if (!(share > PixelDominance::kThreshold)) continue;
+            // Beyond rounding: two equal pieces make a share of exactly one half.
+            if (!(share > PixelDominance::kThreshold + 1e-9)) continue;
             ++d.dominated;
             if (const int t = film.largest_sample_technique(x, y); t >= 0) {
                 if (size_t(t) >= d.dominated_by_technique.size()) d.dominated_by_technique.resize(size_t(t) + 1, 0);
@@ -82,7 +82,10 @@ PixelDominance pixel_dominance(const Film& film) {
                 ++d.outliers;
         }
     d.clamped_share = total > 0 ? clamped / total : 0.0;
-    d.spread_share = total > 0 ? spread / total : 0.0;
+    if (film.spread_radius() > 0) {
+        d.spread_share = d.clamped_share * film.spread_delivered();
+        d.spread_dropped = film.spread_cut_pixels();
+    }
     return d;
 }
 

@@ -47,10 +47,12 @@ public:
     /// sum of the others. Biased, and consistent: with a finite mean the largest of n samples
     /// grows slower than their sum, so the clamp stops acting as n grows. 0: off.
     /// With `spread_radius` > 0 the light the clamp takes is not dropped but spread evenly over
-    /// the smallest disc around its pixel (radius at most spread_radius pixels) in which its
-    /// share of every pixel is at most `s` too: the image keeps its light and the bias is a local
-    /// blur of the fireflies (film_spread.cpp). Only light that no such disc hides (a lone
-    /// firefly on black) is dropped. Call it after the last sample: the spread is computed here.
+    /// a disc around its pixel (radius at most spread_radius pixels; the smallest that holds
+    /// twice that light from elsewhere, widened until its share of every pixel is at most `s`
+    /// too): the image keeps its light and the bias is a local blur of the fireflies
+    /// (film_spread.cpp). Only light that no such disc hides, not even over the lit pixels alone
+    /// (a lone firefly on black), is dropped, and only at the pixels it would dominate. Call it
+    /// after the last sample: the spread is computed here.
     void set_max_sample_share(double s, int spread_radius = 0) {
         m_max_share = s;
         m_spread_radius = spread_radius;
@@ -77,7 +79,9 @@ public:
         if (!m_n[i]) return 0;
         const double n = double(m_n[i]), c = clamped_y(x, y);
         const double total = (m_xyz[i].y - c) / n + (m_spread.empty() ? 0.0 : m_spread[i].y);
-        return total > 0 ? std::min(1.0, largest_contribution_y(x, y) / n / total) : 0.0;
+        // As means (a piece is one), so that a piece at exactly the share does not round above it.
+        const double largest = std::max((m_max_y[i] - c) / n, m_piece_y.empty() ? 0.0 : m_piece_y[i]);
+        return total > 0 ? std::min(1.0, largest / total) : 0.0;
     }
     /// The summed luminance (Y) of the pixel's own samples (before any clamp; no splats).
     double sample_sum_y(int x, int y) const { return m_xyz[size_t(y) * m_w + x].y; }
@@ -91,13 +95,17 @@ public:
         const double own = m_max_y[i] - clamped_y(x, y);
         return m_piece_y.empty() ? own : std::max(own, m_piece_y[i] * double(m_n[i]));
     }
-    /// The technique that delivered the pixel's largest sample (-1: not known). (A spread piece
-    /// never dominates a pixel: set_max_sample_share widens its disc or drops it.)
+    /// The technique that delivered the pixel's largest sample (-1: not known). (With a share
+    /// of at most 0.5, the biased mode's, a spread piece never dominates a pixel:
+    /// set_max_sample_share widens its disc or drops it.)
     int largest_sample_technique(int x, int y) const { return m_max_technique[size_t(y) * m_w + x]; }
     /// The light the clamp's spread added to the pixel (XYZ, a mean; 0 without spread).
     Vec3 spread_xyz(int x, int y) const { return m_spread.empty() ? Vec3() : m_spread[size_t(y) * m_w + x]; }
-    /// The radius the clamped light of this pixel was spread over (0: not spread; a clamped
-    /// pixel with 0 had its light dropped: no disc up to spread_radius hid it).
+    /// Of the light the clamp took (as pixel means), the share the spread delivered (1 when no
+    /// pixel's pieces had to be cut), and the pixels where pieces were cut.
+    double spread_delivered() const { return m_spread_taken_y > 0 ? m_spread_given_y / m_spread_taken_y : 1.0; }
+    uint64_t spread_cut_pixels() const { return m_spread_capped; }
+    /// The radius the clamped light of this pixel was spread over (0: not spread).
     int spread_radius_at(int x, int y) const { return m_spread_r.empty() ? 0 : m_spread_r[size_t(y) * m_w + x]; }
     /// Adds a splat to `layer` (0: the image, k > 0: debug layer k).
     void add_splat(int x, int y, const Vec3& xyz, int layer = 0) {
@@ -144,6 +152,8 @@ private:
     std::vector<Vec3> m_spread;
     std::vector<double> m_piece_y;
     std::vector<uint8_t> m_spread_r;
+    uint64_t m_spread_capped = 0;                       // pixels where spread light was cut
+    double m_spread_taken_y = 0, m_spread_given_y = 0;  // light spread (means), and delivered
     void spread_clamped_light();
     std::vector<std::vector<Vec3>> m_splats;  // per layer; empty until first splat
     double m_splat_scale = 0;
@@ -170,8 +180,8 @@ struct PixelDominance {
     uint64_t clamped = 0;
     double clamped_share = 0;
     /// With spread_radius: the share of the image's luminance spread back over neighbours (the
-    /// light lost is clamped_share - spread_share), the widest disc used, and the clamped
-    /// pixels whose light no disc hid and was dropped.
+    /// light lost is clamped_share - spread_share), the widest disc used, and the pixels where
+    /// spread light was cut because no disc hid its source (film_spread.cpp).
     double spread_share = 0;
     int spread_radius = 0;
     uint64_t spread_dropped = 0;

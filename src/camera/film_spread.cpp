@@ -5,7 +5,9 @@
 // neighbourhood can: spread over a disc, the pieces of many such samples add up to a smooth
 // image in which none dominates. Energy is kept exactly; the bias is a blur of the clamped
 // light over at most spread_radius pixels, and like the clamp it fades as samples grow.
+#include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "camera/film.h"
 
@@ -42,6 +44,8 @@ void Film::spread_clamped_light() {
     m_spread.clear();
     m_piece_y.clear();
     m_spread_r.clear();
+    m_spread_capped = 0;
+    m_spread_taken_y = m_spread_given_y = 0;
     if (!(m_max_share > 0) || m_spread_radius <= 0) return;
     const int radius_cap = std::min(m_spread_radius, 255);
     const size_t n = m_xyz.size();
@@ -52,7 +56,8 @@ void Film::spread_clamped_light() {
         int x, y;
         Vec3 light;
         int r = 1;
-        bool dropped = false;
+        bool lit_only = false;  // spread over lit pixels only (see the rounds below)
+        bool stuck = false;     // at its widest: moves no more
     };
     std::vector<Source> sources;
     std::vector<double> own_y(n, 0.0);  // each pixel's mean luminance after the clamp
@@ -65,19 +70,20 @@ void Film::spread_clamped_light() {
             if (c > 0) sources.push_back({x, y, m_max_xyz[i] * (c / m_max_y[i] / double(m_n[i]))});
         }
     if (sources.empty()) return;
+    std::vector<double> light_y(n, 0.0);  // each source pixel's clamped light
+    for (const Source& s : sources) light_y[size_t(s.y) * m_w + s.x] = s.light.y;
     const DiscOffsets disc(radius_cap);
-    const auto for_disc = [&](const Source& s, int r, auto&& f) {
-        for (size_t k = 0; k < disc.end[size_t(r)]; ++k) {
+    const auto for_disc = [&](const Source& s, auto&& f) {
+        for (size_t k = 0; k < disc.end[size_t(s.r)]; ++k) {
             const int x = s.x + disc.d[k].first, y = s.y + disc.d[k].second;
             if (x < 0 || y < 0 || x >= m_w || y >= m_h) continue;
             // Pixels that received samples only: the image's edge and unrendered pixels lose nothing.
-            if (const size_t i = size_t(y) * m_w + x; m_n[i] > 0) f(i);
+            const size_t i = size_t(y) * m_w + x;
+            if (m_n[i] > 0 && (!s.lit_only || own_y[i] > 0 || light_y[i] > 0)) f(i);
         }
     };
 
     // Starting discs (kLightAround).
-    std::vector<double> light_y(n, 0.0);
-    for (const Source& s : sources) light_y[size_t(s.y) * m_w + s.x] = s.light.y;
     for (Source& s : sources) {
         double around = -s.light.y;
         size_t k = 0;
@@ -92,51 +98,174 @@ void Film::spread_clamped_light() {
         }
     }
 
+    // Each source spreads its light evenly over its disc's pixels (its support). Rounds then
+    // widen, together, the discs of the sources whose piece still carries more than the share
+    // allowed of some pixel (together, so that neighbouring discs grow into each other's gaps).
+    // A source that still does so at radius_cap usually has black pixels in its disc (a firefly
+    // beside a shadow), where any piece is all of the pixel: it starts again from radius 1 over
+    // lit pixels only (pixels with light of their own or clamped light), which keeps the black
+    // ones black. One that dominates even so, at radius_cap, stays as it is. Each source only
+    // moves forward (wider, then lit only, then stuck), so the rounds end. Last, a pixel that a
+    // stuck source's piece still dominates keeps of each piece only as much as lets none
+    // dominate it (below): that light is dropped, as by the clamp alone, but only there. (Dropping
+    // the whole source instead would take light from the pixels around it, leave other sources
+    // dominating there, and where clamped light is sparse and uneven, a heavy tail on black, run
+    // on from source to source.)
+    std::vector<double> piece_y(sources.size());  // each source's piece (luminance)
+    std::vector<int64_t> source_at(n, -1);
+    for (size_t k = 0; k < sources.size(); ++k) source_at[size_t(sources[k].y) * m_w + sources[k].x] = int64_t(k);
+    // Adds (sign 1) or removes (-1) source k's pieces; `touched` collects its support.
+    const auto spread = [&](size_t k, double sign, std::vector<size_t>* touched) {
+        const Source& s = sources[k];
+        int count = 0;
+        for_disc(s, [&](size_t) { ++count; });
+        const Vec3 piece = s.light / double(count);  // count >= 1: the source itself
+        piece_y[k] = piece.y;
+        for_disc(s, [&](size_t i) {
+            m_spread[i] += piece * sign;
+            if (touched) touched->push_back(i);
+        });
+    };
+    const auto supports = [&](const Source& s, size_t i) {
+        const int dx = int(i % size_t(m_w)) - s.x, dy = int(i / size_t(m_w)) - s.y;
+        return dx * dx + dy * dy <= s.r * s.r + s.r && m_n[i] > 0 && (!s.lit_only || own_y[i] > 0 || light_y[i] > 0);
+    };
+    // The source whose piece is largest at pixel i (-1: none), from the sources within reach.
+    const auto largest_piece = [&](size_t i) {
+        const int x = int(i % size_t(m_w)), y = int(i / size_t(m_w));
+        int64_t best = -1;
+        for (int v = std::max(0, y - radius_cap); v <= std::min(m_h - 1, y + radius_cap); ++v)
+            for (int u = std::max(0, x - radius_cap); u <= std::min(m_w - 1, x + radius_cap); ++u) {
+                const int64_t k = source_at[size_t(v) * m_w + u];
+                if (k >= 0 && supports(sources[size_t(k)], i) &&
+                    (best < 0 || piece_y[size_t(k)] > piece_y[size_t(best)]))
+                    best = k;
+            }
+        return best;
+    };
+
     m_spread.assign(n, Vec3());
     m_piece_y.assign(n, 0.0);
-    std::vector<int64_t> piece_src(n, -1);  // the source of each pixel's largest piece
-    std::vector<uint8_t> act(sources.size());
-    // Each round spreads every source evenly over its disc, then widens the disc of each source
-    // whose piece still carries more than the share allowed of some pixel. A source that still
-    // does so at radius_cap is a firefly with too little light around it to hide in (its light
-    // would show as a faint disc of its own): its light is dropped, as by the clamp alone, and
-    // the next round checks the pixels it lit. Discs only grow and sources are only dropped, so
-    // the rounds end.
-    for (;;) {
-        std::fill(m_spread.begin(), m_spread.end(), Vec3());
-        std::fill(m_piece_y.begin(), m_piece_y.end(), 0.0);
-        std::fill(piece_src.begin(), piece_src.end(), -1);
-        for (size_t k = 0; k < sources.size(); ++k) {
-            const Source& s = sources[k];
-            if (s.dropped) continue;
-            int count = 0;
-            for_disc(s, s.r, [&](size_t) { ++count; });
-            const Vec3 piece = s.light / double(count);  // count >= 1: the source itself
-            for_disc(s, s.r, [&](size_t i) {
-                m_spread[i] += piece;
-                if (piece.y > m_piece_y[i]) {
-                    m_piece_y[i] = piece.y;
-                    piece_src[i] = int64_t(k);
-                }
-            });
+    std::vector<int64_t> best(n, -1);  // the source of each pixel's largest piece
+    std::vector<uint8_t> acting(sources.size()), fresh(n);
+    std::vector<size_t> round, next, touched;
+    // A move lowers the light of the pixels the source leaves or thins, which can leave other
+    // sources dominating there; where clamped light is sparse and uneven (a heavy tail on black)
+    // this runs on from source to source for hundreds of rounds. After this many (a source
+    // needs at most 2 radius_cap + 1 moves), sources that still dominate stay as they are, and
+    // the cut below takes care of the pixels they dominate.
+    const int max_rounds = 4 * radius_cap + 4;
+    int rounds = 0;
+    // Queues the source of pixel i's largest piece if that piece dominates the pixel.
+    const auto check = [&](size_t i) {
+        const int64_t k = best[i];
+        if (k >= 0 && !acting[size_t(k)] && !sources[size_t(k)].stuck &&
+            piece_y[size_t(k)] > m_max_share * (own_y[i] + m_spread[i].y)) {
+            acting[size_t(k)] = 1;
+            next.push_back(size_t(k));
         }
-        std::fill(act.begin(), act.end(), 0);
-        bool any = false;
-        for (size_t i = 0; i < n; ++i)
-            if (piece_src[i] >= 0 && m_piece_y[i] > m_max_share * (own_y[i] + m_spread[i].y))
-                act[size_t(piece_src[i])] = any = true;
-        if (!any) break;
+    };
+    for (;;) {
+        // A full pass, exact (each pixel's light summed afresh), finds the sources whose pieces
+        // dominate a pixel; the rounds then update the sums in place, each at the cost of the
+        // sources it moves.
+        std::fill(m_spread.begin(), m_spread.end(), Vec3());
+        std::fill(best.begin(), best.end(), -1);
+        for (size_t k = 0; k < sources.size(); ++k) spread(k, 1.0, nullptr);
         for (size_t k = 0; k < sources.size(); ++k)
-            if (act[k]) {
-                if (sources[k].r < radius_cap)
-                    ++sources[k].r;
-                else
-                    sources[k].dropped = true;
+            for_disc(sources[k], [&](size_t i) {
+                if (best[i] < 0 || piece_y[k] > piece_y[size_t(best[i])]) best[i] = int64_t(k);
+            });
+        for (size_t i = 0; i < n; ++i) check(i);
+        if (next.empty()) break;
+        while (!next.empty()) {
+            round.swap(next);
+            next.clear();
+            touched.clear();
+            ++rounds;
+            for (size_t k : round) {
+                spread(k, -1.0, &touched);
+                Source& src = sources[k];
+                if (rounds > max_rounds) {
+                    src.stuck = true;
+                } else if (src.r < radius_cap) {
+                    ++src.r;
+                } else if (!src.lit_only) {
+                    src.lit_only = true;
+                    src.r = 1;
+                } else {
+                    src.stuck = true;
+                }
             }
+            for (size_t k : round) spread(k, 1.0, &touched);
+            // Where a moved source was largest, the largest is found afresh; elsewhere it is the
+            // old one or a moved source's new piece.
+            for (size_t i : touched)
+                if (!fresh[i] && best[i] >= 0 && acting[size_t(best[i])]) {
+                    best[i] = largest_piece(i);
+                    fresh[i] = 1;
+                }
+            for (size_t k : round)
+                for_disc(sources[k], [&](size_t i) {
+                    if (!fresh[i] && (best[i] < 0 || piece_y[k] > piece_y[size_t(best[i])])) best[i] = int64_t(k);
+                });
+            for (size_t k : round) acting[k] = 0;
+            for (size_t i : touched) {
+                fresh[i] = 0;
+                check(i);
+            }
+        }
+        // The sums now carry rounding; the full pass starts again from zero and checks every pixel
+        // once more (it rarely finds anything left to do).
+    }
+    // Pixels a stuck source's piece dominates: each piece is cut to the largest level c at which
+    // none dominates, c <= s (own + sum of min(piece, c)) (water-filling over the pieces, largest
+    // first); the rest of those pieces is dropped.
+    std::vector<std::pair<double, int64_t>> pieces;
+    for (size_t i = 0; i < n; ++i) {
+        m_piece_y[i] = best[i] >= 0 ? piece_y[size_t(best[i])] : 0.0;
+        if (!(m_piece_y[i] > m_max_share * (own_y[i] + m_spread[i].y))) continue;
+        pieces.clear();
+        const int x = int(i % size_t(m_w)), y = int(i / size_t(m_w));
+        for (int v = std::max(0, y - radius_cap); v <= std::min(m_h - 1, y + radius_cap); ++v)
+            for (int u = std::max(0, x - radius_cap); u <= std::min(m_w - 1, x + radius_cap); ++u)
+                if (const int64_t k = source_at[size_t(v) * m_w + u]; k >= 0 && supports(sources[size_t(k)], i))
+                    pieces.emplace_back(piece_y[size_t(k)], k);
+        std::sort(pieces.begin(), pieces.end(), std::greater<>());
+        // On the segment where k pieces exceed c: c = s (A + k c), A = own + the smaller pieces.
+        double below = own_y[i];
+        for (const auto& p : pieces) below += p.first;
+        double c = 0;
+        for (size_t k = 0; k < pieces.size(); ++k) {
+            below -= pieces[k].first;  // now own + the pieces after the k + 1 largest
+            const double top = pieces[k].first, floor = k + 1 < pieces.size() ? pieces[k + 1].first : 0.0;
+            const double g_top = m_max_share * (below + double(k + 1) * top) - top;
+            if (g_top >= 0) {
+                c = top;
+                break;
+            }
+            if (m_max_share * double(k + 1) < 1) {
+                const double at = m_max_share * below / (1 - m_max_share * double(k + 1));
+                if (at >= floor) {
+                    c = at * (1 - 1e-12);  // just below the equality, which rounding could tip over
+                    break;
+                }
+            }
+        }
+        for (const auto& [py, k] : pieces) {
+            if (!(py > c)) break;
+            m_spread[i] -= sources[size_t(k)].light * ((py - c) / sources[size_t(k)].light.y);
+        }
+        m_piece_y[i] = std::min(m_piece_y[i], c);
+        ++m_spread_capped;
     }
     m_spread_r.assign(n, 0);
-    for (const Source& s : sources)
-        if (!s.dropped) m_spread_r[size_t(s.y) * m_w + s.x] = uint8_t(s.r);
+    m_spread_taken_y = m_spread_given_y = 0;
+    for (const Source& s : sources) {
+        m_spread_r[size_t(s.y) * m_w + s.x] = uint8_t(s.r);
+        m_spread_taken_y += s.light.y;
+    }
+    for (size_t i = 0; i < n; ++i) m_spread_given_y += m_spread[i].y;
 }
 
 }  // namespace snell

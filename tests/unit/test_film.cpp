@@ -216,6 +216,8 @@ TEST(Film, ClampSpreadKeepsTheLightOnTheSmallestUndominatedDisc) {
     EXPECT_NEAR(spread.xyz(9, 9).y, 1.0 + 9.25 / 21.0, 1e-12) << "(2, 1) from the firefly: in the disc";
     EXPECT_DOUBLE_EQ(spread.xyz(9, 10).y, 1.0) << "(2, 2): outside it";
     EXPECT_NEAR(spread.xyz(9, 9).x / spread.xyz(9, 9).y, 0.5, 1e-12) << "the pieces keep the firefly's colour";
+    const double p = 9.25 / 21.0;  // the piece outweighs the pixel's own largest sample (1 of 4: 0.25)
+    EXPECT_NEAR(spread.largest_sample_share(9, 9), p / (1 + p), 1e-12) << "a piece counts as a contribution";
     const PixelDominance d = pixel_dominance(spread);
     EXPECT_EQ(d.dominated, 0u);
     EXPECT_EQ(d.clamped, 1u);
@@ -228,9 +230,8 @@ TEST(Film, ClampSpreadKeepsTheLightOnTheSmallestUndominatedDisc) {
 // probability 1/16 and then carries 16 (mean 1). Most lit pixels have one such sample, which the
 // clamp alone takes whole (the others sum to 0): the halo loses 40 % of its light. Spread, the
 // pieces of neighbouring samples add up to an image whose mean is the halo's, in which no pixel
-// is dominated; only a few samples at the image's edge find too little light around them. A
-// lone firefly on black would dominate every pixel
-// of any disc: its light is dropped, as by the clamp alone, and counted.
+// is dominated. A lone firefly on black would dominate every pixel of any disc: its light is
+// cut where it would dominate (everywhere), as by the clamp alone, and the pixel is counted.
 TEST(Film, ClampSpreadTurnsARareSampleHaloIntoItsMean) {
     PCG32 rng(3, 5);
     const auto halo = [&] {
@@ -261,11 +262,40 @@ TEST(Film, ClampSpreadTurnsARareSampleHaloIntoItsMean) {
             else
                 lone.add_sum(x, y, Vec3(), 4, Vec3(), 0);
     lone.set_max_sample_share(0.5, 3);
-    EXPECT_EQ(lone.spread_radius_at(10, 10), 0);
-    EXPECT_EQ(image_y(lone), 0.0);
+    EXPECT_NEAR(image_y(lone), 0.0, 1e-12);
     const PixelDominance l = pixel_dominance(lone);
     EXPECT_EQ(l.dominated, 0u);
     EXPECT_EQ(l.clamped, 1u);
     EXPECT_EQ(l.spread_dropped, 1u);
     EXPECT_EQ(l.spread_share, 0.0);
+}
+
+// A firefly beside a shadow: every disc around it reaches black pixels, where any piece is all of
+// the pixel, so no disc over all pixels hides it. Over the lit pixels alone one does (radius 2),
+// and the shadow stays black. The lit pixels have 4 or 8 samples (rows alternate): the shares
+// of the light taken and spread back are sums of samples, and agree exactly when nothing is
+// dropped.
+TEST(Film, ClampSpreadBesideAShadowKeepsTheShadowBlack) {
+    const auto make = [] {
+        Film f(32, 16);
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 32; ++x) {
+                const int n = x < 16 && y % 2 ? 8 : 4;
+                for (int i = 0; i < n; ++i) {
+                    const double v = x >= 16 ? 0.0 : (x == 15 && y == 8 && i == 3 ? 40.0 : 1.0);
+                    f.add(x, y, Vec3(v, v, v));
+                }
+            }
+        return f;
+    };
+    Film raw = make(), spread = make();
+    spread.set_max_sample_share(0.5, 8);
+    EXPECT_NEAR(image_y(spread), image_y(raw), 1e-9);
+    EXPECT_EQ(spread.spread_radius_at(15, 8), 2);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 16; x < 32; ++x) ASSERT_EQ(spread.xyz(x, y).y, 0.0) << x << ", " << y;
+    const PixelDominance d = pixel_dominance(spread);
+    EXPECT_EQ(d.dominated, 0u);
+    EXPECT_EQ(d.spread_dropped, 0u);
+    EXPECT_NEAR(d.spread_share, d.clamped_share, 1e-15);
 }
