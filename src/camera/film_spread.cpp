@@ -73,13 +73,16 @@ void Film::spread_clamped_light() {
     std::vector<double> light_y(n, 0.0);  // each source pixel's clamped light
     for (const Source& s : sources) light_y[size_t(s.y) * m_w + s.x] = s.light.y;
     const DiscOffsets disc(radius_cap);
+    // Whether pixel i can take a piece of source s: pixels that received samples only (so the
+    // image's edge and unrendered pixels lose nothing), and lit ones only once s is lit_only.
+    const auto receives = [&](const Source& s, size_t i) {
+        return m_n[i] > 0 && (!s.lit_only || own_y[i] > 0 || light_y[i] > 0);
+    };
     const auto for_disc = [&](const Source& s, auto&& f) {
         for (size_t k = 0; k < disc.end[size_t(s.r)]; ++k) {
             const int x = s.x + disc.d[k].first, y = s.y + disc.d[k].second;
             if (x < 0 || y < 0 || x >= m_w || y >= m_h) continue;
-            // Pixels that received samples only: the image's edge and unrendered pixels lose nothing.
-            const size_t i = size_t(y) * m_w + x;
-            if (m_n[i] > 0 && (!s.lit_only || own_y[i] > 0 || light_y[i] > 0)) f(i);
+            if (const size_t i = size_t(y) * m_w + x; receives(s, i)) f(i);
         }
     };
 
@@ -126,21 +129,23 @@ void Film::spread_clamped_light() {
             if (touched) touched->push_back(i);
         });
     };
-    const auto supports = [&](const Source& s, size_t i) {
-        const int dx = int(i % size_t(m_w)) - s.x, dy = int(i / size_t(m_w)) - s.y;
-        return dx * dx + dy * dy <= s.r * s.r + s.r && m_n[i] > 0 && (!s.lit_only || own_y[i] > 0 || light_y[i] > 0);
-    };
-    // The source whose piece is largest at pixel i (-1: none), from the sources within reach.
-    const auto largest_piece = [&](size_t i) {
+    // Calls f(k) for every source k whose support holds pixel i (sources within radius_cap).
+    const auto for_sources_at = [&](size_t i, auto&& f) {
         const int x = int(i % size_t(m_w)), y = int(i / size_t(m_w));
-        int64_t best = -1;
         for (int v = std::max(0, y - radius_cap); v <= std::min(m_h - 1, y + radius_cap); ++v)
             for (int u = std::max(0, x - radius_cap); u <= std::min(m_w - 1, x + radius_cap); ++u) {
                 const int64_t k = source_at[size_t(v) * m_w + u];
-                if (k >= 0 && supports(sources[size_t(k)], i) &&
-                    (best < 0 || piece_y[size_t(k)] > piece_y[size_t(best)]))
-                    best = k;
+                if (k < 0) continue;
+                const Source& s = sources[size_t(k)];
+                if ((x - s.x) * (x - s.x) + (y - s.y) * (y - s.y) <= s.r * s.r + s.r && receives(s, i)) f(size_t(k));
             }
+    };
+    // The source whose piece is largest at pixel i (-1: none).
+    const auto largest_piece = [&](size_t i) {
+        int64_t best = -1;
+        for_sources_at(i, [&](size_t k) {
+            if (best < 0 || piece_y[k] > piece_y[size_t(best)]) best = int64_t(k);
+        });
         return best;
     };
 
@@ -226,11 +231,7 @@ void Film::spread_clamped_light() {
         m_piece_y[i] = best[i] >= 0 ? piece_y[size_t(best[i])] : 0.0;
         if (!(m_piece_y[i] > m_max_share * (own_y[i] + m_spread[i].y))) continue;
         pieces.clear();
-        const int x = int(i % size_t(m_w)), y = int(i / size_t(m_w));
-        for (int v = std::max(0, y - radius_cap); v <= std::min(m_h - 1, y + radius_cap); ++v)
-            for (int u = std::max(0, x - radius_cap); u <= std::min(m_w - 1, x + radius_cap); ++u)
-                if (const int64_t k = source_at[size_t(v) * m_w + u]; k >= 0 && supports(sources[size_t(k)], i))
-                    pieces.emplace_back(piece_y[size_t(k)], k);
+        for_sources_at(i, [&](size_t k) { pieces.emplace_back(piece_y[k], int64_t(k)); });
         std::sort(pieces.begin(), pieces.end(), std::greater<>());
         // On the segment where k pieces exceed c: c = s (A + k c), A = own + the smaller pieces.
         double below = own_y[i];

@@ -299,3 +299,23 @@ TEST(Film, ClampSpreadBesideAShadowKeepsTheShadowBlack) {
     EXPECT_EQ(d.spread_dropped, 0u);
     EXPECT_NEAR(d.spread_share, d.clamped_share, 1e-15);
 }
+
+// A firefly no disc hides, not even over the lit pixels alone (cap 1: a 3x3 film whose other
+// pixels are dim, 4 samples of 0.01): it stays, and each pixel keeps of its piece only the level
+// c at which the piece no longer dominates, c = s (own + c), here c = own. So every corner is
+// own + own = 0.02, the centre (own 0.015 after the clamp) 0.03, no pixel is dominated, all nine
+// are counted as cut, and the light lost is the rest of the pieces.
+TEST(Film, ClampSpreadCutsAnUnhiddenFireflyToTheLevelThatDoesNotDominate) {
+    Film f(3, 3);
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 3; ++x)
+            for (int i = 0; i < 4; ++i) f.add(x, y, Vec3(1, 1, 1) * (x == 1 && y == 1 && i == 3 ? 40.0 : 0.01));
+    f.set_max_sample_share(0.5, 1);
+    EXPECT_NEAR(f.xyz(0, 0).y, 0.02, 1e-9);
+    EXPECT_NEAR(f.xyz(2, 1).y, 0.02, 1e-9);
+    EXPECT_NEAR(f.xyz(1, 1).y, 0.03, 1e-9);
+    const PixelDominance d = pixel_dominance(f);
+    EXPECT_EQ(d.dominated, 0u);
+    EXPECT_EQ(d.spread_dropped, 9u);
+    EXPECT_NEAR(d.spread_share / d.clamped_share, (8 * 0.01 + 0.015) / ((40 - 0.03) / 4), 1e-9);
+}
