@@ -47,11 +47,12 @@ with_params() {
 # The techniques compared; INTEGRATORS overrides (mnee_unbiased needs a snell with `solutions`).
 INTEGRATORS=${INTEGRATORS:-nee mnee mnee_biased}
 # Every technique `score` and `noise` look for.
-ALL_TECHNIQUES="nee mnee mnee_biased mnee_paper mnee_paperbiased mnee_unbiased mnee_unbiased_biased mnee_reflections mnee_fallback mnee_fallback_biased"
+ALL_TECHNIQUES="nee mnee mnee_biased mnee_paper mnee_paperbiased mnee_unbiased mnee_unbiased_biased mnee_reflections mnee_fallback mnee_fallback_biased mnee_sms"
 params_of() {
   case $1 in
     mnee_biased) echo '<boolean name="biased" value="true"/>' ;;
     mnee_unbiased) echo '<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/>' ;;
+    mnee_sms) echo '<string name="solutions" value="unbiased"/><float name="surface_weight" value="1"/>' ;;
     mnee_reflections) echo '<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/><boolean name="reflections" value="true"/>' ;;
     mnee_unbiased_biased) echo '<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/><boolean name="biased" value="true"/>' ;;
     mnee_paper) echo '<string name="solutions" value="one"/>' ;;

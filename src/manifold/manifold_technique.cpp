@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/rng.h"
+#include "geometry/shape.h"
 #include "manifold/seed_path.h"
 #include "manifold/surface_seed.h"
 #include "manifold/walk_counters.h"
@@ -45,11 +46,18 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
     const MneeSettings& st = *m_settings;
     const size_t before = out.solutions.size();
     HalfVectorDraws draws(sampler);
+    bool straight_converged = false;
     if (q.straight_seed && (st.solutions == MneeSolutions::One || st.seeding != MneeSeeding::Surface))
-        add_solution(q, ctx, slot, light, pmf, lp, seed, draws, max_k, false, out);
+        add_solution(q, ctx, slot, light, pmf, lp, seed, draws, max_k, false, out, &straight_converged);
     if (st.solutions == MneeSolutions::One || st.seeding == MneeSeeding::Straight) return;
     // fallback: the surface seeds run only where an opaque surface blocks the straight seed.
     if (st.solutions == MneeSolutions::Fallback && q.straight_seed) return;
+    // surface_weight: beside a clear straight seed, surface solutions count only where the
+    // straight walk converged (to another one, or its own): a function of x_b and the light
+    // point that density() repeats with Alg. 2's walk. Where it fails (mostly receivers with no
+    // solution at all: a shadow), the trials would only fail too, at the cost of full walks.
+    const bool weighted = weighs_surface_solutions(q);
+    if (weighted && !straight_converged) return;
     // Surface seeds on every caster, from their own stream (one sampler dimension in all).
     PCG32 rng(uint64_t(sampler.next_1d() * 0x1p53), 0x5eed);
     const double lambda = ctx.hero();
@@ -96,6 +104,24 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
             const int trials = std::min(n, st.max_trials);
             out.solutions[size_t(index)].count = double((trials + st.trials - 1) / st.trials);
         }
+    }
+    // surface_weight: the solutions the straight seed does not walk to (all found by surface
+    // seeds; the straight seed's own is never added twice) weigh c times their density in MIS,
+    // as density() answers for their BSDF-sampled copies; those whose shapes differ from the
+    // straight seed's are not the technique's there (Alg. 2 cannot walk to them) and go.
+    if (weighted) {
+        const auto foreign = [&](const ManifoldSolution& s) {
+            if (!s.from_surface || s.slot != slot) return false;
+            if (s.chain.size() != seed.size()) return true;
+            for (size_t i = 0; i < seed.size(); ++i)
+                if (s.chain[i].shape != seed[i].shape) return true;
+            return false;
+        };
+        out.solutions.erase(
+            std::remove_if(out.solutions.begin() + std::ptrdiff_t(before), out.solutions.end(), foreign),
+            out.solutions.end());
+        for (size_t i = before; i < out.solutions.size(); ++i)
+            if (out.solutions[i].from_surface) out.solutions[i].density *= st.surface_weight;
     }
     walk_counters::solutions_per_connection.add(uint32_t(out.solutions.size() - size_t(before)));
 }
@@ -152,10 +178,12 @@ bool ManifoldTechnique::surface_trial(const ManifoldQuery& q, const BSDFContext&
 
 int ManifoldTechnique::add_solution(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light,
                                     double pmf, const LightPoint& lp, std::vector<ManifoldVertex> chain,
-                                    HalfVectorDraws& draws, int max_k, bool from_surface, SolutionSet& out) const {
+                                    HalfVectorDraws& draws, int max_k, bool from_surface, SolutionSet& out,
+                                    bool* walk_converged) const {
     if (max_k >= 0 && int(chain.size()) > max_k) return -1;
     const MneeConnection c =
         mnee_connect(*m_scene, *m_settings, *q.xb, *q.bsdf_b, ctx, q.media, light, pmf, lp, chain, draws);
+    if (walk_converged) *walk_converged = c.walk_converged;
     if (c.outcome != MneeOutcome::Success) return -1;
     if (from_surface || m_settings->solutions == MneeSolutions::All ||
         m_settings->solutions == MneeSolutions::Unbiased) {
@@ -185,9 +213,20 @@ int ManifoldTechnique::add_solution(const ManifoldQuery& q, const BSDFContext& c
     return int(out.solutions.size()) - 1;
 }
 
+bool ManifoldTechnique::weighs_surface_solutions(const ManifoldQuery& q) const {
+    const MneeSettings& st = *m_settings;
+    return q.straight_seed && st.seeding == MneeSeeding::StraightAndSurface && st.surface_weight < 1 &&
+           (st.solutions == MneeSolutions::All || st.solutions == MneeSolutions::Unbiased);
+}
+
 double ManifoldTechnique::density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain,
                                   int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
                                   double lambda) const {
+    // A path through an emissive interface is the straight seed's alone (surface seeds neither
+    // start on nor pass such a shape, surface_seed.cpp), for every estimator: Alg. 2.
+    if (m_settings->solutions == MneeSolutions::One ||
+        std::any_of(chain, chain + std::max(k, 0), [](const SurfaceInteraction& v) { return v.emitter() != nullptr; }))
+        return mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
     if (m_settings->solutions == MneeSolutions::Fallback) {
         // The straight seed's technique where the seed is clear of opaque surfaces (Alg. 2), the
         // surface seeds' where one blocks it; the seed is traced once for either.
@@ -196,9 +235,20 @@ double ManifoldTechnique::density(const SurfaceInteraction& xb, const BSDF& bsdf
             return solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
         return mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
     }
-    if (m_settings->solutions != MneeSolutions::One)
-        return solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
-    return mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
+    if (m_settings->surface_weight < 1 && m_settings->seeding == MneeSeeding::StraightAndSurface) {
+        // Full density for the straight seed's solution (Alg. 2 walks to it), c times it for
+        // another where Alg. 2's walk converges (to that one), 0 where it does not; full behind
+        // a blocker. solve() counts the same paths with the same weights.
+        const StraightSeed seed = trace_straight_seed(*m_scene, xb, xc, lambda, *m_settings);
+        const double full =
+            solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
+        if (seed.status != SeedStatus::Refractive || !(full > 0)) return full;
+        bool converged = false;
+        if (mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed, &converged) > 0)
+            return full;
+        return converged ? m_settings->surface_weight * full : 0.0;
+    }
+    return solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
 }
 
 }  // namespace snell

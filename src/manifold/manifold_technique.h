@@ -53,7 +53,10 @@ public:
 
     /// The technique's area density for the path x_b, chain[0..k), x_c at wavelength `lambda`:
     /// Alg. 2 for solutions=one (0 when the straight seed does not walk to this path); for
-    /// solutions=all the solution density (solution_density: every solution is the technique's).
+    /// solutions=all and unbiased the solution density (solution_density: every solution is the
+    /// technique's); with surface_weight c < 1, where the straight seed is clear, the solution
+    /// density for the path Alg. 2 walks to, c times it for another path if Alg. 2's walk
+    /// converges (to the other), and 0 if it does not converge.
     double density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain, int k,
                    const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda) const;
 
@@ -63,10 +66,14 @@ private:
                     const LightPoint& lp, const std::vector<ManifoldVertex>& seed, Sampler& sampler, int max_k,
                     SolutionSet& out) const;
     /// Walks `chain` (its seed) and adds the admissible, visible path unless `out` holds it;
-    /// returns the index of the added solution, or -1.
+    /// returns the index of the added solution, or -1. `walk_converged`: whether the walk
+    /// converged, whatever became of the path.
     int add_solution(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light, double pmf,
                      const LightPoint& lp, std::vector<ManifoldVertex> chain, HalfVectorDraws& draws, int max_k,
-                     bool from_surface, SolutionSet& out) const;
+                     bool from_surface, SolutionSet& out, bool* walk_converged = nullptr) const;
+    /// surface_weight < 1 with both kinds of seeds: beside a clear straight seed the surface
+    /// solutions weigh c times their density, and count only where the straight walk converged.
+    bool weighs_surface_solutions(const ManifoldQuery& q) const;
     /// One surface seed on `caster` walked to a polished admissible path; false if it fails.
     bool surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster, PCG32& rng,
                        const LightPoint& lp, HalfVectorDraws& draws, int max_k,

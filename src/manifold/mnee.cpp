@@ -177,6 +177,7 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
                             HalfVectorDraws& draws) {
     MneeConnection out;
     out.outcome = mnee_walk(scene, st, xb, bsdf_b, lp, chain, draws);
+    out.walk_converged = out.outcome == MneeOutcome::Success || out.outcome == MneeOutcome::WrongScattering;
     if (out.outcome != MneeOutcome::Success) return out;
     const Vec3 xc = lp.p;
 
@@ -305,7 +306,8 @@ double solution_density(const Scene& scene, const MneeSettings& st, const Surfac
 
 double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb, const BSDF& bsdf_b,
                 const SurfaceInteraction* path, int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
-                double lambda, const StraightSeed* traced) {
+                double lambda, const StraightSeed* traced, bool* walk_converged) {
+    if (walk_converged) *walk_converged = false;
     if (k <= 0 || k > st.max_vertices) return 0;
     // Alg. 2, line 1: density of x_c as the light sampler would produce it from x_b.
     const double p_point = light_point_pdf(scene, light, xb.p, xc, nc);
@@ -356,6 +358,7 @@ double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInterac
         wc::count_walk_end(true, walk_end_of(walk.outcome));
         return 0;
     }
+    if (walk_converged) *walk_converged = true;
     // Lines 5-7: a different admissible path means MNEE cannot produce the input one.
     std::vector<ManifoldVertex> target = input;
     polish_solution(&scene, xb.p, seed, basis, st.walk);

@@ -53,6 +53,9 @@ struct MneeConnection {
     /// Focusing ratio r = |do_b/dx_c| |x_c - x_b|^2 / |cos theta_c| (1 through free space;
     /// MneeSettings::max_geometry clamps it). `value` is already clamped.
     double focusing = 0;
+    /// The manifold walk converged (to an admissible path or not, visible or not): Alg. 2's
+    /// walk from the same seed and half vectors converges too (surface_weight's domain).
+    bool walk_converged = false;
 };
 
 /// |do/dh|: solid angle of the light-side direction wo per solid angle of the half vector at
@@ -116,10 +119,11 @@ double solution_density(const Scene& scene, const MneeSettings& settings, const 
 /// Alg. 2: area density with which MNEE from x_b produces the path x_b, chain[0..k), x_c, at
 /// the hero wavelength `lambda`.
 /// 0 if the seed path from x_b to x_c walks to a different path (or none). `traced`: the straight
-/// seed when the caller has it already (else traced here).
+/// seed when the caller has it already (else traced here). `walk_converged`: whether the walk
+/// ran (the seed crosses the path's shapes in its order) and converged, to this path or another.
 double mnee_pdf(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb, const BSDF& bsdf_b,
                 const SurfaceInteraction* chain, int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
-                double lambda, const StraightSeed* traced = nullptr);
+                double lambda, const StraightSeed* traced = nullptr, bool* walk_converged = nullptr);
 
 /// Culling of a seed at x_b with the tolerance margin of Fig. 3.
 bool mnee_seed_culled(const SurfaceInteraction& xb, const BSDF& bsdf_b, const Vec3& xc, double margin);

@@ -15,7 +15,8 @@ enum class MneeSeeding { Straight, Surface, StraightAndSurface };
 /// Manifold Sampling's estimator), plus the straight seed's; or the straight seed's solution
 /// where that seed is clear of opaque surfaces and, where an opaque surface blocks it (an object
 /// inside glass), the unbiased estimator's surface solutions (`fallback`: unbiased; MIS by Alg. 2
-/// where the seed is clear, by the solution density where it is blocked).
+/// where the seed is clear, by the solution density where it is blocked). A scene's `mnee`
+/// defaults to `unbiased` with surface_weight 0.03, its biased mode to `fallback`.
 enum class MneeSolutions { One, All, Unbiased, Fallback };
 /// (surface_side) where a surface seed starts: at x_b (SMS's seeds), at the light point (traced
 /// through the glass from the light), or either with probability 1/2.
@@ -39,8 +40,8 @@ struct MneeSettings {
     /// log-divergent (issue 10). A value t > 0 scales a connection by min(1, t / r): biased,
     /// energy is only removed. 0 (default): off.
     double max_geometry = 0;
-    // The paper's estimator here; a scene's `mnee` defaults to solutions=fallback with
-    // straight+surface seeds (MneeIntegrator::settings_from_props).
+    // The paper's estimator here; a scene's `mnee` defaults to solutions=unbiased with
+    // straight+surface seeds and surface_weight 0.03 (MneeIntegrator::settings_from_props).
     MneeSeeding seeding = MneeSeeding::Straight;
     MneeSolutions solutions = MneeSolutions::One;
     /// (trials) surface seeds per caster and light connection: every one walked (solutions=all),
@@ -58,6 +59,21 @@ struct MneeSettings {
     /// always under total internal reflection), so that solutions=all and unbiased also find
     /// paths with internal reflections, and take them from BSDF sampling by MIS.
     bool reflections = false;
+    /// (surface_weight) c in (0, 1]: with the straight seed and surface seeds both walked
+    /// (solutions=all or unbiased, seeding=straight+surface) and the straight segment x_b -> x_c
+    /// clear, MIS takes the density of a path the straight seed does not walk to (Alg. 2 says
+    /// which) as c times its solution density. c is a function of the path, so the weights of
+    /// all techniques still sum to one. Why: a trial finds such a solution with probability p
+    /// and the unbiased estimator counts it about 1 / p times, which multiplies its second
+    /// moment by about 2 / p; MIS that ignores this gives the rare, heavily counted finds
+    /// shares that BSDF sampling carries better. c near p / 2 balances them; c = 1 is SMS's
+    /// weighting, and c -> 0 the paper's (Alg. 2 alone). Behind an opaque blocker (no straight
+    /// solution) the surface solutions keep their full density. With c < 1, beside a clear
+    /// straight seed the surface solutions count only where the straight walk converged (to
+    /// any solution; elsewhere, mostly where there is none, the trials would fail at the cost
+    /// of full walks), and only those crossing the straight seed's shapes in its order: the
+    /// paths Alg. 2 can tell apart, so density() gives the others 0 (BSDF sampling's).
+    double surface_weight = 1;
     WalkSettings walk;  ///< (max_iterations, threshold, allow_error_increase, projection)
 };
 

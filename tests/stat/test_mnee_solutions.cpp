@@ -298,6 +298,103 @@ TEST(ManifoldSolutions, DensityOfEveryFoundSolutionMatches) {
     EXPECT_GE(multi, 5);  // light samples with both branches
 }
 
+// Of `n` light samples' solutions under SMS's weighting (`full`), those where Alg. 2's straight
+// walk does not converge; each must have density 0 under the weighted `technique` (settings `st`).
+int solutions_outside_the_straight_walk(const Scene& scene, const SurfaceInteraction& xb,
+                                        const ManifoldTechnique& technique, const MneeSettings& full,
+                                        const MneeSettings& st, Sampler& smp, int n) {
+    int outside = 0;
+    for (int i = 0; i < n; ++i) {
+        LightPoint lp;
+        for (const ManifoldSolution& s : solve(scene, xb, full, smp, &lp).solutions) {
+            std::vector<SurfaceInteraction> chain;
+            for (const ManifoldVertex& v : s.chain) chain.push_back(v.si);
+            bool converged = false;
+            mnee_pdf(scene, st, xb, *xb.bsdf(), chain.data(), int(chain.size()), *scene.lights()[0], 1.0, lp.p, lp.n,
+                     550, nullptr, &converged);
+            if (converged) continue;
+            ++outside;
+            EXPECT_EQ(technique.density(xb, *xb.bsdf(), chain.data(), int(chain.size()), *scene.lights()[0], 1.0, lp.p,
+                                        lp.n, 550),
+                      0.0);
+        }
+    }
+    return outside;
+}
+
+// surface_weight c (the default estimator's MIS): beside a clear straight seed, a solution the
+// straight seed does not walk to weighs c times its solution density, the straight seed's own
+// the full density, and density() answers the same for the same path, as a BSDF-sampled copy
+// would query it, so MIS stays a partition of unity. Scaling on one side only fails here.
+TEST(ManifoldSolutions, SurfaceWeightScalesTheOtherSolutionsAlikeInSolveAndDensity) {
+    size_t count = 0;
+    const Vec3 at = multi_solution_receiver(&count);
+    const LoadedScene ls = droplet(kSphereLight);
+    const Scene& scene = *ls.scene;
+    const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z);
+    MneeSettings st = all_solutions(1);
+    st.solutions = MneeSolutions::Unbiased;
+    st.surface_weight = 0.03;
+    MneeSettings full = st;
+    full.surface_weight = 1;
+    const ManifoldTechnique technique(scene, st), sms(scene, full);
+    IndependentSampler smp(9);
+    smp.start_pixel_sample(0, 0, 0);
+    int straight = 0, surface = 0;
+    for (int n = 0; n < 3000 && surface < 20; ++n) {
+        LightPoint lp;
+        for (const ManifoldSolution& s : solve(scene, xb, st, smp, &lp).solutions) {
+            std::vector<SurfaceInteraction> chain;
+            for (const ManifoldVertex& v : s.chain) chain.push_back(v.si);
+            const auto density_of = [&](const ManifoldTechnique& t) {
+                return t.density(xb, *xb.bsdf(), chain.data(), int(chain.size()), *scene.lights()[0], 1.0, lp.p, lp.n,
+                                 550);
+            };
+            const double d = density_of(technique), d_full = density_of(sms);
+            EXPECT_NEAR(d, s.density, 1e-5 * s.density) << (s.from_surface ? "surface" : "straight") << " solution";
+            EXPECT_NEAR(d, (s.from_surface ? 0.03 : 1.0) * d_full, 1e-9 * d_full);
+            // Surface solutions count only where the straight walk converges (Alg. 2's walk).
+            bool converged = false;
+            mnee_pdf(scene, st, xb, *xb.bsdf(), chain.data(), int(chain.size()), *scene.lights()[0], 1.0, lp.p, lp.n,
+                     550, nullptr, &converged);
+            EXPECT_TRUE(converged);
+            ++(s.from_surface ? surface : straight);
+        }
+    }
+    EXPECT_GE(straight, 100);
+    EXPECT_GE(surface, 20);  // post-fold solutions found by the surface trials
+    // Every solution SMS's weighting finds where the straight walk does not converge belongs to
+    // BSDF sampling under the weighted technique: density 0 (not c times the full density).
+    // Where the straight walk does not converge, the surface solutions are BSDF sampling's: solve()
+    // drops them and density() gives 0, not c times the density. Here the straight walk
+    // converges wherever there is a solution, so the walk is cut to two iterations: most walks
+    // then fail, the straight one and Alg. 2's alike.
+    MneeSettings short_walk = st;
+    short_walk.walk.max_iterations = 2;
+    const ManifoldTechnique cut(scene, short_walk);
+    const int outside = solutions_outside_the_straight_walk(scene, xb, cut, full, short_walk, smp, 300);
+    int cut_surface = 0;
+    MneeSettings few = st;  // surface seeds start closer than the straight one: some converge in 4
+    few.walk.max_iterations = 4;
+    for (int n = 0; n < 3000; ++n) {
+        LightPoint lp;
+        for (const ManifoldSolution& s : solve(scene, xb, few, smp, &lp).solutions) {
+            if (!s.from_surface) continue;
+            std::vector<SurfaceInteraction> chain;
+            for (const ManifoldVertex& v : s.chain) chain.push_back(v.si);
+            bool converged = false;
+            mnee_pdf(scene, few, xb, *xb.bsdf(), chain.data(), int(chain.size()), *scene.lights()[0], 1.0, lp.p, lp.n,
+                     550, nullptr, &converged);
+            EXPECT_TRUE(converged);
+            ++cut_surface;
+        }
+    }
+    std::cout << "[surface_weight] " << straight << " straight and " << surface << " surface solutions; two-iteration "
+              << "walks: " << outside << " solutions where the straight walk fails, " << cut_surface
+              << " surface solutions with four-iteration walks\n";
+    EXPECT_GE(outside, 5);
+}
+
 namespace {
 
 // Among receivers with several well-separated exact solutions, the one where the weaker

@@ -259,6 +259,31 @@ TEST(SceneLoaderFull, MomentAndAovWrappersAreUnwrapped) {
                  "test.xml:4: <integrator>", "takes no nested");
 }
 
+// mnee's estimator defaults: SMS's unbiased estimator with the straight seed and surface_weight
+// 0.03; the biased mode keeps fallback; `all` weighs its surface solutions fully. A surface_weight
+// out of (0, 1], or given where no straight and surface solutions meet, names the line.
+TEST(SceneLoaderFull, MneeDefaultsAndSurfaceWeight) {
+    const auto settings = [](const std::string& params) {
+        const LoadedScene ls = load_string(scene_with("<integrator type=\"mnee\">" + params + "</integrator>"));
+        const auto* m = dynamic_cast<const MneeIntegrator*>(ls.integrator.get());
+        EXPECT_NE(m, nullptr);
+        return m ? m->mnee_settings() : MneeSettings();
+    };
+    const MneeSettings def = settings("");
+    EXPECT_EQ(def.solutions, MneeSolutions::Unbiased);
+    EXPECT_EQ(def.seeding, MneeSeeding::StraightAndSurface);
+    EXPECT_EQ(def.surface_weight, kSurfaceWeight);
+    EXPECT_EQ(settings(R"(<string name="solutions" value="unbiased"/>)").surface_weight, kSurfaceWeight);
+    EXPECT_EQ(settings(R"(<boolean name="biased" value="true"/>)").solutions, MneeSolutions::Fallback);
+    EXPECT_EQ(settings(R"(<string name="solutions" value="all"/>)").surface_weight, 1.0);
+    EXPECT_EQ(settings(R"(<float name="surface_weight" value="1"/>)").surface_weight, 1.0);
+    expect_error(scene_with("<integrator type=\"mnee\">\n<float name=\"surface_weight\" value=\"0\"/></integrator>"),
+                 "test.xml:4", "surface_weight must lie in (0, 1]");
+    expect_error(scene_with("<integrator type=\"mnee\">\n<string name=\"solutions\" value=\"one\"/><float "
+                            "name=\"surface_weight\" value=\"0.1\"/></integrator>"),
+                 "test.xml:4", "needs solutions=all or unbiased with seeding=straight+surface");
+}
+
 // The SMS code's integrators render as mnee with the matching estimator, and say what differs;
 // its caustic flags on shapes are accepted with one notice.
 TEST(SceneLoaderFull, SmsIntegratorsMapToMnee) {
