@@ -376,7 +376,7 @@ TEST(MneeAgreement, GlassAroundAnOpaqueBallAgreesAndMneeFindsThePathsAroundIt) {
     const double multi = mnee_share(with_ball(scene_with(smooth_water(), unbiased)));
     const double fell_back = mnee_share(with_ball(scene_with(smooth_water(), fallback)));
     std::cout << "[ball] share of the refracted light from MNEE: paper " << one << ", unbiased " << multi
-              << ", fallback (the default) " << fell_back << "\n";
+              << ", fallback (the biased mode's default) " << fell_back << "\n";
     EXPECT_GT(multi, 0.8);
     EXPECT_GT(multi, one + 0.1);
     EXPECT_GT(fell_back, one + 0.1);

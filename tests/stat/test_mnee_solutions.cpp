@@ -55,7 +55,7 @@ MneeSettings all_solutions(int trials) {
     return st;
 }
 
-// The default estimator's settings (the integrator's defaults for solutions=fallback).
+// The biased mode's default estimator (the integrator's defaults for solutions=fallback).
 MneeSettings fallback_settings() {
     MneeSettings st;
     st.solutions = MneeSolutions::Fallback;
@@ -198,7 +198,7 @@ TEST(ManifoldSolutions, SurfaceSeedsFindThePathsBesideABlockedStraightSeed) {
         EXPECT_TRUE(s.from_surface);
         EXPECT_GT(s.value[0], 0.0);
     }
-    // The default estimator (fallback) runs its surface trials here, the straight seed being
+    // fallback (the biased mode's default) runs its surface trials here, the straight seed being
     // blocked, and finds the free paths.
     const MneeSettings fallback = fallback_settings();
     size_t found = 0;
@@ -208,7 +208,7 @@ TEST(ManifoldSolutions, SurfaceSeedsFindThePathsBesideABlockedStraightSeed) {
     EXPECT_GT(found, 0u) << "fallback's surface trials never ran behind the blocker";
 }
 
-// Where the straight seed is clear, fallback (the default) is the paper's estimator: at a
+// Where the straight seed is clear, fallback (the biased mode's default) is the paper's estimator: at a
 // two-path receiver it counts the straight seed's solution alone. Alg. 2 gives the other path to
 // BSDF sampling there, so surface solutions counted as well would count it twice (the agreement
 // renders do not see that: under their large light the second path carries little).
