@@ -53,7 +53,7 @@ params_of() {
     mnee_biased) echo '<boolean name="biased" value="true"/>' ;;
     mnee_unbiased) echo '<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/>' ;;
     mnee_sms) echo '<string name="solutions" value="unbiased"/><float name="surface_weight" value="1"/>' ;;
-    mnee_reflections) echo '<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/><boolean name="reflections" value="true"/>' ;;
+    mnee_reflections) echo '<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/><boolean name="reflections" value="true"/><float name="surface_weight" value="1"/>' ;;
     mnee_unbiased_biased) echo '<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/><boolean name="biased" value="true"/>' ;;
     mnee_paper) echo '<string name="solutions" value="one"/>' ;;
     mnee_paperbiased) echo '<string name="solutions" value="one"/><boolean name="biased" value="true"/>' ;;

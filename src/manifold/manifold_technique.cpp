@@ -58,6 +58,16 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
     // solution at all: a shadow), the trials would only fail too, at the cost of full walks.
     const bool weighted = weighs_surface_solutions(q);
     if (weighted && !straight_converged) return;
+    // There, too, only the paths Alg. 2 can tell apart are the technique's: those crossing the
+    // straight seed's shapes in its order, refracting at each (density() gives the others 0,
+    // BSDF sampling's). A trial that finds another one has failed.
+    const auto foreign = [&](const std::vector<ManifoldVertex>& chain) {
+        if (!weighted) return false;
+        if (chain.size() != seed.size()) return true;
+        for (size_t i = 0; i < seed.size(); ++i)
+            if (chain[i].shape != seed[i].shape || chain[i].reflect) return true;
+        return false;
+    };
     // Surface seeds on every caster, from their own stream (one sampler dimension in all).
     PCG32 rng(uint64_t(sampler.next_1d() * 0x1p53), 0x5eed);
     const double lambda = ctx.hero();
@@ -67,7 +77,7 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
             // only the new ones.
             for (int j = 0; j < st.trials; ++j) {
                 std::vector<ManifoldVertex> chain;
-                if (surface_trial(q, ctx, *caster, rng, lp, draws, max_k, &chain) &&
+                if (surface_trial(q, ctx, *caster, rng, lp, draws, max_k, &chain) && !foreign(chain) &&
                     !holds_solution(out, before, slot, q.xb->p, chain, lp.p))
                     add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, true, out);
             }
@@ -85,7 +95,7 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
         std::vector<int> found;
         for (int j = 0; j < st.trials; ++j) {
             std::vector<ManifoldVertex> chain;
-            if (!surface_trial(q, ctx, *caster, rng, lp, draws, max_k, &chain)) continue;
+            if (!surface_trial(q, ctx, *caster, rng, lp, draws, max_k, &chain) || foreign(chain)) continue;
             if (holds_solution(out, before, slot, q.xb->p, chain, lp.p)) continue;
             const int index = add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, true, out);
             if (index >= 0) found.push_back(index);
@@ -107,22 +117,10 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
     }
     // surface_weight: the solutions the straight seed does not walk to (all found by surface
     // seeds; the straight seed's own is never added twice) weigh c times their density in MIS,
-    // as density() answers for their BSDF-sampled copies; those whose shapes differ from the
-    // straight seed's are not the technique's there (Alg. 2 cannot walk to them) and go.
-    if (weighted) {
-        const auto foreign = [&](const ManifoldSolution& s) {
-            if (!s.from_surface || s.slot != slot) return false;
-            if (s.chain.size() != seed.size()) return true;
-            for (size_t i = 0; i < seed.size(); ++i)
-                if (s.chain[i].shape != seed[i].shape) return true;
-            return false;
-        };
-        out.solutions.erase(
-            std::remove_if(out.solutions.begin() + std::ptrdiff_t(before), out.solutions.end(), foreign),
-            out.solutions.end());
+    // as density() answers for their BSDF-sampled copies.
+    if (weighted)
         for (size_t i = before; i < out.solutions.size(); ++i)
             if (out.solutions[i].from_surface) out.solutions[i].density *= st.surface_weight;
-    }
     walk_counters::solutions_per_connection.add(uint32_t(out.solutions.size() - size_t(before)));
 }
 
@@ -223,9 +221,13 @@ double ManifoldTechnique::density(const SurfaceInteraction& xb, const BSDF& bsdf
                                   int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
                                   double lambda) const {
     // A path through an emissive interface is the straight seed's alone (surface seeds neither
-    // start on nor pass such a shape, surface_seed.cpp), for every estimator: Alg. 2.
+    // start on nor pass such a shape, surface_seed.cpp), for every estimator that walks the
+    // straight seed: Alg. 2 (with surface seeds alone, no one's: solution_density gives 0).
+    const bool straight_walked =
+        m_settings->solutions == MneeSolutions::One || m_settings->seeding != MneeSeeding::Surface;
     if (m_settings->solutions == MneeSolutions::One ||
-        std::any_of(chain, chain + std::max(k, 0), [](const SurfaceInteraction& v) { return v.emitter() != nullptr; }))
+        (straight_walked && std::any_of(chain, chain + std::max(k, 0),
+                                        [](const SurfaceInteraction& v) { return v.emitter() != nullptr; })))
         return mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
     if (m_settings->solutions == MneeSolutions::Fallback) {
         // The straight seed's technique where the seed is clear of opaque surfaces (Alg. 2), the

@@ -56,7 +56,8 @@ public:
     /// solutions=all and unbiased the solution density (solution_density: every solution is the
     /// technique's); with surface_weight c < 1, where the straight seed is clear, the solution
     /// density for the path Alg. 2 walks to, c times it for another path if Alg. 2's walk
-    /// converges (to the other), and 0 if it does not converge.
+    /// converges (to the other), and 0 if it does not converge. A path through an emissive
+    /// interface is the straight seed's alone: Alg. 2 whenever the straight seed is walked.
     double density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain, int k,
                    const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda) const;
 

@@ -404,14 +404,19 @@ TEST(MneeAgreement, PaperEstimatorMatchesNee) {
 // the light intact. It cannot see errors in the reflection paths' own value: they carry too
 // little light here (a reflection factor doubled passes; see docs/testing.md). That the seeds
 // reach such paths is ManifoldSolutions.ReflectionsFindPathsWithAnInternalReflection.
+// SMS's weighting (surface_weight 1), under which reflecting paths beside a clear straight seed
+// are the technique's; and the default weighting, under which they are BSDF sampling's there.
 TEST(MneeAgreement, UnbiasedWithReflectionsAgreesWithNee) {
     const std::string with =
         R"(<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/>
       <boolean name="reflections" value="true"/>)";
-    expect_mnee_matches_nee(scene_with(smooth_water(), with), 256, 32, "unbiased with reflections, smooth",
+    const std::string sms = with + R"(<float name="surface_weight" value="1"/>)";
+    expect_mnee_matches_nee(scene_with(smooth_water(), sms), 256, 32, "unbiased with reflections, smooth",
                             scene_with(smooth_water()));
-    expect_mnee_matches_nee(scene_with(rough_water(0.1), with), 256, 32, "unbiased with reflections, rough 0.1",
+    expect_mnee_matches_nee(scene_with(rough_water(0.1), sms), 256, 32, "unbiased with reflections, rough 0.1",
                             scene_with(rough_water(0.1)));
+    expect_mnee_matches_nee(scene_with(rough_water(0.1), with), 256, 32,
+                            "reflections with the default surface_weight, rough 0.1", scene_with(rough_water(0.1)));
 }
 
 // A glass rod (an open cylinder, IOR 1.5) lying above the floor under a large light: MNEE walks
