@@ -56,7 +56,7 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
     // straight walk converged (to another one, or its own): a function of x_b and the light
     // point that density() repeats with Alg. 2's walk. Where it fails (mostly receivers with no
     // solution at all: a shadow), the trials would only fail too, at the cost of full walks.
-    const bool weighted = weighs_surface_solutions(q);
+    const bool weighted = q.straight_seed && weighs_surface_solutions();
     if (weighted && !straight_converged) return;
     // There, too, only the paths Alg. 2 can tell apart are the technique's: those crossing the
     // straight seed's shapes in its order, refracting at each (density() gives the others 0,
@@ -211,9 +211,9 @@ int ManifoldTechnique::add_solution(const ManifoldQuery& q, const BSDFContext& c
     return int(out.solutions.size()) - 1;
 }
 
-bool ManifoldTechnique::weighs_surface_solutions(const ManifoldQuery& q) const {
+bool ManifoldTechnique::weighs_surface_solutions() const {
     const MneeSettings& st = *m_settings;
-    return q.straight_seed && st.seeding == MneeSeeding::StraightAndSurface && st.surface_weight < 1 &&
+    return st.seeding == MneeSeeding::StraightAndSurface && st.surface_weight < 1 &&
            (st.solutions == MneeSolutions::All || st.solutions == MneeSolutions::Unbiased);
 }
 
@@ -237,18 +237,20 @@ double ManifoldTechnique::density(const SurfaceInteraction& xb, const BSDF& bsdf
             return solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
         return mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
     }
-    if (m_settings->surface_weight < 1 && m_settings->seeding == MneeSeeding::StraightAndSurface) {
-        // Full density for the straight seed's solution (Alg. 2 walks to it), c times it for
-        // another where Alg. 2's walk converges (to that one), 0 where it does not; full behind
-        // a blocker. solve() counts the same paths with the same weights.
+    if (weighs_surface_solutions()) {
+        // Behind a blocker the full solution density; beside a clear straight seed Alg. 2 for
+        // the path its walk reaches (the same value), c times the solution density for another
+        // where that walk converges (to the other one), 0 where it does not. solve() counts the
+        // same paths with the same weights.
         const StraightSeed seed = trace_straight_seed(*m_scene, xb, xc, lambda, *m_settings);
-        const double full =
-            solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
-        if (seed.status != SeedStatus::Refractive || !(full > 0)) return full;
+        if (seed.status != SeedStatus::Refractive)
+            return solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
         bool converged = false;
-        if (mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed, &converged) > 0)
-            return full;
-        return converged ? m_settings->surface_weight * full : 0.0;
+        const double reached =
+            mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed, &converged);
+        if (reached > 0 || !converged) return reached;
+        return m_settings->surface_weight *
+               solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
     }
     return solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
 }

@@ -72,9 +72,10 @@ private:
     int add_solution(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light, double pmf,
                      const LightPoint& lp, std::vector<ManifoldVertex> chain, HalfVectorDraws& draws, int max_k,
                      bool from_surface, SolutionSet& out, bool* walk_converged = nullptr) const;
-    /// surface_weight < 1 with both kinds of seeds: beside a clear straight seed the surface
-    /// solutions weigh c times their density, and count only where the straight walk converged.
-    bool weighs_surface_solutions(const ManifoldQuery& q) const;
+    /// surface_weight < 1 with both kinds of seeds (all or unbiased): beside a clear straight seed
+    /// the surface solutions weigh c times their density, and count only where the straight walk
+    /// converged. solve() and density() both ask this.
+    bool weighs_surface_solutions() const;
     /// One surface seed on `caster` walked to a polished admissible path; false if it fails.
     bool surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster, PCG32& rng,
                        const LightPoint& lp, HalfVectorDraws& draws, int max_k,

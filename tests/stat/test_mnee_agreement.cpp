@@ -272,14 +272,27 @@ TEST(MneeAgreement, AbsorbingRoughGlassMatchesPathTracing) {
 }
 
 // A glowing glass sphere: BSDF-sampled hits of an emitter that is itself a refractive
-// interface end the path there; they must not be treated as a chain vertex.
+// interface end the path there; they must not be treated as a chain vertex. Paths through it
+// are the straight seed's alone (surface seeds neither start on nor cross an emitter): MIS must
+// weigh them by Alg. 2 with SMS's weighting too (surface_weight 1; the solution density's 0 made
+// the image 40 % too bright), and with surface seeds alone only BSDF sampling produces them.
 TEST(MneeAgreement, EmissiveDielectricMatchesPathTracing) {
-    std::string xml = scene_with(R"(<bsdf type="dielectric"><float name="int_ior" value="1.33"/></bsdf>
-        <emitter type="area"><rgb name="radiance" value="0.5, 0.5, 0.5"/></emitter>)");
+    const std::string glowing = R"(<bsdf type="dielectric"><float name="int_ior" value="1.33"/></bsdf>
+        <emitter type="area"><rgb name="radiance" value="0.5, 0.5, 0.5"/></emitter>)";
+    const std::string xml = scene_with(glowing);
     LoadedScene path = load_xml(xml, {{"integrator", "pt"}});
+    const auto reference = block_estimates(path, *path.integrator, 256, 8, 6, 900);
     LoadedScene mnee = load_xml(xml, {{"integrator", "mnee"}});
-    expect_agreement(block_estimates(path, *path.integrator, 256, 8, 6, 900),
-                     block_estimates(mnee, *mnee.integrator, 64, 8, 6, 1000), 0.01, "emissive dielectric");
+    expect_agreement(reference, block_estimates(mnee, *mnee.integrator, 64, 8, 6, 1000), 0.01, "emissive dielectric");
+    LoadedScene sms =
+        load_xml(scene_with(glowing, R"(<float name="surface_weight" value="1"/>)"), {{"integrator", "mnee"}});
+    expect_agreement(reference, block_estimates(sms, *sms.integrator, 64, 8, 6, 1200), 0.01,
+                     "emissive dielectric, SMS's weighting");
+    LoadedScene surface = load_xml(
+        scene_with(glowing, R"(<string name="solutions" value="unbiased"/><string name="seeding" value="surface"/>)"),
+        {{"integrator", "mnee"}});
+    expect_agreement(reference, block_estimates(surface, *surface.integrator, 64, 8, 6, 1100), 0.01,
+                     "emissive dielectric, surface seeds alone");
 }
 
 // An air bubble (interior less dense than the outside, eta < 1): the walk must converge

@@ -266,6 +266,32 @@ TEST(ManifoldSolutions, AllEstimatesEveryRefractedPath) {
     EXPECT_LT(4.5 * se, 0.25 * bsdf.mean());  // tight enough to see a solution counted twice
 }
 
+namespace {
+
+// A found solution as a BSDF-sampled copy of it would reach the technique: its interactions.
+std::vector<SurfaceInteraction> path_of(const ManifoldSolution& s) {
+    std::vector<SurfaceInteraction> path;
+    for (const ManifoldVertex& v : s.chain) path.push_back(v.si);
+    return path;
+}
+
+// The technique's density() of `path` from x_b to the light point, as emitter_hit_weight asks it.
+double density_of(const ManifoldTechnique& t, const Scene& scene, const SurfaceInteraction& xb,
+                  const std::vector<SurfaceInteraction>& path, const LightPoint& lp) {
+    return t.density(xb, *xb.bsdf(), path.data(), int(path.size()), *scene.lights()[0], 1.0, lp.p, lp.n, 550);
+}
+
+// Whether Alg. 2's walk from the straight seed, on `path`'s half vectors, converges (to any path).
+bool straight_walk_converges(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb,
+                             const std::vector<SurfaceInteraction>& path, const LightPoint& lp) {
+    bool converged = false;
+    mnee_pdf(scene, st, xb, *xb.bsdf(), path.data(), int(path.size()), *scene.lights()[0], 1.0, lp.p, lp.n, 550,
+             nullptr, &converged);
+    return converged;
+}
+
+}  // namespace
+
 // The density the technique reports for each solution it found equals its density() of the same
 // path, as a BSDF-sampled copy would query it: with solutions=all every solution is the
 // technique's, not only the one the straight seed walks to (Alg. 2 would give 0 for the other).
@@ -285,12 +311,8 @@ TEST(ManifoldSolutions, DensityOfEveryFoundSolutionMatches) {
         const SolutionSet set = solve(scene, xb, st, smp, &lp);
         multi += set.solutions.size() > 1;
         for (const ManifoldSolution& s : set.solutions) {
-            std::vector<SurfaceInteraction> chain;
-            for (const ManifoldVertex& v : s.chain) chain.push_back(v.si);
-            const double d = technique.density(xb, *xb.bsdf(), chain.data(), int(chain.size()), *scene.lights()[0], 1.0,
-                                               lp.p, lp.n, 550);
             // The stored chain is polished (solution_set.h), the density was taken before: 1e-5.
-            EXPECT_NEAR(d, s.density, 1e-5 * s.density);
+            EXPECT_NEAR(density_of(technique, scene, xb, path_of(s), lp), s.density, 1e-5 * s.density);
             ++checked;
         }
     }
@@ -298,34 +320,11 @@ TEST(ManifoldSolutions, DensityOfEveryFoundSolutionMatches) {
     EXPECT_GE(multi, 5);  // light samples with both branches
 }
 
-// Of `n` light samples' solutions under SMS's weighting (`full`), those where Alg. 2's straight
-// walk does not converge; each must have density 0 under the weighted `technique` (settings `st`).
-int solutions_outside_the_straight_walk(const Scene& scene, const SurfaceInteraction& xb,
-                                        const ManifoldTechnique& technique, const MneeSettings& full,
-                                        const MneeSettings& st, Sampler& smp, int n) {
-    int outside = 0;
-    for (int i = 0; i < n; ++i) {
-        LightPoint lp;
-        for (const ManifoldSolution& s : solve(scene, xb, full, smp, &lp).solutions) {
-            std::vector<SurfaceInteraction> chain;
-            for (const ManifoldVertex& v : s.chain) chain.push_back(v.si);
-            bool converged = false;
-            mnee_pdf(scene, st, xb, *xb.bsdf(), chain.data(), int(chain.size()), *scene.lights()[0], 1.0, lp.p, lp.n,
-                     550, nullptr, &converged);
-            if (converged) continue;
-            ++outside;
-            EXPECT_EQ(technique.density(xb, *xb.bsdf(), chain.data(), int(chain.size()), *scene.lights()[0], 1.0, lp.p,
-                                        lp.n, 550),
-                      0.0);
-        }
-    }
-    return outside;
-}
-
 // surface_weight c (the default estimator's MIS): beside a clear straight seed, a solution the
 // straight seed does not walk to weighs c times its solution density, the straight seed's own
 // the full density, and density() answers the same for the same path, as a BSDF-sampled copy
-// would query it, so MIS stays a partition of unity. Scaling on one side only fails here.
+// would query it, so MIS stays a partition of unity. Scaling on one side only fails here, and
+// so does either side's rule for light samples whose straight walk does not converge.
 TEST(ManifoldSolutions, SurfaceWeightScalesTheOtherSolutionsAlikeInSolveAndDensity) {
     size_t count = 0;
     const Vec3 at = multi_solution_receiver(&count);
@@ -344,54 +343,52 @@ TEST(ManifoldSolutions, SurfaceWeightScalesTheOtherSolutionsAlikeInSolveAndDensi
     for (int n = 0; n < 3000 && surface < 20; ++n) {
         LightPoint lp;
         for (const ManifoldSolution& s : solve(scene, xb, st, smp, &lp).solutions) {
-            std::vector<SurfaceInteraction> chain;
-            for (const ManifoldVertex& v : s.chain) chain.push_back(v.si);
-            const auto density_of = [&](const ManifoldTechnique& t) {
-                return t.density(xb, *xb.bsdf(), chain.data(), int(chain.size()), *scene.lights()[0], 1.0, lp.p, lp.n,
-                                 550);
-            };
-            const double d = density_of(technique), d_full = density_of(sms);
+            const std::vector<SurfaceInteraction> path = path_of(s);
+            const double d = density_of(technique, scene, xb, path, lp), d_full = density_of(sms, scene, xb, path, lp);
             EXPECT_NEAR(d, s.density, 1e-5 * s.density) << (s.from_surface ? "surface" : "straight") << " solution";
             EXPECT_NEAR(d, (s.from_surface ? 0.03 : 1.0) * d_full, 1e-9 * d_full);
-            // Surface solutions count only where the straight walk converges (Alg. 2's walk).
-            bool converged = false;
-            mnee_pdf(scene, st, xb, *xb.bsdf(), chain.data(), int(chain.size()), *scene.lights()[0], 1.0, lp.p, lp.n,
-                     550, nullptr, &converged);
-            EXPECT_TRUE(converged);
             ++(s.from_surface ? surface : straight);
         }
     }
     EXPECT_GE(straight, 100);
     EXPECT_GE(surface, 20);  // post-fold solutions found by the surface trials
-    // Every solution SMS's weighting finds where the straight walk does not converge belongs to
-    // BSDF sampling under the weighted technique: density 0 (not c times the full density).
-    // Where the straight walk does not converge, the surface solutions are BSDF sampling's: solve()
-    // drops them and density() gives 0, not c times the density. Here the straight walk
-    // converges wherever there is a solution, so the walk is cut to two iterations: most walks
-    // then fail, the straight one and Alg. 2's alike.
-    MneeSettings short_walk = st;
-    short_walk.walk.max_iterations = 2;
-    const ManifoldTechnique cut(scene, short_walk);
-    const int outside = solutions_outside_the_straight_walk(scene, xb, cut, full, short_walk, smp, 300);
-    int cut_surface = 0;
-    MneeSettings few = st;  // surface seeds start closer than the straight one: some converge in 4
-    few.walk.max_iterations = 4;
+
+    // Where the straight walk does not converge, the surface solutions are BSDF sampling's:
+    // density() gives them 0 (not c times the density) and solve() counts none. At this receiver
+    // the straight walk converges wherever there is a solution, so the walks are cut short.
+    // Two iterations: most walks fail, and every solution SMS's weighting finds there must have
+    // density 0 under the weighted technique.
+    MneeSettings two = st;
+    two.walk.max_iterations = 2;
+    const ManifoldTechnique cut(scene, two);
+    int outside = 0;
+    for (int n = 0; n < 300; ++n) {
+        LightPoint lp;
+        for (const ManifoldSolution& s : solve(scene, xb, full, smp, &lp).solutions) {
+            const std::vector<SurfaceInteraction> path = path_of(s);
+            if (straight_walk_converges(scene, two, xb, path, lp)) continue;
+            ++outside;
+            EXPECT_EQ(density_of(cut, scene, xb, path, lp), 0.0);
+        }
+    }
+    // Four iterations: surface seeds, starting closer, converge where the straight one may not;
+    // every surface solution solve() counts must have a converging straight walk (an estimator
+    // that runs its trials regardless counts some here and fails).
+    MneeSettings four = st;
+    four.walk.max_iterations = 4;
+    int four_surface = 0;
     for (int n = 0; n < 3000; ++n) {
         LightPoint lp;
-        for (const ManifoldSolution& s : solve(scene, xb, few, smp, &lp).solutions) {
+        for (const ManifoldSolution& s : solve(scene, xb, four, smp, &lp).solutions) {
             if (!s.from_surface) continue;
-            std::vector<SurfaceInteraction> chain;
-            for (const ManifoldVertex& v : s.chain) chain.push_back(v.si);
-            bool converged = false;
-            mnee_pdf(scene, few, xb, *xb.bsdf(), chain.data(), int(chain.size()), *scene.lights()[0], 1.0, lp.p, lp.n,
-                     550, nullptr, &converged);
-            EXPECT_TRUE(converged);
-            ++cut_surface;
+            EXPECT_TRUE(straight_walk_converges(scene, four, xb, path_of(s), lp));
+            ++four_surface;
         }
     }
     std::cout << "[surface_weight] " << straight << " straight and " << surface << " surface solutions; two-iteration "
-              << "walks: " << outside << " solutions where the straight walk fails, " << cut_surface
-              << " surface solutions with four-iteration walks\n";
+              << "walks: " << outside
+              << " solutions where the straight walk fails; four-iteration walks: " << four_surface
+              << " surface solutions\n";
     EXPECT_GE(outside, 5);
 }
 
