@@ -1,7 +1,10 @@
 // `snell diff a.exr b.exr [--crop x,y,w,h]... [--reference-offset x,y] [--normalise-by r.exr]
 // [--json]`: error metrics against a reference. A reference rendered on a crop of the film (a long
 // render of the region that matters) is placed with --reference-offset; the image is cut to that
-// window, and --crop rectangles stay in the image's own coordinates. --normalise-by gives relMSE
+// window, and --crop rectangles stay in the image's own coordinates. The other way round, an image
+// rendered on a crop (a quick look at the region that matters) is placed in a larger reference with
+// --image-offset; the reference and the normaliser are cut to the image, and --crop rectangles are
+// in the reference's coordinates. --normalise-by gives relMSE
 // another denominator: two noisy renders compared with each other divide by a converged image,
 // not by one of the noisy two (a firefly divided by itself would count as about 1).
 #include <cstdio>
@@ -20,7 +23,8 @@
 namespace snell {
 
 int cmd_diff(const std::string& a_path, const std::string& b_path, const std::vector<std::string>& crops,
-             const std::string& reference_offset, const std::string& normalise_by, bool json) {
+             const std::string& reference_offset, const std::string& image_offset, const std::string& normalise_by,
+             bool json) {
     Image a = read_exr(a_path);
     Image b = read_exr(b_path);
     std::optional<Image> norm;
@@ -38,6 +42,23 @@ int cmd_diff(const std::string& a_path, const std::string& b_path, const std::ve
                                          std::to_string(window.width) + "x" + std::to_string(window.height) +
                                          ") does not fit inside the image (" + std::to_string(im->width) + "x" +
                                          std::to_string(im->height) + ")");
+            *im = crop_image(*im, o);
+        }
+        ox = o.x;
+        oy = o.y;
+    }
+    if (!image_offset.empty()) {
+        if (!reference_offset.empty())
+            throw std::runtime_error("--image-offset and --reference-offset: give one (which image is the crop?)");
+        const Crop o = parse_crop(image_offset + "," + std::to_string(a.width) + "," + std::to_string(a.height));
+        Image* normaliser = norm ? &*norm : nullptr;
+        for (Image* im : {&b, normaliser}) {
+            // A normaliser already cut to the image's size stays as it is.
+            if (!im || (im == normaliser && im->width == a.width && im->height == a.height)) continue;
+            if (!crop_inside(o, im->width, im->height))
+                throw std::runtime_error("--image-offset " + image_offset + ": the image (" + std::to_string(a.width) +
+                                         "x" + std::to_string(a.height) + ") does not fit inside the reference (" +
+                                         std::to_string(im->width) + "x" + std::to_string(im->height) + ")");
             *im = crop_image(*im, o);
         }
         ox = o.x;

@@ -16,7 +16,8 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
 
 /// `snell diff a.exr b.exr [--crop x,y,w,h]... [--json]`: metrics of a against the reference b.
 int cmd_diff(const std::string& a_path, const std::string& b_path, const std::vector<std::string>& crops,
-             const std::string& reference_offset, const std::string& normalise_by, bool json);
+             const std::string& reference_offset, const std::string& image_offset, const std::string& normalise_by,
+             bool json);
 
 /// Options of `snell compare` (docs/compare.md).
 struct CompareOptions {

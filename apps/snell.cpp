@@ -73,6 +73,12 @@ int main(int argc, char** argv) {
     diff_cmd->add_option(
         "--reference-offset", diff_offset,
         "x,y: the reference covers only the window of its size at (x, y) of the image (a crop render)");
+    std::string diff_image_offset;
+    diff_cmd
+        ->add_option("--image-offset", diff_image_offset,
+                     "x,y: the image is a crop render covering the window of its size at (x, y) of the reference; "
+                     "the reference (and --normalise-by) are cut to it, --crop is in the reference's coordinates")
+        ->excludes("--reference-offset");
     std::string diff_normalise;
     diff_cmd->add_option("--normalise-by", diff_normalise,
                          "EXR whose values r give relMSE's denominators (r^2 + 0.01) instead of the reference's, "
@@ -123,7 +129,7 @@ int main(int argc, char** argv) {
         return app.exit(e) == 0 ? 0 : 1;
     }
     try {
-        if (diff_cmd->parsed()) return cmd_diff(diff_a, diff_b, diff_crops, diff_offset, diff_normalise, diff_json);
+        if (diff_cmd->parsed()) return cmd_diff(diff_a, diff_b, diff_crops, diff_offset, diff_image_offset, diff_normalise, diff_json);
         if (render_cmd->parsed())
             return cmd_render(scene_arg, out, spp, time_limit, threads,
                               seed_opt->count() ? std::optional<uint64_t>(seed) : std::nullopt, exposure, stats_path,

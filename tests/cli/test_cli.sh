@@ -82,6 +82,14 @@ check "crop render equals that window of the full render" "echo \"\$out\" | grep
 check "diff --crop in image coordinates" "echo \"\$out\" | grep -q '^crop 12,8,6,4 .*relMSE 0 '"
 out=$("$SNELL" diff "$TMP/ok.exr" "$TMP/crop.exr" --reference-offset 50,40 2>&1); rc=$?
 check "a reference window outside the image is an error" "[ $rc -ne 0 ] && echo \"\$out\" | grep -q 'does not fit'"
+# The other way round: a crop render scored against the full render with --image-offset (the
+# reference is cut to the crop; --crop in the reference's coordinates), exactly again.
+out=$("$SNELL" diff "$TMP/crop.exr" "$TMP/ok.exr" --image-offset 10,6 --crop 12,8,6,4 2>&1); rc=$?
+check "diff --image-offset: the crop render equals the reference's window" "[ $rc -eq 0 ] && echo \"\$out\" | grep -q '^image .*relMSE 0 ' && echo \"\$out\" | grep -q '^crop 12,8,6,4 .*relMSE 0 '"
+out=$("$SNELL" diff "$TMP/crop.exr" "$TMP/ok.exr" --image-offset 30,40 2>&1); rc=$?
+check "an image window outside the reference is an error" "[ $rc -ne 0 ] && echo \"\$out\" | grep -q 'does not fit'"
+out=$("$SNELL" diff "$TMP/crop.exr" "$TMP/ok.exr" --image-offset 10,6 --reference-offset 10,6 2>&1); rc=$?
+check "--image-offset with --reference-offset is an error" "[ $rc -ne 0 ]"
 # Issue 12: crop rectangles are checked in 64 bits (x = 2147483647 overflowed int and crashed).
 for crop in 2147483647,0,10,10 0,2147483647,1,1 2147483647,2147483647,2147483647,2147483647 -1,0,2,2 1,1,0,1; do
   out=$("$SNELL" diff "$TMP/ok.exr" "$TMP/crop.exr" --reference-offset 10,6 --crop $crop 2>&1); rc=$?
