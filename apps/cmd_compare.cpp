@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <thread>
@@ -173,19 +174,45 @@ int cmd_compare(const CompareOptions& opt) {
         }
     }
     rep.threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    if (!opt.reference_offset.empty() && opt.reference_file.empty())
+        throw std::runtime_error("--reference-offset places a --reference file: give one");
 
     std::vector<Prepared> prepared;
     for (const Technique& t : techniques) prepared.push_back(prepare(opt.scene, defines, t, opt.quiet));
-    rep.width = prepared[0].ls.film.out_width();
-    rep.height = prepared[0].ls.film.out_height();
+    const int film_w = prepared[0].ls.film.out_width(), film_h = prepared[0].ls.film.out_height();
     const uint64_t seed = opt.seed ? *opt.seed : prepared[0].ls.seed;
     rep.seed = seed;
-    for (const Crop& c : rep.crops) {
-        if (!crop_inside(c, rep.width, rep.height))
-            throw std::runtime_error("--crop " + crop_text(c) + " is outside the " + std::to_string(rep.width) + "x" +
-                                     std::to_string(rep.height) + " image");
+
+    // A reference file is read first: with --reference-offset its size is the scored window.
+    Image ref;
+    if (!opt.reference_file.empty()) ref = read_exr(opt.reference_file);
+    std::optional<Crop> window;
+    if (!opt.reference_offset.empty()) {
+        window = parse_crop(opt.reference_offset + "," + std::to_string(ref.width) + "," + std::to_string(ref.height));
+        if (!crop_inside(*window, film_w, film_h))
+            throw std::runtime_error("--reference-offset " + opt.reference_offset + ": the reference (" +
+                                     std::to_string(ref.width) + "x" + std::to_string(ref.height) +
+                                     ") does not fit inside the " + std::to_string(film_w) + "x" +
+                                     std::to_string(film_h) + " film");
+    }
+    const Crop scored = window ? *window : Crop{0, 0, film_w, film_h};
+    rep.width = scored.w;
+    rep.height = scored.h;
+    rep.window_x = scored.x;
+    rep.window_y = scored.y;
+    for (Crop& c : rep.crops) {
+        if (!crop_inside({c.x - scored.x, c.y - scored.y, c.w, c.h}, scored.w, scored.h))
+            throw std::runtime_error("--crop " + crop_text(c) + " is outside the " + std::to_string(scored.w) + "x" +
+                                     std::to_string(scored.h) + (window ? " reference window" : " image"));
+        c.x -= scored.x;  // the report works in the scored window's coordinates
+        c.y -= scored.y;
         rep.crop_scales.push_back(enlargement_factor(c.w, c.h));
     }
+    // A render as the report sees it: the scored window of the film.
+    const auto scored_image = [&](const Film& film) {
+        const Image full = film_to_image(film);
+        return window ? crop_image(full, *window) : full;
+    };
 
     const fs::path dir(opt.out_dir);
     fs::create_directories(dir);
@@ -193,12 +220,10 @@ int cmd_compare(const CompareOptions& opt) {
 
     // The reference: loaded, or rendered with its own seed so that its noise is independent of
     // the images it judges.
-    Image ref;
     ReferenceInfo& ri = rep.reference;
     if (!opt.reference_file.empty()) {
         ri.source = "file";
         ri.file = opt.reference_file;
-        ref = read_exr(opt.reference_file);
     } else {
         ri.source = "render";
         ri.integrator = opt.reference_integrator;
@@ -237,15 +262,19 @@ int cmd_compare(const CompareOptions& opt) {
         for (int k = opt.convergence_steps; k >= 1 && !g_cancel.load(); --k) {
             const double tl = opt.time / std::exp2(k);
             const RenderResult r = run(p, tl, 0, rep.threads, seed);
-            res.convergence.push_back({tl, r.seconds, r.spp_mean, compare_images(film_to_image(r.film), ref)});
+            res.convergence.push_back({tl, r.seconds, r.spp_mean, compare_images(scored_image(r.film), ref)});
         }
         if (!opt.quiet) std::fprintf(stderr, "snell compare: %s, %g s\n", t.name.c_str(), opt.time);
         const RenderResult r = run(p, opt.time, 0, rep.threads, seed);
-        const Image img = film_to_image(r.film);
+        const Image img = scored_image(r.film);
+        // With a reference window the whole film is kept beside the report's window.
+        if (window) write_exr((dir / (t.name + "_film.exr")).string(), film_to_image(r.film));
         res.stats = make_report(opt.scene, t.name, p.ls.film.out_width(), p.ls.film.out_height(), r, 0, opt.time,
                                 rep.threads, seed);
         res.regions.push_back({"image", Crop{}, compare_images(img, ref)});
-        for (const Crop& c : rep.crops) res.regions.push_back({"crop " + crop_text(c), c, compare_images(img, ref, c)});
+        for (const Crop& c : rep.crops)
+            res.regions.push_back({"crop " + crop_text({c.x + scored.x, c.y + scored.y, c.w, c.h}), c,
+                                   compare_images(img, ref, c)});
         res.convergence.push_back({opt.time, r.seconds, r.spp_mean, res.regions[0].metrics});
 
         res.image_exr = t.name + ".exr";

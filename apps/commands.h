@@ -26,6 +26,7 @@ struct CompareOptions {
     double time = 0;                       ///< equal-time budget per integrator (s)
     std::string out_dir;
     std::string reference_file;  ///< --reference ref.exr
+    std::string reference_offset;  ///< --reference-offset x,y: the reference covers that window of the film
     std::string reference_integrator = "mnee";
     int reference_spp = 0;      ///< --reference-spp
     double reference_time = 0;  ///< --reference-time

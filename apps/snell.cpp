@@ -105,6 +105,12 @@ int main(int argc, char** argv) {
         cmp_cmd->add_option("--reference-spp", cmp.reference_spp, "reference samples per pixel")->check(kSpp);
     auto* ref_time =
         cmp_cmd->add_option("--reference-time", cmp.reference_time, "reference render time (s)")->check(kSeconds);
+    cmp_cmd
+        ->add_option("--reference-offset", cmp.reference_offset,
+                     "x,y: the --reference file covers only the window of its size at (x, y) of the film (a long "
+                     "render of the region that matters); every image and metric covers that window, the whole "
+                     "film is kept as NAME_film.exr, --crop stays in film coordinates")
+        ->needs(ref_file);
     ref_file->excludes(ref_integ)->excludes(ref_spp)->excludes(ref_time);
     ref_spp->excludes(ref_time);
     cmp_cmd->add_option("-D,--define", cmp.defines, "override a scene <default>: -D name=value")

@@ -40,6 +40,7 @@ nlohmann::json report_json(const CompareReport& r) {
     j["defines"] = r.defines;
     j["width"] = r.width;
     j["height"] = r.height;
+    j["window"] = {{"x", r.window_x}, {"y", r.window_y}};
     j["time_budget"] = r.time_budget;
     j["threads"] = r.threads;
     j["seed"] = r.seed;
@@ -47,7 +48,11 @@ nlohmann::json report_json(const CompareReport& r) {
     j["error_max"] = r.error_max;
     j["crops"] = nlohmann::json::array();
     for (size_t i = 0; i < r.crops.size(); ++i) {
-        nlohmann::json c = crop_json(r.crops[i]);
+        // In the film's coordinates, as given on the command line.
+        Crop film = r.crops[i];
+        film.x += r.window_x;
+        film.y += r.window_y;
+        nlohmann::json c = crop_json(film);
         if (i < r.crop_scales.size()) c["scale"] = r.crop_scales[i];
         j["crops"].push_back(c);
     }

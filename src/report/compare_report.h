@@ -54,7 +54,11 @@ struct ReferenceInfo {
 struct CompareReport {
     std::string scene;
     std::vector<std::string> defines;  ///< -D name=value as given
+    /// The scored window: the whole film, or with a reference rendered on a crop of the film
+    /// (--reference-offset) that crop, at (window_x, window_y) of the film. Every image, error map
+    /// and metric of the report covers the window; `crops` are in its coordinates.
     int width = 0, height = 0;
+    int window_x = 0, window_y = 0;
     double time_budget = 0;  ///< equal-time budget per integrator (s)
     int threads = 0;
     uint64_t seed = 0;

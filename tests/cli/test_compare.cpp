@@ -19,6 +19,7 @@
 
 #include "io/image.h"
 #include "report/image_metrics.h"
+#include "report/image_ops.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -170,6 +171,65 @@ TEST(CompareCli, ErrorsAreClearAndExitNonZero) {
                 " --reference " + quote(ref.string()) + " --out " + quote(scratch.string()));
         EXPECT_NE(r.status, 0);
         EXPECT_NE(r.output.find("reference is 64x48 but the scene renders 32x24"), std::string::npos) << r.output;
+    }
+    fs::remove_all(scratch);
+}
+
+// A reference rendered on a crop of the film (--reference-offset): every image, metric and crop of
+// the report covers that window, crops are named in film coordinates, and the whole film is kept.
+TEST(CompareCli, AReferenceWindowScoresEveryImageThere) {
+    const std::string snell = quote(env("SNELL_BIN"));
+    const fs::path dir = env("SNELL_COMPARE_DIR");
+    const fs::path full_ref = dir / "reference.exr";
+    if (!fs::exists(full_ref)) GTEST_SKIP() << "needs the first test's reference";
+    const fs::path scratch = dir.string() + "_window";
+    fs::remove_all(scratch);
+    fs::create_directories(scratch);
+    const Crop window{8, 6, 40, 30};
+    const Image ref_window = crop_image(read_exr(full_ref.string()), window);
+    const fs::path ref = scratch / "window_ref.exr";
+    write_exr(ref.string(), ref_window);
+    const fs::path out = scratch / "report";
+    const CommandResult r =
+        run(snell + " compare builtin:droplet --integrators nee --time 0.2 -t 2 --seed 7 -D res_x=64 -D res_y=48" +
+            " --reference " + quote(ref.string()) + " --reference-offset 8,6 --crop 20,20,16,12" +
+            " --convergence-steps 1 -q --out " + quote(out.string()));
+    ASSERT_EQ(r.status, 0) << r.output;
+    std::ifstream in(out / "report.json");
+    const json j = json::parse(in);
+    EXPECT_EQ(j["width"], 40);
+    EXPECT_EQ(j["height"], 30);
+    EXPECT_EQ(j["window"]["x"], 8);
+    EXPECT_EQ(j["window"]["y"], 6);
+    EXPECT_EQ(j["crops"][0]["x"], 20);  // film coordinates, as given
+    const json& it = j["integrators"][0];
+    const Image img = read_exr((out / it["image_exr"].get<std::string>()).string());
+    ASSERT_EQ(img.width, 40);
+    ASSERT_EQ(img.height, 30);
+    // The report's image is exactly the film's window.
+    const Image film = read_exr((out / "nee_film.exr").string());
+    ASSERT_EQ(film.width, 64);
+    EXPECT_EQ(crop_image(film, window).rgb, img.rgb);
+    EXPECT_EQ(it["metrics"][1]["region"], "crop 20,20,16,12");
+    const Crop crops[2] = {Crop{}, Crop{12, 14, 16, 12}};  // the crop in the window's coordinates
+    for (int g = 0; g < 2; ++g) {
+        const ImageMetrics expect = compare_images(img, ref_window, crops[g]);
+        EXPECT_NEAR(it["metrics"][g]["rel_mse"].get<double>(), expect.rel_mse, 1e-9 * expect.rel_mse);
+    }
+    EXPECT_EQ(it["convergence"].back()["rel_mse"], it["metrics"][0]["rel_mse"]);
+    // Errors: a window that does not fit, a crop outside it, an offset without a reference file.
+    const std::string base = snell + " compare builtin:droplet --integrators nee --time 0.1 -D res_x=64 -D res_y=48 -q";
+    struct Case {
+        std::string args, expect;
+    } cases[] = {
+        {" --reference " + quote(ref.string()) + " --reference-offset 30,20", "does not fit inside the 64x48 film"},
+        {" --reference " + quote(ref.string()) + " --reference-offset 8,6 --crop 0,0,4,4", "outside the 40x30 reference window"},
+        {" --reference-spp 1 --reference-offset 8,6", "--reference"},
+    };
+    for (const Case& c : cases) {
+        const CommandResult e = run(base + c.args + " --out " + quote((scratch / "err").string()));
+        EXPECT_NE(e.status, 0) << c.args;
+        EXPECT_NE(e.output.find(c.expect), std::string::npos) << c.args << "\n" << e.output;
     }
     fs::remove_all(scratch);
 }
