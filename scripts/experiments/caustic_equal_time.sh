@@ -14,6 +14,9 @@
 #       independent renders of equal variance the figure is twice either's relMSE, and half of it
 #       is printed (the technique's relMSE at that time, its bias left out, the reference's noise
 #       only in the denominators)
+#   caustic_equal_time.sh compare LABEL [seconds=30]           `snell compare` of nee, mnee and
+#       mnee-biased (the issue's command), each case scored on its crops against the crop
+#       reference (--reference-offset): results/caustics/LABEL/compare_<case>/report.html
 #   caustic_equal_time.sh refcheck [seconds=600]               the references' own noise: a second
 #       reference (seed 78) for SECONDS, scored against the first; with the first's time T, the
 #       first's own relMSE is about that figure x SECONDS / (SECONDS + T)
@@ -21,7 +24,7 @@
 # SNELL=path/to/snell renders with another build (e.g. the one before issue 10); THREADS (2);
 # SEED (1) the renders' seed.
 source "$(dirname "$0")/common.sh"
-MODE=${1:?reference, render, score, noise or refcheck}
+MODE=${1:?reference, render, compare, score, noise or refcheck}
 THREADS=${THREADS:-2}
 SEED=${SEED:-1}
 OUT=results/caustics
@@ -105,6 +108,19 @@ render)
       "$SNELL" render "$scene" $(defines_of "$c") -D integrator=$name --time "$T" -t "$THREADS" -q --seed "$SEED" \
         -o "$OUT/$LABEL/${c}_$integ.exr"
     done
+  done
+  ;;
+compare)
+  LABEL=${2:?label}
+  T=${3:-30}
+  for c in "${CASES[@]}"; do
+    IFS=, read -r rx ry _ _ <<<"$(ref_crop_of "$c")"
+    crop_args=()
+    for crop in $(crops_of "$c"); do crop_args+=(--crop "${crop#*:}"); done
+    # shellcheck disable=SC2046
+    "$SNELL" compare "$(scene_of "$c")" $(defines_of "$c") --integrators nee,mnee,mnee-biased --time "$T" \
+      -t "$THREADS" --seed "$SEED" --reference "$OUT/ref_$c.exr" --reference-offset "$rx,$ry" "${crop_args[@]}" \
+      --convergence-steps 0 -q -o "$OUT/$LABEL/compare_$c"
   done
   ;;
 score)
