@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
 #include <stdexcept>
 
 #include "builtin_scenes.h"
@@ -95,6 +96,15 @@ RenderReport make_report(const std::string& scene, const std::string& integrator
     rep.set_counters(r.counters);
     if (has_mnee_stats(r.counters)) rep.extra["mnee"] = mnee_stats_json(r.counters);
     return rep;
+}
+
+Crop offset_window(const std::string& option, const std::string& xy, int w, int h) {
+    Crop c{0, 0, w, h};
+    char comma = 0;
+    std::istringstream in(xy);
+    if (!(in >> c.x >> comma >> c.y) || comma != ',' || !in.eof() || c.x < 0 || c.y < 0)
+        throw std::runtime_error(option + " must be x,y (pixels, x, y >= 0), got '" + xy + "'");
+    return c;
 }
 
 Image film_to_image(const Film& film, int layer) {

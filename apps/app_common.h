@@ -11,6 +11,7 @@
 #include "loader/scene_loader.h"
 #include "loader/xml_scene.h"
 #include "render/renderer.h"
+#include "report/image_metrics.h"
 
 namespace snell {
 
@@ -30,6 +31,10 @@ Defines parse_defines(const std::vector<std::string>& items);
 /// (counters, MNEE statistics, pixel dominance).
 RenderReport make_report(const std::string& scene, const std::string& integrator, int width, int height,
                          const RenderResult& r, uint64_t spp_requested, double time_limit, int threads, uint64_t seed);
+/// The window of size w x h at the offset "x,y" given to `option` (--reference-offset,
+/// --image-offset); throws std::runtime_error naming the option and the text if it is not two
+/// non-negative integers.
+Crop offset_window(const std::string& option, const std::string& xy, int w, int h);
 /// The film's linear sRGB pixels as an Image.
 Image film_to_image(const Film& film, int layer = 0);
 

@@ -176,24 +176,34 @@ int cmd_compare(const CompareOptions& opt) {
     rep.threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
     if (!opt.reference_offset.empty() && opt.reference_file.empty())
         throw std::runtime_error("--reference-offset places a --reference file: give one");
+    // The offset's form is checked before any scene loads; its window needs the reference's size.
+    if (!opt.reference_offset.empty()) offset_window("--reference-offset", opt.reference_offset, 1, 1);
 
     std::vector<Prepared> prepared;
     for (const Technique& t : techniques) prepared.push_back(prepare(opt.scene, defines, t, opt.quiet));
     const int film_w = prepared[0].ls.film.out_width(), film_h = prepared[0].ls.film.out_height();
     const uint64_t seed = opt.seed ? *opt.seed : prepared[0].ls.seed;
     rep.seed = seed;
+    rep.film_width = film_w;
+    rep.film_height = film_h;
 
-    // A reference file is read first: with --reference-offset its size is the scored window.
+    // A reference file is read first: its size is the film's, or with --reference-offset the
+    // scored window's.
     Image ref;
     if (!opt.reference_file.empty()) ref = read_exr(opt.reference_file);
     std::optional<Crop> window;
     if (!opt.reference_offset.empty()) {
-        window = parse_crop(opt.reference_offset + "," + std::to_string(ref.width) + "," + std::to_string(ref.height));
+        window = offset_window("--reference-offset", opt.reference_offset, ref.width, ref.height);
         if (!crop_inside(*window, film_w, film_h))
             throw std::runtime_error("--reference-offset " + opt.reference_offset + ": the reference (" +
                                      std::to_string(ref.width) + "x" + std::to_string(ref.height) +
                                      ") does not fit inside the " + std::to_string(film_w) + "x" +
                                      std::to_string(film_h) + " film");
+    } else if (!opt.reference_file.empty() && (ref.width != film_w || ref.height != film_h)) {
+        throw std::runtime_error("reference is " + std::to_string(ref.width) + "x" + std::to_string(ref.height) +
+                                 " but the scene renders " + std::to_string(film_w) + "x" + std::to_string(film_h) +
+                                 " (check -D res_x/res_y or the reference file, or place a crop reference with "
+                                 "--reference-offset)");
     }
     const Crop scored = window ? *window : Crop{0, 0, film_w, film_h};
     rep.width = scored.w;
@@ -203,7 +213,10 @@ int cmd_compare(const CompareOptions& opt) {
     for (Crop& c : rep.crops) {
         if (!crop_inside({c.x - scored.x, c.y - scored.y, c.w, c.h}, scored.w, scored.h))
             throw std::runtime_error("--crop " + crop_text(c) + " is outside the " + std::to_string(scored.w) + "x" +
-                                     std::to_string(scored.h) + (window ? " reference window" : " image"));
+                                     std::to_string(scored.h) +
+                                     (window ? " reference window at " + std::to_string(scored.x) + "," +
+                                                   std::to_string(scored.y) + " of the film"
+                                             : " image"));
         c.x -= scored.x;  // the report works in the scored window's coordinates
         c.y -= scored.y;
         rep.crop_scales.push_back(enlargement_factor(c.w, c.h));
@@ -273,8 +286,8 @@ int cmd_compare(const CompareOptions& opt) {
                                 rep.threads, seed);
         res.regions.push_back({"image", Crop{}, compare_images(img, ref)});
         for (const Crop& c : rep.crops)
-            res.regions.push_back({"crop " + crop_text({c.x + scored.x, c.y + scored.y, c.w, c.h}), c,
-                                   compare_images(img, ref, c)});
+            res.regions.push_back(
+                {"crop " + crop_text({c.x + scored.x, c.y + scored.y, c.w, c.h}), c, compare_images(img, ref, c)});
         res.convergence.push_back({opt.time, r.seconds, r.spp_mean, res.regions[0].metrics});
 
         res.image_exr = t.name + ".exr";

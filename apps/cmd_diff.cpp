@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app_common.h"
 #include "commands.h"
 #include "io/image.h"
 #include "report/image_metrics.h"
@@ -33,8 +34,7 @@ int cmd_diff(const std::string& a_path, const std::string& b_path, const std::ve
     const Image& window = norm ? *norm : b;
     int ox = 0, oy = 0;
     if (!reference_offset.empty()) {
-        const Crop o =
-            parse_crop(reference_offset + "," + std::to_string(window.width) + "," + std::to_string(window.height));
+        const Crop o = offset_window("--reference-offset", reference_offset, window.width, window.height);
         for (Image* im : {&a, &b}) {
             if (im->width == window.width && im->height == window.height && im == &b) continue;
             if (!crop_inside(o, im->width, im->height))
@@ -50,17 +50,20 @@ int cmd_diff(const std::string& a_path, const std::string& b_path, const std::ve
     if (!image_offset.empty()) {
         if (!reference_offset.empty())
             throw std::runtime_error("--image-offset and --reference-offset: give one (which image is the crop?)");
-        const Crop o = parse_crop(image_offset + "," + std::to_string(a.width) + "," + std::to_string(a.height));
-        Image* normaliser = norm ? &*norm : nullptr;
-        for (Image* im : {&b, normaliser}) {
-            // A normaliser already cut to the image's size stays as it is.
-            if (!im || (im == normaliser && im->width == a.width && im->height == a.height)) continue;
-            if (!crop_inside(o, im->width, im->height))
-                throw std::runtime_error("--image-offset " + image_offset + ": the image (" + std::to_string(a.width) +
-                                         "x" + std::to_string(a.height) + ") does not fit inside the reference (" +
-                                         std::to_string(im->width) + "x" + std::to_string(im->height) + ")");
-            *im = crop_image(*im, o);
-        }
+        const Crop o = offset_window("--image-offset", image_offset, a.width, a.height);
+        // The normaliser is the reference's size (cut with it) or already the image's.
+        if (norm && !(norm->width == a.width && norm->height == a.height) &&
+            !(norm->width == b.width && norm->height == b.height))
+            throw std::runtime_error("--normalise-by " + normalise_by + ": its size (" + std::to_string(norm->width) +
+                                     "x" + std::to_string(norm->height) + ") is neither the reference's (" +
+                                     std::to_string(b.width) + "x" + std::to_string(b.height) + ") nor the image's (" +
+                                     std::to_string(a.width) + "x" + std::to_string(a.height) + ")");
+        if (!crop_inside(o, b.width, b.height))
+            throw std::runtime_error("--image-offset " + image_offset + ": the image (" + std::to_string(a.width) +
+                                     "x" + std::to_string(a.height) + ") does not fit inside the reference (" +
+                                     std::to_string(b.width) + "x" + std::to_string(b.height) + ")");
+        if (norm && norm->width == b.width && norm->height == b.height) *norm = crop_image(*norm, o);
+        b = crop_image(b, o);
         ox = o.x;
         oy = o.y;
     }

@@ -14,7 +14,8 @@ int cmd_render(const std::string& scene_arg, std::string out, int spp, double ti
                const std::vector<std::string>& define_items, bool strategies = false,
                const std::vector<std::string>& search_paths = {});
 
-/// `snell diff a.exr b.exr [--crop x,y,w,h]... [--json]`: metrics of a against the reference b.
+/// `snell diff a.exr b.exr [--crop x,y,w,h]... [--reference-offset x,y | --image-offset x,y]
+/// [--normalise-by r.exr] [--json]`: metrics of a against the reference b (apps/cmd_diff.cpp).
 int cmd_diff(const std::string& a_path, const std::string& b_path, const std::vector<std::string>& crops,
              const std::string& reference_offset, const std::string& image_offset, const std::string& normalise_by,
              bool json);
@@ -25,7 +26,7 @@ struct CompareOptions {
     std::vector<std::string> integrators;  ///< pt, path, nee, mnee, mnee-biased, ...
     double time = 0;                       ///< equal-time budget per integrator (s)
     std::string out_dir;
-    std::string reference_file;  ///< --reference ref.exr
+    std::string reference_file;    ///< --reference ref.exr
     std::string reference_offset;  ///< --reference-offset x,y: the reference covers that window of the film
     std::string reference_integrator = "mnee";
     int reference_spp = 0;      ///< --reference-spp

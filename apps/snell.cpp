@@ -83,7 +83,8 @@ int main(int argc, char** argv) {
     diff_cmd->add_option("--normalise-by", diff_normalise,
                          "EXR whose values r give relMSE's denominators (r^2 + 0.01) instead of the reference's, "
                          "e.g. a converged reference when comparing two noisy renders; the reference's size, or "
-                         "with --reference-offset the window's (the reference is then cut to it too)");
+                         "with --reference-offset the window's (the reference is then cut to it too), or with "
+                         "--image-offset the reference's (cut to the image) or the image's");
     diff_cmd->add_flag("--json", diff_json, "print JSON instead of text");
 
     CLI::App* cmp_cmd =
@@ -135,7 +136,8 @@ int main(int argc, char** argv) {
         return app.exit(e) == 0 ? 0 : 1;
     }
     try {
-        if (diff_cmd->parsed()) return cmd_diff(diff_a, diff_b, diff_crops, diff_offset, diff_image_offset, diff_normalise, diff_json);
+        if (diff_cmd->parsed())
+            return cmd_diff(diff_a, diff_b, diff_crops, diff_offset, diff_image_offset, diff_normalise, diff_json);
         if (render_cmd->parsed())
             return cmd_render(scene_arg, out, spp, time_limit, threads,
                               seed_opt->count() ? std::optional<uint64_t>(seed) : std::nullopt, exposure, stats_path,

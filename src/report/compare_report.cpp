@@ -40,7 +40,8 @@ nlohmann::json report_json(const CompareReport& r) {
     j["defines"] = r.defines;
     j["width"] = r.width;
     j["height"] = r.height;
-    j["window"] = {{"x", r.window_x}, {"y", r.window_y}};
+    j["film"] = {{"width", r.film_width}, {"height", r.film_height}};
+    j["window"] = crop_json({r.window_x, r.window_y, r.width, r.height});
     j["time_budget"] = r.time_budget;
     j["threads"] = r.threads;
     j["seed"] = r.seed;
@@ -49,10 +50,7 @@ nlohmann::json report_json(const CompareReport& r) {
     j["crops"] = nlohmann::json::array();
     for (size_t i = 0; i < r.crops.size(); ++i) {
         // In the film's coordinates, as given on the command line.
-        Crop film = r.crops[i];
-        film.x += r.window_x;
-        film.y += r.window_y;
-        nlohmann::json c = crop_json(film);
+        nlohmann::json c = crop_json(r.in_film(r.crops[i]));
         if (i < r.crop_scales.size()) c["scale"] = r.crop_scales[i];
         j["crops"].push_back(c);
     }
@@ -91,7 +89,7 @@ nlohmann::json report_json(const CompareReport& r) {
         for (const RegionMetrics& m : it.regions) {
             nlohmann::json jm = metrics_json(m.metrics);
             jm["region"] = m.region;
-            jm["crop"] = crop_json(m.crop);
+            jm["crop"] = crop_json(r.in_film(m.crop));
             ji["metrics"].push_back(jm);
         }
         ji["convergence"] = nlohmann::json::array();

@@ -59,6 +59,11 @@ struct CompareReport {
     /// and metric of the report covers the window; `crops` are in its coordinates.
     int width = 0, height = 0;
     int window_x = 0, window_y = 0;
+    int film_width = 0, film_height = 0;  ///< the rendered film (0: the window is the film)
+    /// Whether the report covers a window of the film rather than all of it.
+    bool windowed() const { return film_width > 0 && (width != film_width || height != film_height); }
+    /// A rectangle of the window in the film's coordinates (Crop{}, the whole window, as it is).
+    Crop in_film(const Crop& c) const { return c.w > 0 ? Crop{c.x + window_x, c.y + window_y, c.w, c.h} : c; }
     double time_budget = 0;  ///< equal-time budget per integrator (s)
     int threads = 0;
     uint64_t seed = 0;

@@ -75,12 +75,11 @@ std::string html_report(const CompareReport& r) {
     // Header: what was compared and how.
     h += "<h1>Equal-time comparison: " + esc(r.scene) + "</h1>\n<p class=\"meta\">";
     h += std::to_string(r.width) + "&times;" + std::to_string(r.height) + " pixels";
-    if (r.window_x || r.window_y)
+    if (r.windowed())
         h += " (the reference's window at x=" + std::to_string(r.window_x) + ", y=" + std::to_string(r.window_y) +
-             " of the film)";
-    h += ", " + fmt("%g", r.time_budget) +
-         " s per integrator, " + std::to_string(r.threads) + " threads, seed " + std::to_string(r.seed) +
-         ", PNG exposure " + fmt("%+g", r.exposure) + " stops";
+             " of the " + std::to_string(r.film_width) + "&times;" + std::to_string(r.film_height) + " film)";
+    h += ", " + fmt("%g", r.time_budget) + " s per integrator, " + std::to_string(r.threads) + " threads, seed " +
+         std::to_string(r.seed) + ", PNG exposure " + fmt("%+g", r.exposure) + " stops";
     for (const std::string& d : r.defines) h += ", -D " + esc(d);
     h += ".<br>Reference: ";
     if (r.reference.source == "file")
@@ -118,9 +117,10 @@ std::string html_report(const CompareReport& r) {
         for (size_t c = 0; c < r.crops.size(); ++c) {
             const Crop& cr = r.crops[c];
             const int scale = c < r.crop_scales.size() ? r.crop_scales[c] : 1;
-            h += "<p class=\"meta\">Crop " + std::to_string(c + 1) + ": x=" + std::to_string(cr.x + r.window_x) +
-                 ", y=" + std::to_string(cr.y + r.window_y) + ", " + std::to_string(cr.w) + "&times;" + std::to_string(cr.h) +
-                 " pixels, shown " + std::to_string(scale) + "&times;</p>\n<div class=\"row\">\n";
+            h += "<p class=\"meta\">Crop " + std::to_string(c + 1) + ": x=" + std::to_string(r.in_film(cr).x) +
+                 ", y=" + std::to_string(r.in_film(cr).y) + ", " + std::to_string(cr.w) + "&times;" +
+                 std::to_string(cr.h) + " pixels, shown " + std::to_string(scale) +
+                 "&times;</p>\n<div class=\"row\">\n";
             h += figure(r.reference.crop_pngs.at(c), "reference crop " + std::to_string(c + 1), cr.w * scale,
                         "<b>reference</b>");
             for (size_t k : order) {

@@ -181,7 +181,7 @@ TEST(CompareCli, AReferenceWindowScoresEveryImageThere) {
     const std::string snell = quote(env("SNELL_BIN"));
     const fs::path dir = env("SNELL_COMPARE_DIR");
     const fs::path full_ref = dir / "reference.exr";
-    if (!fs::exists(full_ref)) GTEST_SKIP() << "needs the first test's reference";
+    ASSERT_TRUE(fs::exists(full_ref)) << "needs the reference of ReportJsonHasEveryNumberAndMatchesTheImages";
     const fs::path scratch = dir.string() + "_window";
     fs::remove_all(scratch);
     fs::create_directories(scratch);
@@ -199,8 +199,8 @@ TEST(CompareCli, AReferenceWindowScoresEveryImageThere) {
     const json j = json::parse(in);
     EXPECT_EQ(j["width"], 40);
     EXPECT_EQ(j["height"], 30);
-    EXPECT_EQ(j["window"]["x"], 8);
-    EXPECT_EQ(j["window"]["y"], 6);
+    EXPECT_EQ(j["window"], (json{{"x", 8}, {"y", 6}, {"w", 40}, {"h", 30}}));
+    EXPECT_EQ(j["film"]["width"], 64);
     EXPECT_EQ(j["crops"][0]["x"], 20);  // film coordinates, as given
     const json& it = j["integrators"][0];
     const Image img = read_exr((out / it["image_exr"].get<std::string>()).string());
@@ -211,6 +211,7 @@ TEST(CompareCli, AReferenceWindowScoresEveryImageThere) {
     ASSERT_EQ(film.width, 64);
     EXPECT_EQ(crop_image(film, window).rgb, img.rgb);
     EXPECT_EQ(it["metrics"][1]["region"], "crop 20,20,16,12");
+    EXPECT_EQ(it["metrics"][1]["crop"]["x"], 20);          // film coordinates, like the region's name
     const Crop crops[2] = {Crop{}, Crop{12, 14, 16, 12}};  // the crop in the window's coordinates
     for (int g = 0; g < 2; ++g) {
         const ImageMetrics expect = compare_images(img, ref_window, crops[g]);
@@ -223,8 +224,10 @@ TEST(CompareCli, AReferenceWindowScoresEveryImageThere) {
         std::string args, expect;
     } cases[] = {
         {" --reference " + quote(ref.string()) + " --reference-offset 30,20", "does not fit inside the 64x48 film"},
-        {" --reference " + quote(ref.string()) + " --reference-offset 8,6 --crop 0,0,4,4", "outside the 40x30 reference window"},
-        {" --reference-spp 1 --reference-offset 8,6", "--reference"},
+        {" --reference " + quote(ref.string()) + " --reference-offset 8,6 --crop 0,0,4,4",
+         "outside the 40x30 reference window at 8,6 of the film"},
+        {" --reference-spp 1 --reference-offset 8,6", "--reference-offset requires --reference"},
+        {" --reference " + quote(ref.string()) + " --reference-offset 8", "--reference-offset must be x,y"},
     };
     for (const Case& c : cases) {
         const CommandResult e = run(base + c.args + " --out " + quote((scratch / "err").string()));

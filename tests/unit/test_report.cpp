@@ -129,6 +129,42 @@ TEST(Report, OrderAndJson) {
     EXPECT_EQ(j["reference"]["file"], "ref.exr");
 }
 
+// A report on a window of the film (snell compare --reference-offset): crops and region
+// rectangles are given back in film coordinates, and the page says where the window is.
+TEST(Report, AWindowOfTheFilmIsReportedInFilmCoordinates) {
+    CompareReport r;
+    r.width = 40;
+    r.height = 30;
+    r.film_width = 64;
+    r.film_height = 48;
+    r.window_x = 8;
+    r.window_y = 6;
+    r.crops = {Crop{12, 14, 16, 12}};
+    r.crop_scales = {1};
+    r.reference.source = "file";
+    r.reference.crop_pngs = {"reference_crop1.png"};
+    r.integrators = {result("nee", 20)};
+    r.integrators[0].crop_pngs = {"nee_crop1.png"};
+    r.integrators[0].regions.push_back({"crop 20,20,16,12", Crop{12, 14, 16, 12}, {}});
+    EXPECT_TRUE(r.windowed());
+    const nlohmann::json j = report_json(r);
+    EXPECT_EQ(j["window"], (nlohmann::json{{"x", 8}, {"y", 6}, {"w", 40}, {"h", 30}}));
+    EXPECT_EQ(j["film"]["width"], 64);
+    EXPECT_EQ(j["crops"][0]["x"], 20);
+    EXPECT_EQ(j["crops"][0]["y"], 20);
+    const nlohmann::json& m = j["integrators"][0]["metrics"];
+    EXPECT_EQ(m[0]["crop"]["w"], 0);  // the whole window stays Crop{}
+    EXPECT_EQ(m.back()["crop"]["x"], 20);
+    EXPECT_EQ(m.back()["crop"]["y"], 20);
+    const std::string h = html_report(r);
+    EXPECT_NE(h.find("window at x=8, y=6 of the 64&times;48 film"), std::string::npos);
+    EXPECT_NE(h.find("Crop 1: x=20, y=20"), std::string::npos);
+    r.film_width = 40;  // a reference as large as the film: no window
+    r.film_height = 30;
+    EXPECT_FALSE(r.windowed());
+    EXPECT_EQ(html_report(r).find("window at"), std::string::npos);
+}
+
 TEST(Report, HtmlHasSectionsInPsnrOrderAndEscapes) {
     CompareReport r;
     r.scene = "<odd>&scene";
