@@ -253,10 +253,6 @@ int cmd_compare(const CompareOptions& opt) {
                                ri.time_limit, rep.threads, ref_seed);
         ref = film_to_image(r.film);
     }
-    if (ref.width != rep.width || ref.height != rep.height)
-        throw std::runtime_error("reference is " + std::to_string(ref.width) + "x" + std::to_string(ref.height) +
-                                 " but the scene renders " + std::to_string(rep.width) + "x" +
-                                 std::to_string(rep.height) + " (check -D res_x/res_y or the reference file)");
     ri.image_exr = "reference.exr";
     ri.image_png = "reference.png";
     write_exr((dir / ri.image_exr).string(), ref);
@@ -286,8 +282,7 @@ int cmd_compare(const CompareOptions& opt) {
                                 rep.threads, seed);
         res.regions.push_back({"image", Crop{}, compare_images(img, ref)});
         for (const Crop& c : rep.crops)
-            res.regions.push_back(
-                {"crop " + crop_text({c.x + scored.x, c.y + scored.y, c.w, c.h}), c, compare_images(img, ref, c)});
+            res.regions.push_back({"crop " + crop_text(rep.in_film(c)), c, compare_images(img, ref, c)});
         res.convergence.push_back({opt.time, r.seconds, r.spp_mean, res.regions[0].metrics});
 
         res.image_exr = t.name + ".exr";

@@ -48,8 +48,6 @@ int cmd_diff(const std::string& a_path, const std::string& b_path, const std::ve
         oy = o.y;
     }
     if (!image_offset.empty()) {
-        if (!reference_offset.empty())
-            throw std::runtime_error("--image-offset and --reference-offset: give one (which image is the crop?)");
         const Crop o = offset_window("--image-offset", image_offset, a.width, a.height);
         // The normaliser is the reference's size (cut with it) or already the image's.
         if (norm && !(norm->width == a.width && norm->height == a.height) &&

@@ -47,7 +47,7 @@ void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ct
     const size_t before = out.solutions.size();
     HalfVectorDraws draws(sampler);
     bool straight_converged = false;
-    if (q.straight_seed && (st.solutions == MneeSolutions::One || st.seeding != MneeSeeding::Surface))
+    if (q.straight_seed && walks_straight_seed())
         add_solution(q, ctx, slot, light, pmf, lp, seed, draws, max_k, false, out, &straight_converged);
     if (st.solutions == MneeSolutions::One || st.seeding == MneeSeeding::Straight) return;
     // fallback: the surface seeds run only where an opaque surface blocks the straight seed.
@@ -211,6 +211,10 @@ int ManifoldTechnique::add_solution(const ManifoldQuery& q, const BSDFContext& c
     return int(out.solutions.size()) - 1;
 }
 
+bool ManifoldTechnique::walks_straight_seed() const {
+    return m_settings->solutions == MneeSolutions::One || m_settings->seeding != MneeSeeding::Surface;
+}
+
 bool ManifoldTechnique::weighs_surface_solutions() const {
     const MneeSettings& st = *m_settings;
     return st.seeding == MneeSeeding::StraightAndSurface && st.surface_weight < 1 &&
@@ -223,11 +227,9 @@ double ManifoldTechnique::density(const SurfaceInteraction& xb, const BSDF& bsdf
     // A path through an emissive interface is the straight seed's alone (surface seeds neither
     // start on nor pass such a shape, surface_seed.cpp), for every estimator that walks the
     // straight seed: Alg. 2 (with surface seeds alone, no one's: solution_density gives 0).
-    const bool straight_walked =
-        m_settings->solutions == MneeSolutions::One || m_settings->seeding != MneeSeeding::Surface;
     if (m_settings->solutions == MneeSolutions::One ||
-        (straight_walked && std::any_of(chain, chain + std::max(k, 0),
-                                        [](const SurfaceInteraction& v) { return v.emitter() != nullptr; })))
+        (walks_straight_seed() && std::any_of(chain, chain + std::max(k, 0),
+                                              [](const SurfaceInteraction& v) { return v.emitter() != nullptr; })))
         return mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
     if (m_settings->solutions == MneeSolutions::Fallback) {
         // The straight seed's technique where the seed is clear of opaque surfaces (Alg. 2), the

@@ -76,6 +76,9 @@ private:
     /// the surface solutions weigh c times their density, and count only where the straight walk
     /// converged. solve() and density() both ask this.
     bool weighs_surface_solutions() const;
+    /// Whether the straight seed is walked at all (every setting but surface seeds alone with a
+    /// multi-solution estimator). solve() and density() both ask this.
+    bool walks_straight_seed() const;
     /// One surface seed on `caster` walked to a polished admissible path; false if it fails.
     bool surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster, PCG32& rng,
                        const LightPoint& lp, HalfVectorDraws& draws, int max_k,
