@@ -38,17 +38,21 @@ struct Technique {
     std::string name, type;
     bool biased = false;
     std::string sampler;  ///< inner sampler of Metropolis techniques ("nee", "mnee")
+    /// `solutions` of an mnee variant ("one": the paper's estimator, Alg. 1 with Alg. 2's MIS),
+    /// replacing the scene's; empty: the scene's or the default.
+    std::string solutions;
 };
 
 Technique parse_technique(const std::string& name) {
     if (name == "pt" || name == "path" || name == "nee" || name == "mnee" || name == "bdpt" || name == "erpt")
-        return {name, name, false, ""};
-    if (name == "mnee-biased" || name == "mnee(biased)") return {name, "mnee", true, ""};
-    if (name == "pssmlt(nee)") return {name, "pssmlt", false, "nee"};
-    if (name == "pssmlt(mnee)") return {name, "pssmlt", false, "mnee"};
-    throw std::runtime_error(
-        "unknown integrator '" + name +
-        "' (known: pt, path, nee, bdpt, erpt, mnee, mnee-biased or mnee(biased), pssmlt(nee), pssmlt(mnee))");
+        return {name, name, false, "", ""};
+    if (name == "mnee-biased" || name == "mnee(biased)") return {name, "mnee", true, "", ""};
+    if (name == "mnee-paper" || name == "mnee(paper)") return {name, "mnee", false, "", "one"};
+    if (name == "pssmlt(nee)") return {name, "pssmlt", false, "nee", ""};
+    if (name == "pssmlt(mnee)") return {name, "pssmlt", false, "mnee", ""};
+    throw std::runtime_error("unknown integrator '" + name +
+                             "' (known: pt, path, nee, bdpt, erpt, mnee, mnee-biased or mnee(biased), mnee-paper or "
+                             "mnee(paper), pssmlt(nee), pssmlt(mnee))");
 }
 
 // A loaded scene and the integrator to render it with.
@@ -90,9 +94,11 @@ Prepared prepare(const std::string& scene, const Defines& user_defines, const Te
         if (xi)
             for (const XmlParam& prm : xi->params)
                 if (!dropped.count(prm.name) && !(t.biased && prm.name == "biased") &&
-                    !(!t.sampler.empty() && prm.name == "sampler"))
+                    !(!t.sampler.empty() && prm.name == "sampler") &&
+                    !(!t.solutions.empty() && prm.name == "solutions"))
                     props.set(prm.name, prm.value, prm.loc);
         if (t.biased) props.set("biased", true, loc);
+        if (!t.solutions.empty()) props.set("solutions", t.solutions, loc);
         if (!t.sampler.empty()) props.set("sampler", t.sampler, loc);
         return create_integrator(props);
     };

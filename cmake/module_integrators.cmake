@@ -35,6 +35,7 @@ snell_test(test_cameras SOURCES tests/stat/test_cameras.cpp LIBS ${SNELL_ALL_LIB
 snell_test(test_instancing SOURCES tests/stat/test_instancing.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_mitsuba_references SOURCES tests/stat/test_mitsuba_references.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_hero_wavelengths SOURCES tests/stat/test_hero_wavelengths.cpp LIBS ${SNELL_ALL_LIBS})
+snell_test(test_dispersion SOURCES tests/stat/test_dispersion.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_sampler_images SOURCES tests/stat/test_sampler_images.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_pssmlt SOURCES tests/stat/test_pssmlt.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_scale_invariance SOURCES tests/stat/test_scale_invariance.cpp LIBS ${SNELL_ALL_LIBS})

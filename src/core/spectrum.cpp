@@ -373,13 +373,12 @@ Spectrum Spectrum::from_rgb_illuminant(const RGB& rgb) {
 }
 
 Spectrum Spectrum::from_ior_abbe(double n_d, double abbe) {
+    // No dispersion is a constant spectrum, not a Cauchy one with B = 0: the BSDFs ask
+    // is_constant() whether a refraction keeps every wavelength of the path (issue 26: a
+    // B = 0 Cauchy made every dielectric without `abbe` keep the hero wavelength alone).
+    if (!(abbe > 0) || std::isinf(abbe)) return constant(n_d);
     Spectrum s;
     s.m_kind = Kind::Cauchy;
-    if (!(abbe > 0) || std::isinf(abbe)) {
-        s.m_c[0] = n_d;
-        s.m_c[1] = 0;
-        return s;
-    }
     // Fraunhofer lines d, F, C (nm); V_d = (n_d - 1) / (n_F - n_C).
     const double ld = 587.56, lF = 486.13, lC = 656.27;
     const double B = (n_d - 1.0) / (abbe * (1.0 / (lF * lF) - 1.0 / (lC * lC)));

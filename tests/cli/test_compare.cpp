@@ -175,6 +175,38 @@ TEST(CompareCli, ErrorsAreClearAndExitNonZero) {
     fs::remove_all(scratch);
 }
 
+// `mnee-paper` is the paper's estimator (solutions=one: the straight seed alone, no surface
+// trials), beside the default `mnee` (which walks surface seeds), in one comparison.
+TEST(CompareCli, MneePaperIsThePapersEstimator) {
+    const std::string snell = quote(env("SNELL_BIN"));
+    const fs::path out = env("SNELL_COMPARE_DIR") + std::string("_paper");
+    fs::remove_all(out);
+    const CommandResult r = run(snell + " compare builtin:droplet --integrators mnee,mnee-paper --time 0.3 -t 2" +
+                                " --seed 3 -D res_x=32 -D res_y=24 --reference-spp 2 --convergence-steps 0 -q" +
+                                " --out " + quote(out.string()));
+    ASSERT_EQ(r.status, 0) << r.output;
+    std::ifstream in(out / "report.json");
+    const json j = json::parse(in);
+    ASSERT_EQ(j["integrators"].size(), 2u);
+    const auto surface_seeds = [](const json& it) {
+        double n = 0;
+        for (const auto& kv : it["mnee"]["surface_seeds"].items()) n += kv.value().get<double>();
+        return n;
+    };
+    for (const json& it : j["integrators"]) {
+        SCOPED_TRACE(it["name"].get<std::string>());
+        EXPECT_EQ(it["type"], "mnee");
+        EXPECT_GT(it["mnee"]["walks_started"].get<double>(), 0);
+        if (it["name"] == "mnee-paper") {
+            EXPECT_EQ(surface_seeds(it), 0);
+            EXPECT_EQ(it["mnee"]["trials_per_solution"]["estimates"].get<double>(), 0);
+        } else {
+            EXPECT_GT(surface_seeds(it), 0);
+        }
+    }
+    fs::remove_all(out);
+}
+
 // A reference rendered on a crop of the film (--reference-offset): every image, metric and crop of
 // the report covers that window, crops are named in film coordinates, and the whole film is kept.
 TEST(CompareCli, AReferenceWindowScoresEveryImageThere) {

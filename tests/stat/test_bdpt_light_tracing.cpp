@@ -170,8 +170,12 @@ TEST(BdptLightTracing, TimedRenderKeepsWholePasses) {
 // sampling cannot cover the solutions the walk misses (the fold, paper Fig. 7), so MNEE is
 // biased low. Measured at 256 spp x 12 replicas (with one and with four wavelengths): block 9
 // bdpt 0.597 +- 0.002, mnee 0.582 +- 0.001; block 10 bdpt 0.655 +- 0.003, mnee 0.615 +- 0.008
-// (issue 10 adds the missing solutions). A constant sky adds light from all directions
-// (escaping camera paths, s = 0, against light subpaths from the sky).
+// (issue 10 adds the missing solutions). The ball's refracted sunlight also reaches the floor
+// beside the caustic (blocks 6 and 11), which `nee` misses too: at 4096 spp bdpt is 1.2 % and
+// 1.0 % brighter there, 3.6 % and 56 % in blocks 9 and 10, and within 0.6 % elsewhere (issue 26:
+// with the glass no longer dispersive by default the test's streams changed and block 11 showed
+// it). A constant sky adds light from all directions (escaping camera paths, s = 0, against light
+// subpaths from the sky).
 namespace {
 const char* kSunAndSky = R"(<scene version="3.0.0">
   <default name="integrator" value="bdpt"/>
@@ -194,8 +198,10 @@ const char* kSunAndSky = R"(<scene version="3.0.0">
 std::vector<Estimate> sun_blocks(const std::string& integrator, const std::string& irradiance, int spp, uint64_t seed) {
     const LoadedScene ls = load_xml(kSunAndSky, {{"integrator", integrator}, {"irradiance", irradiance}});
     std::vector<Estimate> blocks = block_estimates(ls, *ls.integrator, spp, 12, 6, seed);
-    // Drop the caustic under the ball (blocks 9 and 10 of 4 x 4), which nee cannot render.
-    blocks.erase(blocks.begin() + 9, blocks.begin() + 11);
+    // Drop the caustic under the ball and its halo (blocks 6, 9, 10 and 11 of 4 x 4), which nee
+    // cannot render.
+    blocks.erase(blocks.begin() + 9, blocks.begin() + 12);
+    blocks.erase(blocks.begin() + 6);
     return blocks;
 }
 

@@ -1,0 +1,140 @@
+#!/usr/bin/env bash
+# The caustic gallery (issue 26): every case of scenes/caustics/gallery.tsv rendered at equal
+# time with `nee`, the paper's estimator (`mnee-paper`: solutions=one), the default `mnee` and
+# `mnee-biased`, each scored on its caustic crop against an independent reference (`bdpt` on the
+# crop, cached), as one `snell compare` report per case and one table for the gallery.
+# Usage:
+#   caustic_gallery.sh reference [seconds per case=600]   results/gallery/ref/<case>.exr, cached:
+#       rendered again only when the scene file, its defines, the crop, the reference technique
+#       or the seconds change (the key beside it says which)
+#   caustic_gallery.sh refcheck [seconds=300]            each reference's own noise: a second one
+#       (seed 78) scored against it; with the first's time T its own relMSE is about the figure
+#       printed x SECONDS / (SECONDS + T)
+#   caustic_gallery.sh run LABEL [seconds=30]            results/gallery/LABEL/<case>/report.html
+#       for each case, then the table (results/gallery/LABEL/table.md)
+#   caustic_gallery.sh table LABEL                       the table again from the reports
+# CASES="ball_plane pool" limits the cases; TECHNIQUES (nee,mnee-paper,mnee,mnee-biased) the
+# techniques compared; REF_INTEGRATOR (bdpt) the reference's technique (nee, pt or bdpt: never
+# MNEE); THREADS (2); SEED (1) the compared renders' seed; SNELL=path another build;
+# SNELL_LAUNCH="cmd" runs every snell under cmd.
+source "$(dirname "$0")/common.sh"
+MODE=${1:?reference, refcheck, run or table}
+THREADS=${THREADS:-2}
+SEED=${SEED:-1}
+REF_INTEGRATOR=${REF_INTEGRATOR:-bdpt}
+TECHNIQUES=${TECHNIQUES:-nee,mnee-paper,mnee,mnee-biased}
+GALLERY=scenes/caustics
+OUT=results/gallery
+mkdir -p "$OUT/ref"
+# shellcheck disable=SC2206
+LAUNCH=(${SNELL_LAUNCH:-})
+
+# The manifest: case, scene, defines (comma-separated or -), crop.
+declare -A SCENE DEFS CROP
+ORDER=()
+while IFS=$'\t' read -r c scene defs crop; do
+  [ -z "$c" ] || [ "${c:0:1}" = "#" ] && continue
+  SCENE[$c]=$GALLERY/$scene; DEFS[$c]=$defs; CROP[$c]=$crop; ORDER+=("$c")
+done <"$GALLERY/gallery.tsv"
+read -r -a CASES <<<"${CASES:-${ORDER[*]}}"
+for c in "${CASES[@]}"; do [ -n "${SCENE[$c]:-}" ] || { echo "caustic_gallery: no case '$c' in $GALLERY/gallery.tsv" >&2; exit 2; }; done
+
+# -D options of a case.
+defines_of() {
+  local d
+  [ "${DEFS[$1]}" = - ] && return
+  IFS=, read -r -a d <<<"${DEFS[$1]}"
+  for x in "${d[@]}"; do printf -- '-D %s ' "$x"; done
+}
+# The scene with its film cropped to X,Y,W,H (the reference covers the caustic crop alone).
+with_crop() {
+  IFS=, read -r x y w h <<<"$3"
+  sed "s|<integer name=\"height\" value=\"\$res_y\"/>|&<integer name=\"crop_offset_x\" value=\"$x\"/><integer name=\"crop_offset_y\" value=\"$y\"/><integer name=\"crop_width\" value=\"$w\"/><integer name=\"crop_height\" value=\"$h\"/>|" "$1" >"$2"
+  grep -q crop_offset_x "$2" || { echo "caustic_gallery: could not crop $1" >&2; exit 1; }
+}
+# What a reference depends on: the scene file and the files it names, defines, crop, technique, time.
+ref_key() {
+  local c=$1 scene=${SCENE[$1]} f files=()
+  for f in $(sed -n 's/.*name="filename" value="\([^"]*\)".*/\1/p' "$scene"); do files+=("$(dirname "$scene")/$f"); done
+  { cat "$scene" "${files[@]}" 2>/dev/null; echo "${DEFS[$c]} ${CROP[$c]} $REF_INTEGRATOR $2"; } | sha256sum | cut -c1-16
+}
+skip_missing() {  # a case whose build-time mesh is absent (no node/npm at build time) is skipped, loudly
+  local f
+  for f in $(sed -n 's/.*name="filename" value="\([^"]*\)".*/\1/p' "${SCENE[$1]}"); do
+    [ -e "$(dirname "${SCENE[$1]}")/$f" ] || { echo "caustic_gallery: SKIP $1: $f is missing (made at build time, needs node)" >&2; return 0; }
+  done
+  return 1
+}
+
+case $MODE in
+reference)
+  T=${2:-600}
+  for c in "${CASES[@]}"; do
+    skip_missing "$c" && continue
+    key=$(ref_key "$c" "$T")
+    if [ -f "$OUT/ref/$c.exr" ] && [ "$(cat "$OUT/ref/$c.key" 2>/dev/null)" = "$key" ]; then
+      echo "caustic_gallery: $c: reference cached ($OUT/ref/$c.exr)"; continue
+    fi
+    with_crop "${SCENE[$c]}" "$OUT/ref/$c.xml" "${CROP[$c]}"
+    # shellcheck disable=SC2046
+    "${LAUNCH[@]}" "$SNELL" render "$OUT/ref/$c.xml" $(defines_of "$c") -D integrator="$REF_INTEGRATOR" --time "$T" \
+      -t "$THREADS" -q --seed 77 -o "$OUT/ref/$c.exr"
+    echo "$key" >"$OUT/ref/$c.key"
+  done
+  ;;
+refcheck)
+  T=${2:-300}
+  for c in "${CASES[@]}"; do
+    [ -f "$OUT/ref/$c.exr" ] || continue
+    with_crop "${SCENE[$c]}" "$OUT/ref/${c}_check.xml" "${CROP[$c]}"
+    # shellcheck disable=SC2046
+    "${LAUNCH[@]}" "$SNELL" render "$OUT/ref/${c}_check.xml" $(defines_of "$c") -D integrator="$REF_INTEGRATOR" \
+      --time "$T" -t "$THREADS" -q --seed 78 -o "$OUT/ref/${c}_check.exr"
+    "$SNELL" diff "$OUT/ref/${c}_check.exr" "$OUT/ref/$c.exr" | grep "^image" | sed "s|^image|$c reference check|"
+  done
+  ;;
+run)
+  LABEL=${2:?label}
+  T=${3:-30}
+  for c in "${CASES[@]}"; do
+    skip_missing "$c" && continue
+    [ -f "$OUT/ref/$c.exr" ] || { echo "caustic_gallery: $c has no reference: run '$0 reference' first" >&2; exit 1; }
+    IFS=, read -r x y _ _ <<<"${CROP[$c]}"
+    # shellcheck disable=SC2046
+    "${LAUNCH[@]}" "$SNELL" compare "${SCENE[$c]}" $(defines_of "$c") --integrators "$TECHNIQUES" --time "$T" \
+      -t "$THREADS" --seed "$SEED" --reference "$OUT/ref/$c.exr" --reference-offset "$x,$y" \
+      --convergence-steps 0 -q -o "$OUT/$LABEL/$c" >/dev/null
+  done
+  "$0" table "$LABEL"
+  ;;
+table)
+  LABEL=${2:?label}
+  python3 - "$OUT/$LABEL" "${CASES[@]}" <<'EOF' | tee "$OUT/$LABEL/table.md"
+import json, os, sys
+root, cases = sys.argv[1], sys.argv[2:]
+rows = []
+for c in cases:
+    p = os.path.join(root, c, "report.json")
+    if not os.path.exists(p):
+        continue
+    rep = json.load(open(p))
+    its = rep["integrators"]
+    nee = next((i for i in its if i["name"] == "nee"), None)
+    nee_ms = nee["seconds"] * 1000 / nee["spp_mean"] if nee and nee["spp_mean"] > 0 else None
+    nee_rel = nee["metrics"][0]["rel_mse"] if nee else None
+    for it in its:
+        m = it["metrics"][0]  # the reference window: the case's caustic crop
+        ms = it["seconds"] * 1000 / it["spp_mean"] if it["spp_mean"] > 0 else float("nan")
+        ratio = m["mean"] / m["mean_reference"] if m["mean_reference"] > 0 else float("nan")
+        rows.append((c, it["name"], m["rel_mse"], m["median_rel_error"], ratio, it["spp_mean"], ms,
+                     ms / nee_ms if nee_ms else float("nan"),
+                     nee_rel / m["rel_mse"] if nee_rel and m["rel_mse"] > 0 else float("nan")))
+print("| case | technique | caustic relMSE | median error | mean / reference | spp | ms per spp | cost / nee's | nee's relMSE / this |")
+print("|---|---|---|---|---|---|---|---|---|")
+for r in rows:
+    print("| %s | %s | %.4g | %.3f | %.3f | %.1f | %.0f | %.2f | %.3g |" % r)
+EOF
+  ;;
+*)
+  echo "caustic_gallery: unknown mode '$MODE' (reference, refcheck, run, table)" >&2; exit 2 ;;
+esac
