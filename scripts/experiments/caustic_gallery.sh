@@ -46,10 +46,14 @@ defines_of() {
   IFS=, read -r -a d <<<"${DEFS[$1]}"
   for x in "${d[@]}"; do printf -- '-D %s ' "$x"; done
 }
-# The scene with its film cropped to X,Y,W,H (the reference covers the caustic crop alone).
+# The scene with its film cropped to X,Y,W,H (the reference covers the caustic crop alone), its
+# relative file names made absolute (it is written elsewhere).
 with_crop() {
+  local dir
+  dir=$(cd "$(dirname "$1")" && pwd)
   IFS=, read -r x y w h <<<"$3"
-  sed "s|<integer name=\"height\" value=\"\$res_y\"/>|&<integer name=\"crop_offset_x\" value=\"$x\"/><integer name=\"crop_offset_y\" value=\"$y\"/><integer name=\"crop_width\" value=\"$w\"/><integer name=\"crop_height\" value=\"$h\"/>|" "$1" >"$2"
+  sed -e "s|<integer name=\"height\" value=\"\$res_y\"/>|&<integer name=\"crop_offset_x\" value=\"$x\"/><integer name=\"crop_offset_y\" value=\"$y\"/><integer name=\"crop_width\" value=\"$w\"/><integer name=\"crop_height\" value=\"$h\"/>|" \
+    -e "s|name=\"filename\" value=\"\([^/\"][^\"]*\)\"|name=\"filename\" value=\"$dir/\1\"|" "$1" >"$2"
   grep -q crop_offset_x "$2" || { echo "caustic_gallery: could not crop $1" >&2; exit 1; }
 }
 # What a reference depends on: the scene file and the files it names, defines, crop, technique, time.

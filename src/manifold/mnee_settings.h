@@ -74,6 +74,13 @@ struct MneeSettings {
     /// of full walks), and only those crossing the straight seed's shapes in its order: the
     /// paths Alg. 2 can tell apart, so density() gives the others 0 (BSDF sampling's).
     double surface_weight = 1;
+    /// (connect_probability) q in (0, 1]: the probability with which the `mnee` integrator
+    /// connects a light sample whose seed refracts by the manifold technique; otherwise it makes
+    /// no connection and leaves those paths to BSDF sampling (issue 26: where a focusing ball
+    /// makes the light look large, BSDF sampling finds it at a fraction of a walk's cost). A
+    /// connection made counts 1 / q and MIS weighs the technique's density as q p_mnee, so the
+    /// estimate stays unbiased. Lights BSDF sampling cannot hit (point, spot, directional) keep 1.
+    double connect_probability = 1;
     WalkSettings walk;  ///< (max_iterations, threshold, allow_error_increase, projection)
 };
 

@@ -411,6 +411,16 @@ TEST(MneeAgreement, PaperEstimatorMatchesNee) {
     expect_mnee_matches_nee(scene_with(rough_water(0.1), one), 256, 64, "one, rough 0.1", scene_with(rough_water(0.1)));
 }
 
+// connect_probability (issue 26): MNEE connects a refracting light sample with probability q,
+// counts it 1 / q, and MIS weighs its density as q p_mnee, here q = 0.3 under the droplet's large
+// light. Dropping the 1 / q darkens the caustic, and so does leaving q out of the BSDF-sampled
+// paths' weights (the weights then sum to less than one): both fail this test (docs/testing.md).
+TEST(MneeAgreement, ConnectProbabilityIsCountedAndWeighed) {
+    const std::string q = R"(<float name="connect_probability" value="0.3"/>)";
+    expect_mnee_matches_nee(scene_with(smooth_water(), q), 256, 64, "q 0.3, smooth", scene_with(smooth_water()));
+    expect_mnee_matches_nee(scene_with(rough_water(0.1), q), 256, 64, "q 0.3, rough 0.1", scene_with(rough_water(0.1)));
+}
+
 // With reflections, surface seeds also reflect (Fresnel's probability), so the multi-solution
 // estimators find paths with an internal reflection too and MIS shares that light with BSDF
 // sampling: the image still agrees with nee, so the density and MIS changes leave the rest of

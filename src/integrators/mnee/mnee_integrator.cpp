@@ -119,6 +119,9 @@ MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
         p.raise_param("stall_ratio", "stall_ratio must lie in (0, 1]");
     if (!(s.cull_margin >= 0)) p.raise_param("cull_margin", "cull_margin must be >= 0");
     if (!(s.max_geometry >= 0)) p.raise_param("max_geometry", "max_geometry must be >= 0 (0: no clamp)");
+    s.connect_probability = p.get_float("connect_probability", s.connect_probability);
+    if (!(s.connect_probability > 0 && s.connect_probability <= 1))
+        p.raise_param("connect_probability", "connect_probability must lie in (0, 1]");
     return s;
 }
 
@@ -175,10 +178,11 @@ double MneeIntegrator::emitter_hit_weight(const Scene& scene, const PathState& s
     const double pmf = scene.light_sampler().pmf(&light);
     const size_t last = size_t(s.k - 1);
     const double p_bsdf = s.p_prefix * s.q_last * std::abs(dot(lp.n, d)) / length_squared(lp.p - s.chain[last].p);
-    const double p_mnee =
-        covers(s, true) ? ManifoldTechnique(scene, m_mnee)
-                              .density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light, pmf, lp.p, lp.n, ctx.hero())
-                        : 0.0;
+    const double p_mnee = covers(s, true)
+                              ? connect_probability(light) * ManifoldTechnique(scene, m_mnee)
+                                                                 .density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k,
+                                                                          light, pmf, lp.p, lp.n, ctx.hero())
+                              : 0.0;
     const double p_nee =
         s.specular[last] ? 0.0 : s.p_prefix * pmf * light_point_pdf(scene, light, s.chain[last].p, lp.p, lp.n);
     // Sec. 3.5: outlier removal drops the light that BSDF sampling finds through interfaces after
@@ -210,12 +214,17 @@ SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const S
                                    : s.p_prefix * bsdf.pdf(ctx.at(si), wo, wi) * std::abs(dot(lp.n, ls->wi)) /
                                          length_squared(lp.p - si.p);
     const bool refracts = dot(si.wo, si.ng) * dot(ls->wi, si.ng) < 0;
-    const double p_mnee =
-        covers(s, refracts) ? ManifoldTechnique(scene, m_mnee)
-                                  .density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k, *light, pmf, lp.p, lp.n, ctx.hero())
-                            : 0.0;
+    const double p_mnee = covers(s, refracts)
+                              ? connect_probability(*light) * ManifoldTechnique(scene, m_mnee)
+                                                                  .density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k,
+                                                                           *light, pmf, lp.p, lp.n, ctx.hero())
+                              : 0.0;
     if (m_mnee.biased && covers(s, refracts) && !(p_mnee > 0)) return {};
     return nee_estimate(si, bsdf, ctx, state.media, *ls, f, pmf, power_heuristic(p_nee, {p_bsdf, p_mnee}));
+}
+
+double MneeIntegrator::connect_probability(const Light& light) const {
+    return light.is_delta() ? 1.0 : m_mnee.connect_probability;
 }
 
 bool MneeIntegrator::covers(const RefractiveSuffix& s, bool last_refracts) const {
@@ -275,6 +284,11 @@ void MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteracti
     // meaning); BSDF sampling cannot produce longer paths, so neither may MNEE.
     const int max_k = m_settings.max_depth >= 0 ? m_settings.max_depth - state.depth - 2 : -1;
     if (m_mnee.solutions == MneeSolutions::One && max_k >= 0 && int(chain.size()) > max_k) return;
+    // connect_probability q: the connection is made with probability q, counted 1 / q, and MIS
+    // weighs it by its density q p_mnee (BSDF sampling's paths are weighed the same way above,
+    // in emitter_hit_weight and connect_at_interface).
+    const double q_connect = connect_probability(*light);
+    if (q_connect < 1 && !(sampler.next_1d() < q_connect)) return;
     // Lines 3-5 (half vectors, walk, measurement) for every solution the technique finds; then
     // MIS of each against the other techniques that produce the same path.
     const ManifoldQuery q{&si,
@@ -286,7 +300,8 @@ void MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteracti
     const SolutionSet set = ManifoldTechnique(scene, m_mnee).solve(q, *light, pmf, lp, chain, sampler, max_k);
     for (const ManifoldSolution& sol : set.solutions)
         out.add(sol.from_surface ? Technique::MneeSurface : Technique::MneeStraight,
-                sol.value * (sol.count * power_heuristic(sol.density, {sol.pdf_bsdf, sol.pdf_nee_last})));
+                sol.value * (sol.count * power_heuristic(q_connect * sol.density, {sol.pdf_bsdf, sol.pdf_nee_last}) /
+                             q_connect));
 }
 
 }  // namespace snell

@@ -67,6 +67,9 @@ private:
     /// also reflect (solutions=all or unbiased with reflections).
     bool covers(const RefractiveSuffix& s, bool last_refracts) const;
 
+    /// q of MneeSettings::connect_probability for a light: 1 for lights BSDF sampling cannot hit.
+    double connect_probability(const Light& light) const;
+
     MneeSettings m_mnee;
 };
 
