@@ -10,18 +10,23 @@
 #   caustic_gallery.sh refcheck [seconds=300]            each reference's own noise: a second one
 #       (seed 78) scored against it; with the first's time T its own relMSE is about the figure
 #       printed x SECONDS / (SECONDS + T)
+#   caustic_gallery.sh refmean [seconds=120]             each reference's crop mean against two
+#       path-traced renders of the crop (seeds 81, 82): the check of an mnee-all reference
 #   caustic_gallery.sh run LABEL [seconds=30]            results/gallery/LABEL/<case>/report.html
 #       for each case, then the table (results/gallery/LABEL/table.md)
 #   caustic_gallery.sh table LABEL                       the table again from the reports
+#   caustic_gallery.sh variant LABEL NAME 'XML' [seconds=30]   `mnee` with integrator parameters
+#       XML (e.g. '<float name="connect_probability" value="0.3"/>') on every case, scored on its
+#       crop like the table: results/gallery/LABEL/<case>_NAME.exr, a row each in variants.md
 # CASES="ball_plane pool" limits the cases; TECHNIQUES (nee,mnee-paper,mnee,mnee-biased) the
-# techniques compared; REF_INTEGRATOR (bdpt) the reference's technique (nee, pt or bdpt: never
-# MNEE); THREADS (2); SEED (1) the compared renders' seed; SNELL=path another build;
+# techniques compared; REF_INTEGRATOR overrides the manifest's reference technique (bdpt, pt,
+# or mnee-all where no path-space technique converges; gallery.tsv says why); THREADS (2); SEED
+# (1) the compared renders' seed; SNELL=path another build;
 # SNELL_LAUNCH="cmd" runs every snell under cmd.
 source "$(dirname "$0")/common.sh"
 MODE=${1:?reference, refcheck, run or table}
 THREADS=${THREADS:-2}
 SEED=${SEED:-1}
-REF_INTEGRATOR=${REF_INTEGRATOR:-bdpt}
 TECHNIQUES=${TECHNIQUES:-nee,mnee-paper,mnee,mnee-biased}
 GALLERY=scenes/caustics
 OUT=results/gallery
@@ -30,11 +35,11 @@ mkdir -p "$OUT/ref"
 LAUNCH=(${SNELL_LAUNCH:-})
 
 # The manifest: case, scene, defines (comma-separated or -), crop.
-declare -A SCENE DEFS CROP
+declare -A SCENE DEFS CROP REF
 ORDER=()
-while IFS=$'\t' read -r c scene defs crop; do
+while IFS=$'\t' read -r c scene defs crop ref; do
   [ -z "$c" ] || [ "${c:0:1}" = "#" ] && continue
-  SCENE[$c]=$GALLERY/$scene; DEFS[$c]=$defs; CROP[$c]=$crop; ORDER+=("$c")
+  SCENE[$c]=$GALLERY/$scene; DEFS[$c]=$defs; CROP[$c]=$crop; REF[$c]=${REF_INTEGRATOR:-${ref:-bdpt}}; ORDER+=("$c")
 done <"$GALLERY/gallery.tsv"
 read -r -a CASES <<<"${CASES:-${ORDER[*]}}"
 for c in "${CASES[@]}"; do [ -n "${SCENE[$c]:-}" ] || { echo "caustic_gallery: no case '$c' in $GALLERY/gallery.tsv" >&2; exit 2; }; done
@@ -60,7 +65,17 @@ with_crop() {
 ref_key() {
   local c=$1 scene=${SCENE[$1]} f files=()
   for f in $(sed -n 's/.*name="filename" value="\([^"]*\)".*/\1/p' "$scene"); do files+=("$(dirname "$scene")/$f"); done
-  { cat "$scene" "${files[@]}" 2>/dev/null; echo "${DEFS[$c]} ${CROP[$c]} $REF_INTEGRATOR $2"; } | sha256sum | cut -c1-16
+  { cat "$scene" "${files[@]}" 2>/dev/null; echo "${DEFS[$c]} ${CROP[$c]} ${REF[$c]} $2"; } | sha256sum | cut -c1-16
+}
+# with_integrator FILE TECHNIQUE: the scene file made ready for TECHNIQUE (mnee-all: mnee with
+# every solution 16 surface trials find); prints the integrator type to render it with.
+with_integrator() {
+  case $2 in
+    mnee-all)
+      sed -i "s|<integer name=\"max_depth\" value=\"\$max_depth\"/>|&<string name=\"solutions\" value=\"all\"/><integer name=\"trials\" value=\"16\"/>|" "$1"
+      echo mnee ;;
+    *) echo "$2" ;;
+  esac
 }
 skip_missing() {  # a case whose build-time mesh is absent (no node/npm at build time) is skipped, loudly
   local f
@@ -80,8 +95,9 @@ reference)
       echo "caustic_gallery: $c: reference cached ($OUT/ref/$c.exr)"; continue
     fi
     with_crop "${SCENE[$c]}" "$OUT/ref/$c.xml" "${CROP[$c]}"
+    integ=$(with_integrator "$OUT/ref/$c.xml" "${REF[$c]}")
     # shellcheck disable=SC2046
-    "${LAUNCH[@]}" "$SNELL" render "$OUT/ref/$c.xml" $(defines_of "$c") -D integrator="$REF_INTEGRATOR" --time "$T" \
+    "${LAUNCH[@]}" "$SNELL" render "$OUT/ref/$c.xml" $(defines_of "$c") -D integrator="$integ" --time "$T" \
       -t "$THREADS" -q --seed 77 -o "$OUT/ref/$c.exr"
     echo "$key" >"$OUT/ref/$c.key"
   done
@@ -91,10 +107,24 @@ refcheck)
   for c in "${CASES[@]}"; do
     [ -f "$OUT/ref/$c.exr" ] || continue
     with_crop "${SCENE[$c]}" "$OUT/ref/${c}_check.xml" "${CROP[$c]}"
+    integ=$(with_integrator "$OUT/ref/${c}_check.xml" "${REF[$c]}")
     # shellcheck disable=SC2046
-    "${LAUNCH[@]}" "$SNELL" render "$OUT/ref/${c}_check.xml" $(defines_of "$c") -D integrator="$REF_INTEGRATOR" \
+    "${LAUNCH[@]}" "$SNELL" render "$OUT/ref/${c}_check.xml" $(defines_of "$c") -D integrator="$integ" \
       --time "$T" -t "$THREADS" -q --seed 78 -o "$OUT/ref/${c}_check.exr"
     "$SNELL" diff "$OUT/ref/${c}_check.exr" "$OUT/ref/$c.exr" | grep "^image" | sed "s|^image|$c reference check|"
+  done
+  ;;
+refmean)
+  T=${2:-120}
+  for c in "${CASES[@]}"; do
+    [ -f "$OUT/ref/$c.exr" ] || continue
+    with_crop "${SCENE[$c]}" "$OUT/ref/${c}_pt.xml" "${CROP[$c]}"
+    for s in 81 82; do
+      # shellcheck disable=SC2046
+      "${LAUNCH[@]}" "$SNELL" render "$OUT/ref/${c}_pt.xml" $(defines_of "$c") -D integrator=pt --time "$T" \
+        -t "$THREADS" -q --seed "$s" -o "$OUT/ref/${c}_pt$s.exr"
+      "$SNELL" diff "$OUT/ref/${c}_pt$s.exr" "$OUT/ref/$c.exr" --json | python3 -c "import json,sys; m=json.load(sys.stdin)[0]; print('$c: pt (seed $s, ${T} s) crop mean / ${REF[$c]} reference %.4f' % (m['mean'] / m['mean_reference']))"
+    done
   done
   ;;
 run)
@@ -139,6 +169,35 @@ for r in rows:
     print("| %s | %s | %.4g | %.3f | %.3f | %.1f | %.0f | %.2f | %.3g |" % r)
 EOF
   ;;
+variant)
+  LABEL=${2:?label}
+  NAME=${3:?variant name}
+  XML=${4:?integrator parameters}
+  T=${5:-30}
+  mkdir -p "$OUT/$LABEL"
+  for c in "${CASES[@]}"; do
+    skip_missing "$c" && continue
+    [ -f "$OUT/ref/$c.exr" ] || { echo "caustic_gallery: $c has no reference: run '$0 reference' first" >&2; exit 1; }
+    IFS=, read -r x y w h <<<"${CROP[$c]}"
+    # The variant beside the scene (its mesh paths stay valid), removed afterwards.
+    scene="$(dirname "${SCENE[$c]}")/.variant_$$.xml"
+    sed "s|<integer name=\"max_depth\" value=\"\$max_depth\"/>|&$XML|" "${SCENE[$c]}" >"$scene"
+    # shellcheck disable=SC2046
+    "${LAUNCH[@]}" "$SNELL" render "$scene" $(defines_of "$c") -D integrator=mnee --time "$T" -t "$THREADS" -q \
+      --seed "$SEED" -o "$OUT/$LABEL/${c}_$NAME.exr" || { rm -f "$scene"; exit 1; }
+    rm -f "$scene"
+    python3 - "$SNELL" "$OUT/$LABEL/${c}_$NAME.exr" "$OUT/ref/$c.exr" "$x,$y" "$x,$y,$w,$h" "$c" "$NAME" <<'EOF' | tee -a "$OUT/$LABEL/variants.md"
+import json, subprocess, sys
+snell, img, ref, off, crop, case, name = sys.argv[1:]
+m = json.loads(subprocess.check_output([snell, "diff", img, ref, "--reference-offset", off, "--crop", crop, "--json"]))[1]
+st = json.load(open(img[:-4] + ".json"))
+spp = st.get("spp_mean", st.get("spp_reached"))
+ms = st["seconds"] * 1000 / spp if spp else float("nan")
+print("| %s | mnee %s | %.4g | %.3f | %.3f | %.1f | %.0f |" % (case, name, m["rel_mse"], m["median_rel_error"],
+      m["mean"] / m["mean_reference"], spp, ms))
+EOF
+  done
+  ;;
 *)
-  echo "caustic_gallery: unknown mode '$MODE' (reference, refcheck, run, table)" >&2; exit 2 ;;
+  echo "caustic_gallery: unknown mode '$MODE' (reference, refcheck, run, table, variant)" >&2; exit 2 ;;
 esac
