@@ -77,6 +77,16 @@ with_integrator() {
     *) echo "$2" ;;
   esac
 }
+# render_crop CASE TECHNIQUE SECONDS SEED NAME: the case's caustic crop alone, rendered with
+# TECHNIQUE into $OUT/ref/NAME.exr.
+render_crop() {
+  local integ
+  with_crop "${SCENE[$1]}" "$OUT/ref/$5.xml" "${CROP[$1]}"
+  integ=$(with_integrator "$OUT/ref/$5.xml" "$2")
+  # shellcheck disable=SC2046
+  "${LAUNCH[@]}" "$SNELL" render "$OUT/ref/$5.xml" $(defines_of "$1") -D integrator="$integ" --time "$3" \
+    -t "$THREADS" -q --seed "$4" -o "$OUT/ref/$5.exr"
+}
 skip_missing() {  # a case whose build-time mesh is absent (no node/npm at build time) is skipped, loudly
   local f
   for f in $(sed -n 's/.*name="filename" value="\([^"]*\)".*/\1/p' "${SCENE[$1]}"); do
@@ -94,11 +104,7 @@ reference)
     if [ -f "$OUT/ref/$c.exr" ] && [ "$(cat "$OUT/ref/$c.key" 2>/dev/null)" = "$key" ]; then
       echo "caustic_gallery: $c: reference cached ($OUT/ref/$c.exr)"; continue
     fi
-    with_crop "${SCENE[$c]}" "$OUT/ref/$c.xml" "${CROP[$c]}"
-    integ=$(with_integrator "$OUT/ref/$c.xml" "${REF[$c]}")
-    # shellcheck disable=SC2046
-    "${LAUNCH[@]}" "$SNELL" render "$OUT/ref/$c.xml" $(defines_of "$c") -D integrator="$integ" --time "$T" \
-      -t "$THREADS" -q --seed 77 -o "$OUT/ref/$c.exr"
+    render_crop "$c" "${REF[$c]}" "$T" 77 "$c"
     echo "$key" >"$OUT/ref/$c.key"
   done
   ;;
@@ -106,11 +112,7 @@ refcheck)
   T=${2:-300}
   for c in "${CASES[@]}"; do
     [ -f "$OUT/ref/$c.exr" ] || continue
-    with_crop "${SCENE[$c]}" "$OUT/ref/${c}_check.xml" "${CROP[$c]}"
-    integ=$(with_integrator "$OUT/ref/${c}_check.xml" "${REF[$c]}")
-    # shellcheck disable=SC2046
-    "${LAUNCH[@]}" "$SNELL" render "$OUT/ref/${c}_check.xml" $(defines_of "$c") -D integrator="$integ" \
-      --time "$T" -t "$THREADS" -q --seed 78 -o "$OUT/ref/${c}_check.exr"
+    render_crop "$c" "${REF[$c]}" "$T" 78 "${c}_check"
     "$SNELL" diff "$OUT/ref/${c}_check.exr" "$OUT/ref/$c.exr" | grep "^image" | sed "s|^image|$c reference check|"
   done
   ;;
@@ -118,11 +120,8 @@ refmean)
   T=${2:-120}
   for c in "${CASES[@]}"; do
     [ -f "$OUT/ref/$c.exr" ] || continue
-    with_crop "${SCENE[$c]}" "$OUT/ref/${c}_pt.xml" "${CROP[$c]}"
     for s in 81 82; do
-      # shellcheck disable=SC2046
-      "${LAUNCH[@]}" "$SNELL" render "$OUT/ref/${c}_pt.xml" $(defines_of "$c") -D integrator=pt --time "$T" \
-        -t "$THREADS" -q --seed "$s" -o "$OUT/ref/${c}_pt$s.exr"
+      render_crop "$c" pt "$T" "$s" "${c}_pt$s"
       "$SNELL" diff "$OUT/ref/${c}_pt$s.exr" "$OUT/ref/$c.exr" --json | python3 -c "import json,sys; m=json.load(sys.stdin)[0]; print('$c: pt (seed $s, ${T} s) crop mean / ${REF[$c]} reference %.4f' % (m['mean'] / m['mean_reference']))"
     done
   done

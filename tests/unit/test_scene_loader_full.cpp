@@ -260,7 +260,7 @@ TEST(SceneLoaderFull, MomentAndAovWrappersAreUnwrapped) {
 }
 
 // mnee's estimator defaults: SMS's unbiased estimator with the straight seed and surface_weight
-// 0.03; the biased mode keeps fallback; `all` weighs its surface solutions fully. A surface_weight
+// 0.03, in the biased mode too; `all` weighs its surface solutions fully. A surface_weight
 // out of (0, 1], or given where no straight and surface solutions meet, names the line.
 TEST(SceneLoaderFull, MneeDefaultsAndSurfaceWeight) {
     const auto settings = [](const std::string& params) {
@@ -274,7 +274,8 @@ TEST(SceneLoaderFull, MneeDefaultsAndSurfaceWeight) {
     EXPECT_EQ(def.seeding, MneeSeeding::StraightAndSurface);
     EXPECT_EQ(def.surface_weight, kSurfaceWeight);
     EXPECT_EQ(settings(R"(<string name="solutions" value="unbiased"/>)").surface_weight, kSurfaceWeight);
-    EXPECT_EQ(settings(R"(<boolean name="biased" value="true"/>)").solutions, MneeSolutions::Fallback);
+    EXPECT_EQ(settings(R"(<boolean name="biased" value="true"/>)").solutions, MneeSolutions::Unbiased);
+    EXPECT_EQ(settings(R"(<boolean name="biased" value="true"/>)").surface_weight, kSurfaceWeight);
     EXPECT_EQ(settings(R"(<string name="solutions" value="all"/>)").surface_weight, 1.0);
     EXPECT_EQ(settings(R"(<float name="surface_weight" value="1"/>)").surface_weight, 1.0);
     expect_error(scene_with("<integrator type=\"mnee\">\n<float name=\"surface_weight\" value=\"0\"/></integrator>"),
