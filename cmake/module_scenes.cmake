@@ -22,15 +22,15 @@ if(SNELL_NODE AND SNELL_NPM)
   # pool's height field, the sky and, when the npm bunny is there, the smooth-normal bunny.
   # The files themselves are the outputs (not a stamp), so a deleted one is made again.
   set(_gallery_dir ${PROJECT_SOURCE_DIR}/scenes/caustics/meshes)
-  set(_gallery_stamp ${_gallery_dir}/ball.obj ${_gallery_dir}/pool.obj ${_gallery_dir}/sky.hdr)
+  set(_gallery_outputs ${_gallery_dir}/ball.obj ${_gallery_dir}/pool.obj ${_gallery_dir}/sky.hdr)
   add_custom_command(
-    OUTPUT ${_gallery_stamp}
+    OUTPUT ${_gallery_outputs}
     COMMAND ${SNELL_NODE} ${PROJECT_SOURCE_DIR}/scripts/make_gallery_assets.js
             ${_gallery_dir} ${PROJECT_BINARY_DIR}/npm
     DEPENDS ${_bunny_stamp} ${PROJECT_SOURCE_DIR}/scripts/make_gallery_assets.js
     COMMENT "scenes: caustic gallery meshes and sky -> scenes/caustics/meshes/"
     VERBATIM)
-  add_custom_target(scene_meshes ALL DEPENDS ${_bunny_stamp} ${_gallery_stamp})
+  add_custom_target(scene_meshes ALL DEPENDS ${_bunny_stamp} ${_gallery_outputs})
 else()
   message(STATUS "scenes: node/npm not found, scenes/bunny_sphere and the caustic gallery's meshes "
                  "are unavailable (scripts/install-deps.sh installs nodejs and npm); "

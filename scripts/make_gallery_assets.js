@@ -124,7 +124,8 @@ function bunny() {
 // Radiance RGBE, flat scanlines (readers take them when no run-length marker starts a line).
 function sky() {
   const w = 256, h = 128;
-  // The sun: azimuth 40 degrees, elevation 30 degrees (Mitsuba's envmap: +y up, u along -x..).
+  // The sun: 30 degrees above the horizon (+y is up, as in the map's rows), at azimuth 40
+  // degrees in the map's own longitude.
   const el = (30 * Math.PI) / 180, az = (40 * Math.PI) / 180;
   const sun = [Math.cos(el) * Math.cos(az), Math.sin(el), Math.cos(el) * Math.sin(az)];
   const cosSun = Math.cos((1.5 * Math.PI) / 180);

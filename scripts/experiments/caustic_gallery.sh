@@ -13,7 +13,7 @@
 #   caustic_gallery.sh refmean [seconds=120]             each reference's crop mean against two
 #       path-traced renders of the crop (seeds 81, 82): the check of an mnee-all reference
 #   caustic_gallery.sh run LABEL [seconds=30]            results/gallery/LABEL/<case>/report.html
-#       for each case, then the table (results/gallery/LABEL/table.md)
+#       for each case, then the table of every case LABEL holds (results/gallery/LABEL/table.md)
 #   caustic_gallery.sh table LABEL                       the table again from the reports
 #   caustic_gallery.sh variant LABEL NAME 'XML' [seconds=30]   `mnee` with integrator parameters
 #       XML (e.g. '<float name="connect_probability" value="0.3"/>') on every case, scored on its
@@ -138,7 +138,8 @@ run)
       -t "$THREADS" --seed "$SEED" --reference "$OUT/ref/$c.exr" --reference-offset "$x,$y" \
       --convergence-steps 0 -q -o "$OUT/$LABEL/$c" >/dev/null
   done
-  "$0" table "$LABEL"
+  # The table covers every case of the label, those of earlier runs too.
+  CASES="" "$0" table "$LABEL"
   ;;
 table)
   LABEL=${2:?label}
