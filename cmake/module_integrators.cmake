@@ -7,6 +7,7 @@ snell_library(snell_integrators
   src/integrators/path/technique_stats.cpp
   src/integrators/direct/direct.cpp
   src/integrators/mnee/mnee_integrator.cpp
+  src/integrators/mnee/connection_allocation.cpp
   src/integrators/bdpt/bdpt.cpp
   src/integrators/bdpt/vertex.cpp
   src/integrators/bdpt/subpath.cpp
@@ -36,6 +37,7 @@ snell_test(test_instancing SOURCES tests/stat/test_instancing.cpp LIBS ${SNELL_A
 snell_test(test_mitsuba_references SOURCES tests/stat/test_mitsuba_references.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_hero_wavelengths SOURCES tests/stat/test_hero_wavelengths.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_dispersion SOURCES tests/stat/test_dispersion.cpp LIBS ${SNELL_ALL_LIBS})
+snell_test(test_connection_allocation SOURCES tests/stat/test_connection_allocation.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_sampler_images SOURCES tests/stat/test_sampler_images.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_pssmlt SOURCES tests/stat/test_pssmlt.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_scale_invariance SOURCES tests/stat/test_scale_invariance.cpp LIBS ${SNELL_ALL_LIBS})

@@ -8,6 +8,7 @@ snell_library(snell_manifold
   src/manifold/generalized_geometry.cpp
   src/manifold/seed_path.cpp
   src/manifold/mnee.cpp
+  src/manifold/mnee_settings.cpp
   src/manifold/light_point.cpp
   src/manifold/walk_statistics.cpp
   src/manifold/walk_counters.cpp

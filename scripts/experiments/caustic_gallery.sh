@@ -68,11 +68,12 @@ ref_key() {
   { cat "$scene" "${files[@]}" 2>/dev/null; echo "${DEFS[$c]} ${CROP[$c]} ${REF[$c]} $2"; } | sha256sum | cut -c1-16
 }
 # with_integrator FILE TECHNIQUE: the scene file made ready for TECHNIQUE (mnee-all: mnee with
-# every solution 16 surface trials find); prints the integrator type to render it with.
+# every solution 16 surface trials find, walked everywhere); prints the integrator type to render
+# it with.
 with_integrator() {
   case $2 in
     mnee-all)
-      sed -i "s|<integer name=\"max_depth\" value=\"\$max_depth\"/>|&<string name=\"solutions\" value=\"all\"/><integer name=\"trials\" value=\"16\"/>|" "$1"
+      sed -i "s|<integer name=\"max_depth\" value=\"\$max_depth\"/>|&<string name=\"solutions\" value=\"all\"/><integer name=\"trials\" value=\"16\"/><string name=\"allocation\" value=\"fixed\"/>|" "$1"
       echo mnee ;;
     *) echo "$2" ;;
   esac

@@ -2,6 +2,7 @@
 // Parameter dictionary handed to every factory (pbrt-v4's ParameterDictionary, Mitsuba's
 // Properties). Every lookup marks the parameter used; `check_unused()` then reports what a
 // plugin did not understand with its file:line, so no attribute is ever silently ignored.
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -69,6 +70,19 @@ public:
     double get_float(const std::string& name, double def) const;
     std::string get_string(const std::string& name) const;
     std::string get_string(const std::string& name, const std::string& def) const;
+    /// A string parameter naming one of `names` (mapped to its value), `def` if absent; any other
+    /// string is a located error listing the names.
+    template <typename E>
+    E get_choice(const std::string& name, E def, std::initializer_list<std::pair<const char*, E>> names) const {
+        if (!has(name)) return def;
+        const std::string v = get_string(name);
+        std::string list;
+        for (const auto& [n, e] : names) {
+            if (v == n) return e;
+            list += (list.empty() ? "'" : ", '") + std::string(n) + "'";
+        }
+        raise_param(name, name + " must be one of " + list);
+    }
     Vec3 get_vec3(const std::string& name) const;  ///< <point>/<vector>
     Vec3 get_vec3(const std::string& name, const Vec3& def) const;
     Transform get_transform(const std::string& name, const Transform& def = Transform()) const;

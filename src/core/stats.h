@@ -69,6 +69,9 @@ public:
     void operator++(int) { detail::thread_stat_slots()[m_slot]++; }
     void operator+=(uint64_t n) { detail::thread_stat_slots()[m_slot] += n; }
     uint32_t slot() const { return m_slot; }
+    /// The calling thread's count so far: the difference of two readings is the work one call
+    /// did, whatever other threads do (a deterministic cost, unlike a clock).
+    uint64_t this_thread() const { return detail::thread_stat_slots()[m_slot]; }
 
 private:
     uint32_t m_slot;

@@ -34,7 +34,7 @@ const std::map<std::string, Factory>& registry() {
         {"mnee",
          [](const Props& p) {
              return std::make_shared<MneeIntegrator>(MneeIntegrator::path_settings_from_props(p),
-                                                     MneeIntegrator::settings_from_props(p));
+                                                     MneeSettings::from_props(p));
          }},
         {"pssmlt", [](const Props& p) { return std::make_shared<PssmltIntegrator>(PssmltSettings::from_props(p)); }},
     };

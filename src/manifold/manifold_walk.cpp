@@ -5,7 +5,9 @@
 #include <array>
 #include <cmath>
 
+#include "core/props.h"
 #include "geometry/shape.h"
+#include "manifold/walk_counters.h"
 #include "scene/scene.h"
 
 namespace snell {
@@ -124,6 +126,7 @@ WalkResult manifold_walk(const Scene* scene, const Vec3& x_b, std::vector<Manifo
         for (Vec2& d : dx) d = d * limit;
 
         // Corrector: project every displaced vertex back onto its own shape.
+        walk_counters::walk_vertex_steps += chain.size();
         bool projected = true;
         for (size_t i = 0; i < chain.size() && projected; ++i) {
             const Vec3 prev = i == 0 ? x_b : proposal[i - 1].p;
@@ -156,6 +159,25 @@ WalkResult manifold_walk(const Scene* scene, const Vec3& x_b, std::vector<Manifo
     res.error = err;
     res.outcome = err < st.threshold ? WalkOutcome::Converged : WalkOutcome::MaxIterations;
     return res;
+}
+
+WalkSettings WalkSettings::from_props(const Props& p) {
+    WalkSettings s;
+    s.max_iterations = int(p.get_int("max_iterations", s.max_iterations));
+    s.threshold = p.get_float("threshold", s.threshold);
+    s.allow_error_increase = p.get_bool("allow_error_increase", s.allow_error_increase);
+    s.min_step = p.get_float("min_step", s.min_step);
+    s.stall_window = int(p.get_int("stall_window", s.stall_window));
+    s.stall_ratio = p.get_float("stall_ratio", s.stall_ratio);
+    s.projection = p.get_choice("projection", s.projection,
+                                {{"closest_point", Projection::ClosestPoint}, {"raycast", Projection::RayCast}});
+    if (s.max_iterations < 1) p.raise_param("max_iterations", "max_iterations must be >= 1");
+    if (!(s.threshold > 0)) p.raise_param("threshold", "threshold must be > 0");
+    if (!(s.min_step > 0 && s.min_step <= 1)) p.raise_param("min_step", "min_step must lie in (0, 1]");
+    if (s.stall_window < 0 || s.stall_window > kMaxStallWindow)
+        p.raise_param("stall_window", "stall_window must lie in [0, " + std::to_string(kMaxStallWindow) + "]");
+    if (!(s.stall_ratio > 0 && s.stall_ratio <= 1)) p.raise_param("stall_ratio", "stall_ratio must lie in (0, 1]");
+    return s;
 }
 
 }  // namespace snell

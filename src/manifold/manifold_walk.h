@@ -14,6 +14,7 @@
 namespace snell {
 
 class Scene;
+class Props;
 
 enum class Projection {
     ClosestPoint,  ///< closest point on the same shape (the paper's choice: robust at grazing angles)
@@ -44,6 +45,10 @@ struct WalkSettings {
     /// estimators count what their trials reach. stall_window 0 turns the test off.
     int stall_window = 0;
     double stall_ratio = 0.7;
+
+    /// The walk's scene parameters (max_iterations, threshold, allow_error_increase, min_step,
+    /// stall_window, stall_ratio, projection; docs/integrators.md), checked.
+    static WalkSettings from_props(const Props& props);
 };
 
 enum class WalkOutcome : uint8_t {

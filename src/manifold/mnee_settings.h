@@ -5,6 +5,14 @@
 
 namespace snell {
 
+class Props;
+
+/// surface_weight's default with solutions=unbiased and both kinds of seeds (the best measured
+/// at equal time on the droplets' caustics; docs/mnee.md, "surface_weight").
+inline constexpr double kDefaultSurfaceWeight = 0.03;
+/// The most refractive vertices a path records after x_b (max_vertices' upper bound).
+inline constexpr int kMaxChainVertices = 16;
+
 /// (seeding) where the walks of one light connection start: the paper's straight segment x_b ->
 /// x_c (Sec. 3.1), points drawn on the caster shapes (SMS), or both.
 enum class MneeSeeding { Straight, Surface, StraightAndSurface };
@@ -41,7 +49,7 @@ struct MneeSettings {
     /// energy is only removed. 0 (default): off.
     double max_geometry = 0;
     // The paper's estimator here; a scene's `mnee` defaults to solutions=unbiased with
-    // straight+surface seeds and surface_weight 0.03 (MneeIntegrator::settings_from_props).
+    // straight+surface seeds and surface_weight 0.03 (from_props).
     MneeSeeding seeding = MneeSeeding::Straight;
     MneeSolutions solutions = MneeSolutions::One;
     /// (trials) surface seeds per caster and light connection: every one walked (solutions=all),
@@ -81,7 +89,20 @@ struct MneeSettings {
     /// connection made counts 1 / q and MIS weighs the technique's density as q p_mnee, so the
     /// estimate stays unbiased. Lights BSDF sampling cannot hit (point, spot, directional) keep 1.
     double connect_probability = 1;
-    WalkSettings walk;  ///< (max_iterations, threshold, allow_error_increase, projection)
+    /// (allocation) `learned`: q chosen per image region from the render's first samples
+    /// (integrators/mnee/connection_allocation.h), the default of a scene's unbiased `mnee`;
+    /// `fixed`: connect_probability everywhere (the default with connect_probability given,
+    /// in the biased mode, whose outlier rule needs every region's walks, and inside pssmlt
+    /// and erpt, which have no pixels to learn per).
+    bool learned_allocation = false;
+    int pilot_spp = 4;          ///< (pilot_spp) samples per pixel the allocation learns from, at q
+    int allocation_block = 16;  ///< (allocation_block) pixels on a side of a region
+    WalkSettings walk;          ///< (max_iterations, threshold, allow_error_increase, projection, ...)
+
+    /// The scene's `mnee` parameters (docs/integrators.md), with the scene defaults: the
+    /// unbiased estimator with both kinds of seeds and the learned allocation. A bad value or a
+    /// contradictory pair raises a located SceneError.
+    static MneeSettings from_props(const Props& props);
 };
 
 }  // namespace snell

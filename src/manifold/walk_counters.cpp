@@ -5,6 +5,8 @@ namespace snell::walk_counters {
 StatCounter walks_started{"mnee.walks_started", "manifold walks started (Alg. 1)"};
 StatCounter walks_converged{"mnee.walks_converged", "walks converged to an admissible path, before visibility"};
 StatCounter walk_iterations_success{"mnee.walk_iterations_success", "iterations summed over converged walks"};
+StatCounter walk_vertex_steps{"mnee.walk_vertex_steps",
+                              "vertex projections of all walks (iterations x chain length; a walk's cost)"};
 StatCounter walk_fail_no_convergence{"mnee.walk_fail_no_convergence", "walks out of iterations"};
 StatCounter walk_fail_singular{"mnee.walk_fail_singular", "walks or Jacobians with a singular matrix"};
 StatCounter walk_fail_projection{"mnee.walk_fail_projection", "walks whose projection onto the shapes failed"};
@@ -29,6 +31,8 @@ StatCounter pdf_walks_found{"mnee.pdf_walks_found", "Alg. 2 walks that reproduce
 StatHistogram iteration_histogram{"mnee.iteration_histogram", "iterations of converged walks", kIterationBins};
 StatHistogram walk_end_alg1{"mnee.walk_end_alg1", "Alg. 1 walks by how they ended (WalkEnd)", uint32_t(WalkEnd::Count)};
 StatHistogram walk_end_alg2{"mnee.walk_end_alg2", "Alg. 2 walks by how they ended (WalkEnd)", uint32_t(WalkEnd::Count)};
+StatHistogram allocation_regions{"mnee.allocation_regions",
+                                 "image regions by the connect probability they chose (0, 1/64 .. 1/2, 1)", 8};
 
 const char* walk_end_name(WalkEnd e) {
     switch (e) {

@@ -29,6 +29,7 @@ const char* walk_end_name(WalkEnd e);
 extern StatCounter walks_started;            ///< "mnee.walks_started": Alg. 1 walks
 extern StatCounter walks_converged;          ///< converged and admissible (before visibility)
 extern StatCounter walk_iterations_success;  ///< iterations summed over converged walks
+extern StatCounter walk_vertex_steps;        ///< "mnee.walk_vertex_steps": vertices projected, all walks
 extern StatCounter walk_fail_no_convergence;
 extern StatCounter walk_fail_singular;
 extern StatCounter walk_fail_projection;
@@ -51,6 +52,9 @@ extern StatCounter pdf_walks_found;        ///< ... that reproduced the input pa
 extern StatHistogram iteration_histogram;  ///< iterations of converged walks
 extern StatHistogram walk_end_alg1;        ///< "mnee.walk_end_alg1": Alg. 1 walks by WalkEnd
 extern StatHistogram walk_end_alg2;        ///< "mnee.walk_end_alg2": Alg. 2 walks by WalkEnd
+/// "mnee.allocation_regions": image regions by the connect probability they chose
+/// (ConnectionAllocation's candidates, bin j: kConnectCandidates[j]).
+extern StatHistogram allocation_regions;
 
 /// Counts one ended walk of Alg. 1 (`alg2` false) or Alg. 2.
 inline void count_walk_end(bool alg2, WalkEnd e) { (alg2 ? walk_end_alg2 : walk_end_alg1).add(uint32_t(e)); }

@@ -38,7 +38,7 @@ uint64_t pass_size(int pass) { return pass < 1 ? 1 : pass >= 5 ? 16 : uint64_t(1
 
 }  // namespace
 
-RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int spectral_samples, const FilmSpec& spec,
+RenderResult render_tiles(const Scene& scene, SampleTracer& tracer, int spectral_samples, const FilmSpec& spec,
                           const RenderOptions& opt, const std::atomic<bool>* cancel) {
     using Clock = std::chrono::steady_clock;
     const Camera* camera = scene.camera();
@@ -165,6 +165,7 @@ RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int sp
             break;
         }
         done_spp = s1;
+        tracer.end_pass(done_spp);
         if (bar && timed) bar->update();
     }
     if (bar) bar->finish();

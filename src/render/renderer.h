@@ -42,7 +42,7 @@ struct RenderResult {
 /// sampled), then `spectral_samples` wavelengths; pixel sums are accumulated in a fixed order,
 /// so the result does not depend on the thread count. Samples that are NaN, infinite or
 /// negative are counted and replaced by zero so that nothing invalid reaches the film.
-RenderResult render_tiles(const Scene& scene, const SampleTracer& tracer, int spectral_samples, const FilmSpec& film,
+RenderResult render_tiles(const Scene& scene, SampleTracer& tracer, int spectral_samples, const FilmSpec& film,
                           const RenderOptions& options, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace snell

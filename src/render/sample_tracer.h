@@ -56,6 +56,10 @@ public:
     virtual int clamp_spread() const { return 0; }
     /// Names of the techniques li_splat() reports with note_sample_technique() (empty: none).
     virtual std::vector<std::string> technique_names() const { return {}; }
+    /// Called by the render loop on one thread between passes, once every pixel holds
+    /// `samples_per_pixel` samples: a tracer that learns from its first samples (MNEE's
+    /// ConnectionAllocation) changes its estimator here, never while a pass runs.
+    virtual void end_pass(uint64_t /*samples_per_pixel*/) {}
 };
 
 /// Called by a tracer inside li_splat(): the technique (an index into technique_names()) that

@@ -61,12 +61,22 @@ std::string rough_water(double alpha, const char* distribution = "beckmann") {
            R"("/><float name="int_ior" value="1.33"/><float name="ext_ior" value="1"/></bsdf>)";
 }
 
+// The scene's mnee with every region walking (allocation=fixed): these tests are of the
+// estimators themselves, whose share of the light a learned allocation would vary per region
+// (test_connection_allocation.cpp tests that).
+std::string walked_everywhere(std::string xml) {
+    const std::string at = R"(<integer name="max_depth" value="8"/>)";
+    if (xml.find("\"allocation\"") == std::string::npos && xml.find(at) != std::string::npos)
+        xml.insert(xml.find(at) + at.size(), R"(<string name="allocation" value="fixed"/>)");
+    return xml;
+}
+
 // `replicas` of mnee's render give each block's standard error; heavy-tailed estimators (the
 // 1 / p counts of solutions=unbiased) need more of them for an honest one.
 void expect_mnee_matches_nee(const std::string& xml, int nee_spp, int mnee_spp, const char* what,
                              const std::string& nee_xml = "", int replicas = 8) {
     LoadedScene nee = load_xml(nee_xml.empty() ? xml : nee_xml, {{"integrator", "nee"}});
-    LoadedScene mnee = load_xml(xml, {{"integrator", "mnee"}});
+    LoadedScene mnee = load_xml(walked_everywhere(xml), {{"integrator", "mnee"}});
     const auto a = block_estimates(nee, *nee.integrator, nee_spp, 8, 6, 100);
     const auto b = block_estimates(mnee, *mnee.integrator, mnee_spp, replicas, 6, 200);
     expect_agreement(a, b, 0.01, what);
@@ -357,7 +367,7 @@ std::string with_ball(std::string xml) {
 // The share of the refracted light (paths x_b, refractions, light) that MNEE delivers, from the
 // per-technique statistics of one render; the rest comes from BSDF sampling hitting the light.
 double mnee_share(const std::string& xml) {
-    LoadedScene ls = load_xml(xml, {{"integrator", "mnee"}});
+    LoadedScene ls = load_xml(walked_everywhere(xml), {{"integrator", "mnee"}});
     RenderOptions opt;
     opt.spp = 16;
     opt.progress = false;

@@ -272,10 +272,10 @@ TEST(SceneLoaderFull, MneeDefaultsAndSurfaceWeight) {
     const MneeSettings def = settings("");
     EXPECT_EQ(def.solutions, MneeSolutions::Unbiased);
     EXPECT_EQ(def.seeding, MneeSeeding::StraightAndSurface);
-    EXPECT_EQ(def.surface_weight, kSurfaceWeight);
-    EXPECT_EQ(settings(R"(<string name="solutions" value="unbiased"/>)").surface_weight, kSurfaceWeight);
+    EXPECT_EQ(def.surface_weight, kDefaultSurfaceWeight);
+    EXPECT_EQ(settings(R"(<string name="solutions" value="unbiased"/>)").surface_weight, kDefaultSurfaceWeight);
     EXPECT_EQ(settings(R"(<boolean name="biased" value="true"/>)").solutions, MneeSolutions::Unbiased);
-    EXPECT_EQ(settings(R"(<boolean name="biased" value="true"/>)").surface_weight, kSurfaceWeight);
+    EXPECT_EQ(settings(R"(<boolean name="biased" value="true"/>)").surface_weight, kDefaultSurfaceWeight);
     EXPECT_EQ(settings(R"(<string name="solutions" value="all"/>)").surface_weight, 1.0);
     EXPECT_EQ(settings(R"(<float name="surface_weight" value="1"/>)").surface_weight, 1.0);
     expect_error(scene_with("<integrator type=\"mnee\">\n<float name=\"surface_weight\" value=\"0\"/></integrator>"),

@@ -48,7 +48,7 @@ ErptSettings ErptSettings::from_props(const Props& props) {
     s.max_chains = int(mc);
     s.shapes = parse_shape_ids(props, "shapes", props.get_string("shapes", ""));
     s.path = PathSettings::from_props(props);
-    if (s.sampler == "mnee") s.mnee = MneeIntegrator::settings_from_props(props);
+    if (s.sampler == "mnee") s.mnee = MneeSettings::from_props(props);
     return s;
 }
 

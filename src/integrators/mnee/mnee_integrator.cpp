@@ -6,6 +6,7 @@
 #include "core/props.h"
 #include "integrators/light_connection.h"
 #include "integrators/mis.h"
+#include "integrators/mnee/work_meter.h"
 #include "manifold/manifold_technique.h"
 #include "manifold/mnee.h"
 #include "manifold/seed_path.h"
@@ -16,113 +17,54 @@ namespace snell {
 
 namespace {
 
-// A string parameter naming one of `names` (the first is listed first in the error); `def` if
-// absent.
-template <typename E>
-E choice(const Props& p, const std::string& name, E def, std::initializer_list<std::pair<const char*, E>> names) {
-    if (!p.has(name)) return def;
-    const std::string v = p.get_string(name);
-    std::string list;
-    for (const auto& [n, e] : names) {
-        if (v == n) return e;
-        list += (list.empty() ? "'" : ", '") + std::string(n) + "'";
+/// The `mnee` integrator's tracer with a learned allocation: the first pilot_spp samples of
+/// every pixel run at the pilot's q and record what ConnectionAllocation needs; after the pass
+/// that completes them, every sample runs at its region's q.
+class MneeTracer final : public SampleTracer {
+public:
+    MneeTracer(const MneeIntegrator& mnee, const FilmSpec& film)
+        : m_mnee(mnee),
+          m_pilot_spp(uint64_t(mnee.mnee_settings().pilot_spp)),
+          m_allocation(std::make_unique<ConnectionAllocation>(film.out_width(), film.out_height(), film.crop_x,
+                                                              film.crop_y, mnee.mnee_settings().allocation_block,
+                                                              mnee.mnee_settings().connect_probability)) {}
+
+    SampledSpectrum li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+                             SplatList& /*splats*/) const override {
+        const int x = int(std::floor(cs.pixel_centre.x)), y = int(std::floor(cs.pixel_centre.y));
+        MneePathState state;
+        state.q = m_allocation->q(x, y);
+        if (!m_allocation->learning()) return m_mnee.li(ray, scene, sampler, cs.wl, state);
+        // A pilot sample: its pixel's statistics are written by the one thread rendering it.
+        PilotSample record;
+        state.pilot = &record;
+        const double w0 = work_so_far();
+        const SampledSpectrum L = m_mnee.li(ray, scene, sampler, cs.wl, state);
+        m_allocation->add(x, y, record, L.average(), work_so_far() - w0);
+        return L;
     }
-    p.raise_param(name, name + " must be one of " + list);
-}
+    void end_pass(uint64_t samples_per_pixel) override {
+        if (!m_allocation->learning() || samples_per_pixel < m_pilot_spp) return;
+        m_allocation->fit();
+        const auto h = m_allocation->histogram();
+        for (size_t j = 0; j < h.size(); ++j) walk_counters::allocation_regions.add(int64_t(j), h[j]);
+    }
+    double max_sample_share() const override { return m_mnee.settings().max_sample_share; }
+    int clamp_spread() const override { return m_mnee.settings().clamp_spread; }
+    std::vector<std::string> technique_names() const override { return path_technique_names(); }
+
+private:
+    const MneeIntegrator& m_mnee;
+    uint64_t m_pilot_spp;
+    std::unique_ptr<ConnectionAllocation> m_allocation;  ///< pointer: li_splat() is const
+};
 
 }  // namespace
 
-MneeSettings MneeIntegrator::settings_from_props(const Props& p) {
-    MneeSettings s;
-    s.max_vertices = int(p.get_int("max_vertices", s.max_vertices));
-    s.ignore_occluders = p.get_bool("ignore_occluders", s.ignore_occluders);
-    s.cull_margin = p.get_float("cull_margin", s.cull_margin);
-    s.biased = p.get_bool("biased", s.biased);
-    s.spectral_walks = p.get_bool("spectral_walks", s.spectral_walks);
-    s.walk.max_iterations = int(p.get_int("max_iterations", s.walk.max_iterations));
-    s.walk.threshold = p.get_float("threshold", s.walk.threshold);
-    s.walk.allow_error_increase = p.get_bool("allow_error_increase", s.walk.allow_error_increase);
-    s.walk.min_step = p.get_float("min_step", s.walk.min_step);
-    s.walk.stall_window = int(p.get_int("stall_window", s.walk.stall_window));
-    s.walk.stall_ratio = p.get_float("stall_ratio", s.walk.stall_ratio);
-    s.max_geometry = p.get_float("max_geometry", s.max_geometry);
-    s.seeding = choice(p, "seeding", s.seeding,
-                       {{"straight", MneeSeeding::Straight},
-                        {"surface", MneeSeeding::Surface},
-                        {"straight+surface", MneeSeeding::StraightAndSurface}});
-    // The default is `unbiased` with the straight seed, surface seeds and surface_weight 0.03:
-    // the best at equal time on the droplets and the glass sphere (docs/experiments.md). The
-    // biased mode too (issue 26): with `fallback` its outlier rule dropped the post-fold branch
-    // of a ball resting on a plane (0.38 of the caustic's mean); with the surface trials' solutions
-    // it keeps 0.81-1.03 of the mean on the caustic gallery (fallback: 0.38-1.00), at lower
-    // relMSE on 6 of its 10 cases, the others within 12 % (docs/experiments.md).
-    // `solutions=one` is the paper's, as is `seeding=straight` alone.
-    const MneeSolutions default_solutions =
-        p.has("seeding") && s.seeding != MneeSeeding::StraightAndSurface ? MneeSolutions::One : MneeSolutions::Unbiased;
-    s.solutions = choice(p, "solutions", default_solutions,
-                         {{"one", MneeSolutions::One},
-                          {"all", MneeSolutions::All},
-                          {"unbiased", MneeSolutions::Unbiased},
-                          {"fallback", MneeSolutions::Fallback}});
-    // The estimators of several solutions walk both kinds of seeds unless told otherwise
-    // (fallback: surface seeds where the straight one is blocked).
-    if (s.solutions != MneeSolutions::One && !p.has("seeding")) s.seeding = MneeSeeding::StraightAndSurface;
-    if (s.solutions == MneeSolutions::Fallback && s.seeding != MneeSeeding::StraightAndSurface)
-        p.raise_param("seeding", "solutions=fallback takes seeding=straight+surface");
-    // trials: surface seeds per caster for `all`; the first round M of `unbiased` (SMS's 1 / p
-    // estimate is M = 1, its default: larger rounds lower the variance per sample about as much as
-    // they raise its cost, on the glass sphere's caustic; docs/mnee.md).
-    s.trials = int(p.get_int(
-        "trials", s.solutions == MneeSolutions::Unbiased || s.solutions == MneeSolutions::Fallback ? 1 : s.trials));
-    if (s.trials < 1) p.raise_param("trials", "trials must be >= 1");
-    s.max_trials = int(p.get_int("max_trials", s.max_trials));
-    if (s.max_trials < 1) p.raise_param("max_trials", "max_trials must be >= 1");
-    // The paper's estimator counts the straight seed's solution alone; every other pairing
-    // would silently drop the solutions its seeds do not reach.
-    if (s.solutions == MneeSolutions::One && s.seeding != MneeSeeding::Straight)
-        p.raise_param("seeding", "solutions=one takes the straight seed only; use solutions=all with surface seeds");
-    if (s.solutions != MneeSolutions::One && s.seeding == MneeSeeding::Straight)
-        p.raise_param("solutions", "solutions=" + p.get_string("solutions") +
-                                       " needs surface seeds: seeding=surface or straight+surface");
-    s.surface_side =
-        choice(p, "surface_side", s.surface_side,
-               {{"receiver", SurfaceSide::Receiver}, {"light", SurfaceSide::Light}, {"both", SurfaceSide::Both}});
-    s.seed_candidates = int(p.get_int("seed_candidates", s.seed_candidates));
-    if (s.seed_candidates < 1 || s.seed_candidates > 1024)
-        p.raise_param("seed_candidates", "seed_candidates must lie in [1, 1024]");
-    s.reflections = p.get_bool("reflections", s.reflections);
-    // surface_weight 0.03: the best of 1, 0.3, 0.1, 0.03, 0.01 and 0.003 at equal time on the
-    // droplets' caustics (docs/mnee.md); `all` counts each solution once (no 1 / p) and keeps 1.
-    const bool both_seeds = (s.solutions == MneeSolutions::Unbiased || s.solutions == MneeSolutions::All) &&
-                            s.seeding == MneeSeeding::StraightAndSurface;
-    s.surface_weight =
-        p.get_float("surface_weight", both_seeds && s.solutions == MneeSolutions::Unbiased ? kSurfaceWeight : 1.0);
-    if (!(s.surface_weight > 0 && s.surface_weight <= 1))
-        p.raise_param("surface_weight", "surface_weight must lie in (0, 1]");
-    if (p.has("surface_weight") && !both_seeds)
-        p.raise_param("surface_weight",
-                      "surface_weight weighs the surface seeds' solutions against the straight seed's: it needs "
-                      "solutions=all or unbiased with seeding=straight+surface");
-    if (s.reflections && s.solutions == MneeSolutions::One)
-        p.raise_param("reflections", "reflections need the surface seeds of solutions=all or unbiased");
-    s.walk.projection = choice(p, "projection", s.walk.projection,
-                               {{"closest_point", Projection::ClosestPoint}, {"raycast", Projection::RayCast}});
-    if (s.max_vertices < 1 || s.max_vertices > RefractiveSuffix::kMaxVertices)
-        p.raise_param("max_vertices",
-                      "max_vertices must lie in [1, " + std::to_string(RefractiveSuffix::kMaxVertices) + "]");
-    if (s.walk.max_iterations < 1) p.raise_param("max_iterations", "max_iterations must be >= 1");
-    if (!(s.walk.threshold > 0)) p.raise_param("threshold", "threshold must be > 0");
-    if (!(s.walk.min_step > 0 && s.walk.min_step <= 1)) p.raise_param("min_step", "min_step must lie in (0, 1]");
-    if (s.walk.stall_window < 0 || s.walk.stall_window > kMaxStallWindow)
-        p.raise_param("stall_window", "stall_window must lie in [0, " + std::to_string(kMaxStallWindow) + "]");
-    if (!(s.walk.stall_ratio > 0 && s.walk.stall_ratio <= 1))
-        p.raise_param("stall_ratio", "stall_ratio must lie in (0, 1]");
-    if (!(s.cull_margin >= 0)) p.raise_param("cull_margin", "cull_margin must be >= 0");
-    if (!(s.max_geometry >= 0)) p.raise_param("max_geometry", "max_geometry must be >= 0 (0: no clamp)");
-    s.connect_probability = p.get_float("connect_probability", s.connect_probability);
-    if (!(s.connect_probability > 0 && s.connect_probability <= 1))
-        p.raise_param("connect_probability", "connect_probability must lie in (0, 1]");
-    return s;
+std::unique_ptr<SampleTracer> MneeIntegrator::prepare(const Scene& scene, const FilmSpec& film,
+                                                      const RenderOptions& options) const {
+    if (!m_mnee.learned_allocation) return PathTracer::prepare(scene, film, options);
+    return std::make_unique<MneeTracer>(*this, film);
 }
 
 PathSettings MneeIntegrator::path_settings_from_props(const Props& p) {
@@ -171,20 +113,20 @@ void MneeIntegrator::on_scatter(PathState& state, const SurfaceInteraction& si, 
 
 double MneeIntegrator::emitter_hit_weight(const Scene& scene, const PathState& state, const Light& light, const Vec3& p,
                                           const Vec3& n, const Vec3& d, const BSDFContext& ctx) const {
-    const RefractiveSuffix& s = static_cast<const MneePathState&>(state).suffix;
+    const MneePathState& ms = static_cast<const MneePathState&>(state);
+    const RefractiveSuffix& s = ms.suffix;
     if (!s.has_xb || s.k == 0) return PathTracer::emitter_hit_weight(scene, state, light, p, n, d, ctx);
     // A BSDF-sampled path x_b, x_1..x_k (refractive), x_c: three techniques can produce it.
     const LightPoint lp = light_point_hit(scene, light, p, n, Vec2(), d, s.xb.p);  // densities only: no uv
     const double pmf = scene.light_sampler().pmf(&light);
     const size_t last = size_t(s.k - 1);
     const double p_bsdf = s.p_prefix * s.q_last * std::abs(dot(lp.n, d)) / length_squared(lp.p - s.chain[last].p);
-    const double p_mnee = covers(s, true)
-                              ? connect_probability(light) * ManifoldTechnique(scene, m_mnee)
-                                                                 .density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k,
-                                                                          light, pmf, lp.p, lp.n, ctx.hero())
-                              : 0.0;
+    const double q = connect_probability(light, state);
+    const double p_m = mnee_density(scene, ms, true, light, pmf, lp.p, lp.n, q, ctx.hero());
+    const double p_mnee = q * p_m;
     const double p_nee =
         s.specular[last] ? 0.0 : s.p_prefix * pmf * light_point_pdf(scene, light, s.chain[last].p, lp.p, lp.n);
+    if (ms.pilot && p_m > 0) ms.pilot->add_other(state.emitter_value.average(), p_bsdf, p_m, p_bsdf + p_nee, q);
     // Sec. 3.5: outlier removal drops the light that BSDF sampling finds through interfaces after
     // x_b but MNEE cannot: transmissive suffixes its walks do not reach, and suffixes with an
     // internal reflection (rare, bright hits through the glass: fireflies that no sample count
@@ -196,7 +138,8 @@ double MneeIntegrator::emitter_hit_weight(const Scene& scene, const PathState& s
 SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf,
                                                      const BSDFContext& ctx, const PathState& state,
                                                      Sampler& sampler) const {
-    const RefractiveSuffix& s = static_cast<const MneePathState&>(state).suffix;
+    const MneePathState& ms = static_cast<const MneePathState&>(state);
+    const RefractiveSuffix& s = ms.suffix;
     const Light* light = nullptr;
     double pmf = 0;
     const auto ls = sample_light(scene, si, ctx.wl, sampler, &light, &pmf);
@@ -214,17 +157,33 @@ SampledSpectrum MneeIntegrator::connect_at_interface(const Scene& scene, const S
                                    : s.p_prefix * bsdf.pdf(ctx.at(si), wo, wi) * std::abs(dot(lp.n, ls->wi)) /
                                          length_squared(lp.p - si.p);
     const bool refracts = dot(si.wo, si.ng) * dot(ls->wi, si.ng) < 0;
-    const double p_mnee = covers(s, refracts)
-                              ? connect_probability(*light) * ManifoldTechnique(scene, m_mnee)
-                                                                  .density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k,
-                                                                           *light, pmf, lp.p, lp.n, ctx.hero())
-                              : 0.0;
+    const double q = connect_probability(*light, state);
+    const double p_m = mnee_density(scene, ms, refracts, *light, pmf, lp.p, lp.n, q, ctx.hero());
+    const double p_mnee = q * p_m;
     if (m_mnee.biased && covers(s, refracts) && !(p_mnee > 0)) return {};
-    return nee_estimate(si, bsdf, ctx, state.media, *ls, f, pmf, power_heuristic(p_nee, {p_bsdf, p_mnee}));
+    const SampledSpectrum unweighted = nee_estimate(si, bsdf, ctx, state.media, *ls, f, pmf, 1.0);
+    if (ms.pilot && p_m > 0 && !light->is_delta())
+        ms.pilot->add_other((state.beta * unweighted).average(), p_nee, p_m, p_nee + p_bsdf, q);
+    return unweighted * power_heuristic(p_nee, {p_bsdf, p_mnee});
 }
 
-double MneeIntegrator::connect_probability(const Light& light) const {
-    return light.is_delta() ? 1.0 : m_mnee.connect_probability;
+double MneeIntegrator::mnee_density(const Scene& scene, const MneePathState& state, bool last_refracts,
+                                    const Light& light, double pmf, const Vec3& p, const Vec3& n, double q,
+                                    double lambda) const {
+    const RefractiveSuffix& s = state.suffix;
+    // q = 0: the region leaves these paths to BSDF sampling, and MIS needs no density (nor its walk).
+    if (!covers(s, last_refracts) || !(q > 0)) return 0.0;
+    const double w0 = state.pilot ? work_so_far() : 0.0;
+    const double d =
+        ManifoldTechnique(scene, m_mnee).density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light, pmf, p, n, lambda);
+    if (state.pilot) state.pilot->work_density += work_so_far() - w0;
+    return d;
+}
+
+double MneeIntegrator::connect_probability(const Light& light, const PathState& state) const {
+    if (light.is_delta()) return 1.0;
+    const double q = static_cast<const MneePathState&>(state).q;
+    return q >= 0 ? q : m_mnee.connect_probability;
 }
 
 bool MneeIntegrator::covers(const RefractiveSuffix& s, bool last_refracts) const {
@@ -251,6 +210,18 @@ void MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteracti
     double pmf = 0;
     const auto ls = sample_light(scene, si, ctx.wl, sampler, &light, &pmf, /*keep_dark=*/true);
     if (!ls) return;
+    const double q_connect = connect_probability(*light, state);
+    if (!(q_connect > 0)) {
+        // This region leaves the refracted light to BSDF sampling (ConnectionAllocation): what
+        // is left of the connection is NEE's, one shadow ray (a seed that meets glass gives 0).
+        const SampledSpectrum f = bsdf.eval(ctx.at(si), si.to_local(si.wo), si.to_local(ls->wi));
+        const Ray shadow =
+            std::isinf(ls->dist) ? scene.spawn_ray(si, ls->wi) : scene.spawn_ray_to(si, ls->p, ls->p_error);
+        if (f.is_nonzero() && !scene.occluded(shadow))
+            out.add(Technique::Nee,
+                    nee_estimate(si, bsdf, ctx, state.media, *ls, f, pmf, nee_weight(si, bsdf, ctx, *ls, pmf)));
+        return;
+    }
     const LightPoint lp = light_point(scene, *light, *ls, si.p);
 
     // Line 2: the seed path (Sec. 3.1).
@@ -287,7 +258,6 @@ void MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteracti
     // connect_probability q: the connection is made with probability q, counted 1 / q, and MIS
     // weighs it by its density q p_mnee (BSDF sampling's paths are weighed the same way above,
     // in emitter_hit_weight and connect_at_interface).
-    const double q_connect = connect_probability(*light);
     if (q_connect < 1 && !(sampler.next_1d() < q_connect)) return;
     // Lines 3-5 (half vectors, walk, measurement) for every solution the technique finds; then
     // MIS of each against the other techniques that produce the same path.
@@ -297,7 +267,16 @@ void MneeIntegrator::connect_to_light(const Scene& scene, const SurfaceInteracti
                           state.media,
                           state.hero_only,
                           /*straight_seed=*/status == SeedStatus::Refractive};
+    // Delta lights keep q = 1 in every region: their connections are no part of the choice.
+    PilotSample* pilot = light->is_delta() ? nullptr : static_cast<const MneePathState&>(state).pilot;
+    const double w0 = pilot ? work_so_far() : 0.0;
     const SolutionSet set = ManifoldTechnique(scene, m_mnee).solve(q, *light, pmf, lp, chain, sampler, max_k);
+    if (pilot) {
+        pilot->work_connect += work_so_far() - w0;
+        for (const ManifoldSolution& sol : set.solutions)
+            pilot->add_connection((state.beta * sol.value * sol.count).average(), sol.density,
+                                  sol.pdf_bsdf + sol.pdf_nee_last, q_connect);
+    }
     for (const ManifoldSolution& sol : set.solutions)
         out.add(sol.from_surface ? Technique::MneeSurface : Technique::MneeStraight,
                 sol.value * (sol.count * power_heuristic(q_connect * sol.density, {sol.pdf_bsdf, sol.pdf_nee_last}) /

@@ -1,6 +1,7 @@
 #pragma once
 // `mnee`: path tracing whose light connection is manifold next event estimation (paper Sec. 3),
 // combined with BSDF sampling and with NEE at rough interface vertices by the power heuristic.
+#include "integrators/mnee/connection_allocation.h"
 #include "integrators/path/path_tracer.h"
 #include "manifold/light_point.h"
 #include "manifold/manifold_vertex.h"
@@ -12,6 +13,9 @@ namespace snell {
 /// vertex that connects to lights (for the MIS weights of Alg. 2).
 struct MneePathState : PathState {
     RefractiveSuffix suffix;
+    /// q of this camera sample (its region's, ConnectionAllocation); < 0: connect_probability.
+    double q = -1;
+    PilotSample* pilot = nullptr;  ///< the allocation's pilot records this sample here
 };
 
 /// The biased mode's outlier clamp (Film::set_max_sample_share): the largest sample of a pixel
@@ -23,12 +27,6 @@ inline constexpr double kBiasedMaxSampleShare = 0.5;
 /// dropped (Film::set_max_sample_share): a caustic's dim halo, which at a few samples per pixel
 /// is all rare bright samples, keeps its light (docs/mnee.md, "Biased mode").
 inline constexpr int kBiasedClampSpread = 8;
-/// The default surface_weight of solutions=unbiased (MneeSettings::surface_weight): a trial finds
-/// a droplet's post-fold solution about one time in seven (mean 1 / p estimate 7.0 on the smooth
-/// droplet's caustic), so its count multiplies its second moment by about 2 / p = 14; of 1, 0.3,
-/// 0.1, 0.03, 0.01 and 0.003, 0.03 gave the lowest variance per second on both droplets'
-/// caustics (docs/mnee.md).
-inline constexpr double kSurfaceWeight = 0.03;
 
 class MneeIntegrator : public PathTracer {
 public:
@@ -38,9 +36,17 @@ public:
         MneePathState state;
         return trace(ray, scene, sampler, wl, state);
     }
+    /// One camera sample with the caller's state (its q and pilot record).
+    SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl,
+                       MneePathState& state) const {
+        return trace(ray, scene, sampler, wl, state);
+    }
+    /// With a learned allocation, a tracer that learns q per region from its pilot samples;
+    /// otherwise the path tracer's.
+    std::unique_ptr<SampleTracer> prepare(const Scene& scene, const FilmSpec& film,
+                                          const RenderOptions& options) const override;
     std::string name() const override { return m_mnee.biased ? "mnee-biased" : "mnee"; }
     const MneeSettings& mnee_settings() const { return m_mnee; }
-    static MneeSettings settings_from_props(const Props& props);
     /// The path tracer's settings; `biased` defaults max_sample_share to 0.5, so that no single
     /// sample carries more than half of a pixel (docs/mnee.md, "Biased mode").
     static PathSettings path_settings_from_props(const Props& props);
@@ -67,8 +73,13 @@ private:
     /// also reflect (solutions=all or unbiased with reflections).
     bool covers(const RefractiveSuffix& s, bool last_refracts) const;
 
-    /// q of MneeSettings::connect_probability for a light: 1 for lights BSDF sampling cannot hit.
-    double connect_probability(const Light& light) const;
+    /// q for a light on this sample's path: the sample's (its region's) or
+    /// MneeSettings::connect_probability; 1 for lights BSDF sampling cannot hit.
+    double connect_probability(const Light& light, const PathState& state) const;
+    /// MNEE's density of the BSDF-sampled suffix `s` ending at the light point (p, n), or 0 when
+    /// the technique cannot produce it or q is 0; its work goes to the pilot's record.
+    double mnee_density(const Scene& scene, const MneePathState& state, bool last_refracts, const Light& light,
+                        double pmf, const Vec3& p, const Vec3& n, double q, double lambda) const;
 
     MneeSettings m_mnee;
 };

@@ -5,6 +5,7 @@
 #include "core/medium_stack.h"
 #include "geometry/interaction.h"
 #include "light/light.h"
+#include "manifold/mnee_settings.h"
 
 namespace snell {
 
@@ -13,7 +14,7 @@ namespace snell {
 /// after it, with the BSDF-sampling density of x_1..x_k in area measure (deltas of specular
 /// vertices factored out in half-vector measure, paper Sec. 3.3 "Specular Case").
 struct RefractiveSuffix {
-    static constexpr int kMaxVertices = 16;
+    static constexpr int kMaxVertices = kMaxChainVertices;
     bool has_xb = false;  ///< x_b exists and everything since is a refractive interface
     SurfaceInteraction xb;
     MediumStack xb_media;  ///< medium at x_b
@@ -34,6 +35,11 @@ struct PathState {
     /// A dispersive refraction was sampled: the throughput carries the hero wavelength alone
     /// (already scaled by SampledWavelengths::hero_only), so no later factor may scale it again.
     bool hero_only = false;
+    /// The path throughput at the current vertex, for derived integrators' hooks that weigh
+    /// what a technique contributes (MNEE's ConnectionAllocation pilot).
+    SampledSpectrum beta;
+    /// beta times the emitted radiance of the emitter hit that emitter_hit_weight() is weighing.
+    SampledSpectrum emitter_value;
 };
 
 }  // namespace snell

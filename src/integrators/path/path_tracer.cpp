@@ -85,6 +85,7 @@ SampledSpectrum PathTracer::trace(const Ray& camera_ray, const Scene& scene, Sam
             if (emitters_visible) {
                 for (const Light* light : scene.infinite_lights()) {
                     const SampledSpectrum le = light->le_escaped(ray.d, wl);
+                    state.emitter_value = tp.beta * le;
                     if (le.is_nonzero())
                         add(depth == 0 ? Technique::Emitted : emitter_hit_technique(state),
                             tp.beta * le * emitter_hit_weight(scene, state, *light, Vec3(), Vec3(), ray.d, ctx));
@@ -98,6 +99,7 @@ SampledSpectrum PathTracer::trace(const Ray& camera_ray, const Scene& scene, Sam
         // it is computed before the vertex is recorded.
         if (const Light* em = si.emitter(); em && emitters_visible) {
             const SampledSpectrum le = em->le(si.p, si.n, si.uv, -ray.d, wl);
+            state.emitter_value = tp.beta * le;
             if (le.is_nonzero())
                 add(depth == 0 ? Technique::Emitted : emitter_hit_technique(state),
                     tp.beta * le * emitter_hit_weight(scene, state, *em, si.p, si.n, ray.d, ctx));
@@ -109,6 +111,7 @@ SampledSpectrum PathTracer::trace(const Ray& camera_ray, const Scene& scene, Sam
         if (!bsdf) break;
 
         if (m_nee && bsdf->is_smooth_sampled()) {
+            state.beta = tp.beta;
             LightConnection c;
             connect_to_light(scene, si, *bsdf, sctx, state, sampler, c);
             for (int t = 0; t < kTechniqueCount; ++t)

@@ -41,7 +41,7 @@ PssmltSettings PssmltSettings::from_props(const Props& props) {
     if (chains < 0 || chains > 65536) props.raise_param("chains", "pssmlt: chains must lie in [0, 65536]");
     s.chains = int(chains);
     s.path = PathSettings::from_props(props);
-    if (s.sampler == "mnee") s.mnee = MneeIntegrator::settings_from_props(props);
+    if (s.sampler == "mnee") s.mnee = MneeSettings::from_props(props);
     return s;
 }
 

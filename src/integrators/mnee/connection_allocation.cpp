@@ -1,0 +1,144 @@
+#include "integrators/mnee/connection_allocation.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace snell {
+
+namespace {
+
+int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+/// (a / b)^2, 0 where it is not finite (a path no technique at that q produces).
+double sqr_ratio(double a, double b) {
+    const double r = a / b;
+    return std::isfinite(r) ? r * r : 0.0;
+}
+
+}  // namespace
+
+void PilotSample::add_connection(double value, double p_m, double p_other, double q_pilot) {
+    if (!(value > 0) || !(p_m > 0) || !std::isfinite(value)) return;
+    if (!(p_other > 0)) needs_mnee = true;
+    // Made with probability q and counted 1 / q, with the balance weight q p_m / (q p_m + p_o):
+    // value p_m / (q p_m + p_o) when made. Its square's expectation under q is q / q_pilot times
+    // the square observed here (made with probability q_pilot).
+    for (int j = 0; j < kCandidateCount; ++j) {
+        const double q = kConnectCandidates[size_t(j)];
+        if (q > 0 && p_other + q * p_m > 0) m2[size_t(j)] += q / q_pilot * sqr_ratio(value * p_m, q * p_m + p_other);
+    }
+    m2_pilot += sqr_ratio(value * p_m, q_pilot * p_m + p_other);
+}
+
+void PilotSample::add_other(double value, double p_t, double p_m, double p_other, double q_pilot) {
+    if (!(value > 0) || !(p_t > 0) || !std::isfinite(value)) return;
+    // Always sampled; its balance weight p_t / (q p_m + p_o) is all that q changes.
+    for (int j = 0; j < kCandidateCount; ++j)
+        m2[size_t(j)] += sqr_ratio(value * p_t, kConnectCandidates[size_t(j)] * p_m + p_other);
+    m2_pilot += sqr_ratio(value * p_t, q_pilot * p_m + p_other);
+}
+
+ConnectionAllocation::ConnectionAllocation(int width, int height, int crop_x, int crop_y, int block, double q_pilot)
+    : m_width(width),
+      m_height(height),
+      m_crop_x(crop_x),
+      m_crop_y(crop_y),
+      m_block(std::max(1, block)),
+      m_q_pilot(q_pilot),
+      m_pixels(size_t(std::max(0, width)) * size_t(std::max(0, height))) {
+    m_rx0 = floor_div(crop_x, m_block);
+    m_ry0 = floor_div(crop_y, m_block);
+    m_rw = floor_div(crop_x + width - 1, m_block) - m_rx0 + 1;
+    m_rh = floor_div(crop_y + height - 1, m_block) - m_ry0 + 1;
+    m_choice.assign(size_t(std::max(0, m_rw)) * size_t(std::max(0, m_rh)), int8_t(-1));
+}
+
+int ConnectionAllocation::region_of(int x, int y) const {
+    const int rx = floor_div(x, m_block) - m_rx0, ry = floor_div(y, m_block) - m_ry0;
+    if (rx < 0 || ry < 0 || rx >= m_rw || ry >= m_rh) return -1;
+    return ry * m_rw + rx;
+}
+
+int ConnectionAllocation::choice(int x, int y) const {
+    const int r = region_of(x, y);
+    return m_fitted && r >= 0 ? m_choice[size_t(r)] : -1;
+}
+
+double ConnectionAllocation::q(int x, int y) const {
+    const int c = choice(x, y);
+    return c < 0 ? m_q_pilot : kConnectCandidates[size_t(c)];
+}
+
+void ConnectionAllocation::add(int x, int y, const PilotSample& s, double value, double work) {
+    const int lx = x - m_crop_x, ly = y - m_crop_y;
+    if (m_fitted || lx < 0 || ly < 0 || lx >= m_width || ly >= m_height) return;
+    PixelStats& p = m_pixels[size_t(ly) * size_t(m_width) + size_t(lx)];
+    bool finite = std::isfinite(value) && std::isfinite(s.m2_pilot);
+    for (double m : s.m2) finite = finite && std::isfinite(m);
+    if (!finite) return;  // the film drops such a sample too
+    for (int j = 0; j < kCandidateCount; ++j) p.m2[size_t(j)] += s.m2[size_t(j)];
+    p.m2_pilot += s.m2_pilot;
+    p.sum += value;
+    p.sum2 += value * value;
+    p.work += work;
+    p.work_connect += s.work_connect;
+    p.work_density += s.work_density;
+    p.needs_mnee = p.needs_mnee || s.needs_mnee;
+    ++p.n;
+}
+
+void ConnectionAllocation::fit() {
+    if (m_fitted) return;
+    const size_t regions = m_choice.size();
+    std::vector<std::array<double, kCandidateCount>> variance(regions), work(regions);
+    std::vector<bool> needs_mnee(regions, false);
+    for (auto& v : variance) v.fill(0.0);
+    for (auto& w : work) w.fill(0.0);
+    // Raster order: each region sums its own pixels row by row, in a crop as in the full film.
+    for (int ly = 0; ly < m_height; ++ly)
+        for (int lx = 0; lx < m_width; ++lx) {
+            const PixelStats& p = m_pixels[size_t(ly) * size_t(m_width) + size_t(lx)];
+            if (p.n == 0) continue;
+            const size_t r = size_t(region_of(lx + m_crop_x, ly + m_crop_y));
+            const double n = p.n;
+            // Per-sample variance under q: the pilot's second moment with the refracted paths'
+            // share replaced by theirs under q, less the squared mean (unbiased estimate).
+            const double mean2 = p.n > 1 ? (p.sum * p.sum - p.sum2) / (n * (n - 1)) : 0.0;
+            const double rest = (p.sum2 - p.m2_pilot) / n - mean2;
+            const double work_rest = (p.work - p.work_connect - p.work_density) / n;
+            for (int j = 0; j < kCandidateCount; ++j) {
+                const double q = kConnectCandidates[size_t(j)];
+                variance[r][size_t(j)] += rest + p.m2[size_t(j)] / n;
+                work[r][size_t(j)] += work_rest + (q / m_q_pilot * p.work_connect + (q > 0 ? p.work_density : 0.0)) / n;
+            }
+            needs_mnee[r] = needs_mnee[r] || p.needs_mnee;
+        }
+    for (size_t r = 0; r < regions; ++r) {
+        const auto& v = variance[r];
+        const double vmax = *std::max_element(v.begin(), v.end());
+        int best = -1;
+        double best_cost = 0;
+        for (int j = needs_mnee[r] ? 1 : 0; j < kCandidateCount; ++j) {
+            // Variance x work is the inverse efficiency; where the pilot saw no variance at all
+            // (a black region) the work alone decides.
+            const double var = vmax > 0 ? std::max(v[size_t(j)], 1e-9 * vmax) : 1.0;
+            const double cost = var * work[r][size_t(j)];
+            if (best < 0 || cost < best_cost) {
+                best = j;
+                best_cost = cost;
+            }
+        }
+        m_choice[r] = int8_t(best);
+    }
+    m_fitted = true;
+    m_pixels = {};
+}
+
+std::array<uint64_t, kCandidateCount> ConnectionAllocation::histogram() const {
+    std::array<uint64_t, kCandidateCount> h{};
+    for (int8_t c : m_choice)
+        if (c >= 0) ++h[size_t(c)];
+    return h;
+}
+
+}  // namespace snell

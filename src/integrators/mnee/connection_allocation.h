@@ -1,0 +1,94 @@
+#pragma once
+// Where MNEE's walks pay (issue 26): the probability q with which the `mnee` integrator connects
+// a refracting light sample by the manifold technique, chosen per image region from a pilot.
+//
+// A walk costs many rays, and where a focusing interface makes the light look large (a ball on a
+// plane) BSDF sampling finds the same paths at a fraction of the cost; where the light is small
+// behind glass (a pool) only the walks find them. MIS weighs samples, not their cost, so the
+// choice is made here, as efficiency-aware MIS does (Grittmann et al. 2022): the first
+// `pilot_spp` samples of every pixel record, for every candidate q, the second moment that the
+// refracted paths of each sample would have had under q (each technique's samples reweighted
+// by the balance heuristic with n_mnee = q, exactly computable from the densities every sample
+// carries), and the sample's work. Each region then takes the q that minimises its variance
+// times its work. q = 0 leaves a region's refracted light to BSDF sampling alone (`nee`'s
+// estimator there), and is ruled out where the pilot saw light only MNEE produces.
+//
+// Unbiased for any choice: a connection counts 1 / q and MIS weighs MNEE's density as q p_mnee
+// (MneeIntegrator), and the choice depends only on the pilot's samples, which are counted too.
+// Deterministic: each pixel's statistics are summed in sample order by the one thread rendering
+// it, regions sum their pixels in raster order, and work is counted (rays and walk steps, see
+// work_meter.h), not timed, so the image does not depend on threads or machine load.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace snell {
+
+/// The q a region chooses from: 0 (no walks) and powers of two down from 1.
+inline constexpr std::array<double, 8> kConnectCandidates = {0.0,       1.0 / 64, 1.0 / 32, 1.0 / 16,
+                                                             1.0 / 8.0, 1.0 / 4,  1.0 / 2,  1.0};
+inline constexpr int kCandidateCount = int(kConnectCandidates.size());
+
+/// What one pilot camera sample records about its refracted light paths: those MNEE produces
+/// (its connections) and those the other techniques produce that MNEE could too (BSDF
+/// sampling's emitter hits through the interfaces, NEE from a rough last interface vertex).
+struct PilotSample {
+    /// Sum over those paths of their squared contribution under each candidate q (balance
+    /// heuristic, a connection made with probability q and counted 1 / q), in expectation.
+    std::array<double, kCandidateCount> m2{};
+    double m2_pilot = 0;      ///< the same under the pilot's own q
+    double work_connect = 0;  ///< work of the MNEE connections made (at the pilot's q)
+    double work_density = 0;  ///< work of MNEE's densities for the other techniques' MIS weights
+    bool needs_mnee = false;  ///< light that only MNEE produces here: q = 0 would lose it
+
+    /// A connection made with probability q_pilot: `value` its contribution before MIS and 1 / q
+    /// (mean over wavelengths, path throughput included), p_m MNEE's density of the path and
+    /// p_other the sum of the other techniques' densities of it.
+    void add_connection(double value, double p_m, double p_other, double q_pilot);
+    /// A path sampled by another technique with density p_t: `value` its contribution before
+    /// MIS; p_m and p_other as above (p_other includes p_t).
+    void add_other(double value, double p_t, double p_m, double p_other, double q_pilot);
+};
+
+class ConnectionAllocation {
+public:
+    /// The pilot renders at q_pilot. Pixels are the film window's (width x height at offset
+    /// crop_x, crop_y of the full film); regions are `block` x `block` squares of the full film,
+    /// so a crop's regions are the full render's where they lie wholly inside it.
+    ConnectionAllocation(int width, int height, int crop_x, int crop_y, int block, double q_pilot);
+
+    bool learning() const { return !m_fitted; }
+    double q_pilot() const { return m_q_pilot; }
+    /// q for a sample of full-film pixel (x, y): the pilot's while learning, then its region's.
+    double q(int x, int y) const;
+    /// One pilot sample of full-film pixel (x, y): what it recorded, its value (mean over
+    /// wavelengths) and its whole work. Only the thread rendering the pixel may call this.
+    void add(int x, int y, const PilotSample& s, double value, double work);
+    /// Ends the pilot: every region takes the candidate of least variance x work.
+    void fit();
+
+    /// Regions by chosen candidate (kCandidateCount bins), for the statistics.
+    std::array<uint64_t, kCandidateCount> histogram() const;
+    /// The candidate index chosen by the region of full-film pixel (x, y) (-1 while learning).
+    int choice(int x, int y) const;
+
+private:
+    struct PixelStats {
+        std::array<double, kCandidateCount> m2{};
+        double m2_pilot = 0;
+        double sum = 0, sum2 = 0;  ///< the samples' values and squares
+        double work = 0, work_connect = 0, work_density = 0;
+        uint32_t n = 0;
+        bool needs_mnee = false;
+    };
+    int region_of(int x, int y) const;
+
+    int m_width, m_height, m_crop_x, m_crop_y, m_block;
+    int m_rx0, m_ry0, m_rw, m_rh;  ///< the regions that meet the window
+    double m_q_pilot;
+    bool m_fitted = false;
+    std::vector<PixelStats> m_pixels;  ///< freed by fit()
+    std::vector<int8_t> m_choice;      ///< per region
+};
+
+}  // namespace snell

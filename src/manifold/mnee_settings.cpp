@@ -1,0 +1,95 @@
+#include "manifold/mnee_settings.h"
+
+#include <string>
+
+#include "core/props.h"
+
+namespace snell {
+
+MneeSettings MneeSettings::from_props(const Props& p) {
+    MneeSettings s;
+    s.max_vertices = int(p.get_int("max_vertices", s.max_vertices));
+    s.ignore_occluders = p.get_bool("ignore_occluders", s.ignore_occluders);
+    s.cull_margin = p.get_float("cull_margin", s.cull_margin);
+    s.biased = p.get_bool("biased", s.biased);
+    s.spectral_walks = p.get_bool("spectral_walks", s.spectral_walks);
+    s.walk = WalkSettings::from_props(p);
+    s.max_geometry = p.get_float("max_geometry", s.max_geometry);
+    s.seeding = p.get_choice("seeding", s.seeding,
+                             {{"straight", MneeSeeding::Straight},
+                              {"surface", MneeSeeding::Surface},
+                              {"straight+surface", MneeSeeding::StraightAndSurface}});
+    // The default, in the biased mode too, is `unbiased` with both kinds of seeds: the best
+    // measured at equal time (docs/experiments.md, "Caustic gallery"). `solutions=one` is the
+    // paper's, as is `seeding=straight` alone.
+    const MneeSolutions default_solutions =
+        p.has("seeding") && s.seeding != MneeSeeding::StraightAndSurface ? MneeSolutions::One : MneeSolutions::Unbiased;
+    s.solutions = p.get_choice("solutions", default_solutions,
+                               {{"one", MneeSolutions::One},
+                                {"all", MneeSolutions::All},
+                                {"unbiased", MneeSolutions::Unbiased},
+                                {"fallback", MneeSolutions::Fallback}});
+    // The estimators of several solutions walk both kinds of seeds unless told otherwise
+    // (fallback: surface seeds where the straight one is blocked).
+    if (s.solutions != MneeSolutions::One && !p.has("seeding")) s.seeding = MneeSeeding::StraightAndSurface;
+    if (s.solutions == MneeSolutions::Fallback && s.seeding != MneeSeeding::StraightAndSurface)
+        p.raise_param("seeding", "solutions=fallback takes seeding=straight+surface");
+    // trials: surface seeds per caster for `all`; the first round M of `unbiased` (M = 1 is
+    // SMS's 1 / p estimate; docs/mnee.md measures larger rounds).
+    s.trials = int(p.get_int(
+        "trials", s.solutions == MneeSolutions::Unbiased || s.solutions == MneeSolutions::Fallback ? 1 : s.trials));
+    if (s.trials < 1) p.raise_param("trials", "trials must be >= 1");
+    s.max_trials = int(p.get_int("max_trials", s.max_trials));
+    if (s.max_trials < 1) p.raise_param("max_trials", "max_trials must be >= 1");
+    // The paper's estimator counts the straight seed's solution alone; every other pairing
+    // would silently drop the solutions its seeds do not reach.
+    if (s.solutions == MneeSolutions::One && s.seeding != MneeSeeding::Straight)
+        p.raise_param("seeding", "solutions=one takes the straight seed only; use solutions=all with surface seeds");
+    if (s.solutions != MneeSolutions::One && s.seeding == MneeSeeding::Straight)
+        p.raise_param("solutions", "solutions=" + p.get_string("solutions") +
+                                       " needs surface seeds: seeding=surface or straight+surface");
+    s.surface_side =
+        p.get_choice("surface_side", s.surface_side,
+                     {{"receiver", SurfaceSide::Receiver}, {"light", SurfaceSide::Light}, {"both", SurfaceSide::Both}});
+    s.seed_candidates = int(p.get_int("seed_candidates", s.seed_candidates));
+    if (s.seed_candidates < 1 || s.seed_candidates > 1024)
+        p.raise_param("seed_candidates", "seed_candidates must lie in [1, 1024]");
+    s.reflections = p.get_bool("reflections", s.reflections);
+    // `all` counts each solution once (no 1 / p) and keeps surface_weight 1.
+    const bool both_seeds = (s.solutions == MneeSolutions::Unbiased || s.solutions == MneeSolutions::All) &&
+                            s.seeding == MneeSeeding::StraightAndSurface;
+    s.surface_weight = p.get_float("surface_weight",
+                                   both_seeds && s.solutions == MneeSolutions::Unbiased ? kDefaultSurfaceWeight : 1.0);
+    if (!(s.surface_weight > 0 && s.surface_weight <= 1))
+        p.raise_param("surface_weight", "surface_weight must lie in (0, 1]");
+    if (p.has("surface_weight") && !both_seeds)
+        p.raise_param("surface_weight",
+                      "surface_weight weighs the surface seeds' solutions against the straight seed's: it needs "
+                      "solutions=all or unbiased with seeding=straight+surface");
+    if (s.reflections && s.solutions == MneeSolutions::One)
+        p.raise_param("reflections", "reflections need the surface seeds of solutions=all or unbiased");
+    if (s.max_vertices < 1 || s.max_vertices > kMaxChainVertices)
+        p.raise_param("max_vertices", "max_vertices must lie in [1, " + std::to_string(kMaxChainVertices) + "]");
+    if (!(s.cull_margin >= 0)) p.raise_param("cull_margin", "cull_margin must be >= 0");
+    if (!(s.max_geometry >= 0)) p.raise_param("max_geometry", "max_geometry must be >= 0 (0: no clamp)");
+    s.connect_probability = p.get_float("connect_probability", s.connect_probability);
+    if (!(s.connect_probability > 0 && s.connect_probability <= 1))
+        p.raise_param("connect_probability", "connect_probability must lie in (0, 1]");
+    // The allocation is learned unless q is given, or the outlier rule of the biased mode needs
+    // every region's walks (issue 26; docs/experiments.md, "Where the walks pay").
+    // The paper's estimator (solutions=one) walks everywhere unless told to learn.
+    const bool learned_default = !s.biased && !p.has("connect_probability") && s.solutions != MneeSolutions::One;
+    s.learned_allocation = p.get_choice("allocation", learned_default, {{"learned", true}, {"fixed", false}});
+    if (s.learned_allocation && s.biased)
+        p.raise_param("allocation",
+                      "allocation=learned may leave a region without walks, and the biased mode's outlier rule then "
+                      "drops its refracted light: use allocation=fixed");
+    s.pilot_spp = int(p.get_int("pilot_spp", s.pilot_spp));
+    if (s.pilot_spp < 1 || s.pilot_spp > 4096) p.raise_param("pilot_spp", "pilot_spp must lie in [1, 4096]");
+    s.allocation_block = int(p.get_int("allocation_block", s.allocation_block));
+    if (s.allocation_block < 1 || s.allocation_block > 4096)
+        p.raise_param("allocation_block", "allocation_block must lie in [1, 4096]");
+    return s;
+}
+
+}  // namespace snell

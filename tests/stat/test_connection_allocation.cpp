@@ -1,0 +1,249 @@
+// MNEE's learned connect probability (integrators/mnee/connection_allocation.h, issue 26): the
+// pilot's second moments are those of the estimator at every candidate q, each region takes the
+// q of least variance x work, the choice is a crop's as the full film's, and `mnee` with the
+// learned allocation stays unbiased (agreement with nee and bdpt per pixel block, with the power
+// to see a 3 % error in the light).
+#include <cmath>
+#include <iostream>
+#include <random>
+#include <string>
+
+#include "integrators/mnee/connection_allocation.h"
+#include "manifold/walk_counters.h"
+#include "stat/render_stats.h"
+
+using namespace snell;
+using namespace snell::test;
+
+namespace {
+
+// A one-dimensional path space [0, 1] with f(x) = x^2 + 0.05 and two techniques: "MNEE" with
+// density 2x, made with probability q, and "BSDF" with density 1. Under the balance heuristic
+// with n_mnee = q the estimator's second moment is int f^2 / (q p_m + p_b) (Veach's result for
+// the balance heuristic: each technique's share q p_m f^2 / (q p_m + p_b)^2 and p_b f^2 / (...)^2).
+double f_toy(double x) { return x * x + 0.05; }
+double second_moment(double q) {
+    const int n = 200000;
+    double s = 0;
+    for (int i = 0; i < n; ++i) {
+        const double x = (i + 0.5) / n;
+        s += sqr(f_toy(x)) / (q * 2 * x + 1);
+    }
+    return s / n;
+}
+
+}  // namespace
+
+// The pilot at q = 1/2 records, from its own samples, the second moment the estimator has at
+// every other q: the mean of what PilotSample adds agrees with the integral within its error.
+TEST(ConnectionAllocation, PilotSecondMomentsMatchTheirIntegrals) {
+    const double q_pilot = 0.5;
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(0, 1);
+    const int n = 400000;
+    std::array<double, kCandidateCount> sum{}, sum2{};
+    for (int i = 0; i < n; ++i) {
+        PilotSample s;
+        if (u(rng) < q_pilot) {  // the connection is made
+            const double x = std::sqrt(u(rng));
+            s.add_connection(f_toy(x) / (2 * x), 2 * x, 1.0, q_pilot);
+        }
+        const double y = u(rng);
+        s.add_other(f_toy(y), 1.0, 2 * y, 1.0, q_pilot);
+        for (int j = 0; j < kCandidateCount; ++j) {
+            sum[size_t(j)] += s.m2[size_t(j)];
+            sum2[size_t(j)] += sqr(s.m2[size_t(j)]);
+        }
+    }
+    // q = 0 included: BSDF sampling alone, int f^2 / p_b.
+    for (int j = 0; j < kCandidateCount; ++j) {
+        const double q = kConnectCandidates[size_t(j)];
+        const double mean = sum[size_t(j)] / n;
+        const double se = std::sqrt((sum2[size_t(j)] / n - mean * mean) / n);
+        EXPECT_NEAR(mean, second_moment(q), 4 * se + 1e-9) << "q = " << q;
+    }
+}
+
+namespace {
+
+// n pilot samples (q_pilot = 1) of pixel (x, y) on a path space with f = 1: each makes one MNEE
+// connection (p_m = 1, value 1) and BSDF sampling finds the path with density p_other, in
+// expectation: every 1 / p_other-th sample (counted by `clock`) with value 1 / p_other. The
+// samples' values alternate 0 and 2 (variance from elsewhere in the pixel).
+void feed(ConnectionAllocation& a, int x, int y, int n, double p_other, bool only_mnee, double work_connect,
+          int& clock) {
+    const int every = std::max(1, int(std::lround(1 / p_other)));
+    for (int i = 0; i < n; ++i) {
+        PilotSample s;
+        s.add_connection(1.0, 1.0, only_mnee ? 0.0 : p_other, 1.0);
+        if (!only_mnee && clock++ % every == 0) s.add_other(1.0 / p_other, p_other, 1.0, p_other, 1.0);
+        s.work_connect = work_connect;
+        a.add(x, y, s, 2.0 * (i % 2), work_connect + 2.0);
+    }
+}
+
+}  // namespace
+
+// Where BSDF sampling hardly finds the paths (p_other << p_m) the walks pay whatever they cost;
+// where it finds them as often as MNEE, expensive walks do not, and the region takes q = 0,
+// unless the pilot saw light that only MNEE produces.
+TEST(ConnectionAllocation, RegionsChooseTheLeastVarianceTimesWork) {
+    ConnectionAllocation a(48, 16, 0, 0, 16, 1.0);
+    int clock = 0;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) {
+            feed(a, x, y, 4, 1e-3, false, 20, clock);                 // a small light behind glass
+            feed(a, x + 16, y, 4, 1.0, false, 20, clock);             // a magnified light
+            feed(a, x + 32, y, 4, 1.0, x == 3 && y == 5, 20, clock);  // ... one path only MNEE's
+        }
+    EXPECT_TRUE(a.learning());
+    a.fit();
+    EXPECT_FALSE(a.learning());
+    // Variance 1 / (q + 10^-3) plus 0.83 from elsewhere, work 2 + 20 q: the optimum is q = 1/2.
+    EXPECT_EQ(a.q(5, 5), 0.5);
+    EXPECT_EQ(a.q(20, 5), 0.0);
+    EXPECT_GT(a.q(40, 5), 0.0);
+    const auto h = a.histogram();
+    EXPECT_EQ(h[0], 1u);
+}
+
+// Regions are squares of the full film: a crop chooses as the full film does in every region
+// it holds whole, from the same samples.
+TEST(ConnectionAllocation, ACropChoosesAsTheFullFilm) {
+    ConnectionAllocation full(64, 64, 0, 0, 16, 1.0), crop(40, 40, 8, 8, 16, 1.0);
+    int clock_full = 0, clock_crop = 0;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            // The walks' work varies over the film, so the regions choose differently.
+            const double work = std::pow(10.0, -2.0 + 3.0 * (x + 2 * y) / 192.0);
+            feed(full, x, y, 4, 1.0, false, work, clock_full);
+            feed(crop, x, y, 4, 1.0, false, work, clock_crop);  // outside the window: ignored
+        }
+    full.fit();
+    crop.fit();
+    int distinct = 0;
+    for (int ry = 1; ry < 3; ++ry)
+        for (int rx = 1; rx < 3; ++rx) {
+            EXPECT_EQ(crop.choice(16 * rx, 16 * ry), full.choice(16 * rx, 16 * ry)) << rx << "," << ry;
+            distinct += full.choice(16 * rx, 16 * ry) != full.choice(16, 16);
+        }
+    EXPECT_GT(distinct, 0) << "the regions should not all choose alike";
+}
+
+namespace {
+
+// The droplet of test_mnee_agreement under a large light, with regions of 8 pixels so that its
+// 24 x 18 film holds several, one pilot sample per pixel.
+const char* kDroplet = R"(<scene version="3.0.0">
+  <default name="integrator" value="nee"/>
+  <default name="radiance" value="3"/>
+  <integrator type="$integrator"><integer name="max_depth" value="8"/>$extra</integrator>
+  <sensor type="perspective">
+    <float name="fov" value="30"/>
+    <transform name="to_world"><lookat origin="0, 3.2, 3.2" target="0, 0.2, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="24"/><integer name="height" value="18"/></film>
+  </sensor>
+  <shape type="rectangle">
+    <transform name="to_world"><rotate x="1" angle="-90"/><scale value="4"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.7, 0.7"/></bsdf>
+  </shape>
+  <shape type="sphere">
+    <point name="center" x="0" y="0.35" z="0"/><float name="radius" value="0.8"/>
+    <bsdf type="dielectric"><float name="int_ior" value="1.33"/><float name="ext_ior" value="1"/></bsdf>
+  </shape>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="$light_size"/><rotate x="1" angle="90"/><translate x="-0.8" y="3" z="-0.5"/></transform>
+    <emitter type="area"><rgb name="radiance" value="$radiance"/></emitter>
+  </shape>
+</scene>)";
+
+std::string droplet(const std::string& extra, double light_size) {
+    std::string s = kDroplet;
+    s.replace(s.find("$extra"), 6, extra);
+    s.replace(s.find("$light_size"), 11, std::to_string(light_size));
+    return s;
+}
+
+const char* kLearned = R"(<integer name="allocation_block" value="8"/><integer name="pilot_spp" value="2"/>)";
+
+}  // namespace
+
+// A pilot at q = 1/4 (connect_probability with the learned allocation) over a quarter of the
+// samples: its connections count 4 times and weigh a quarter in MIS, then the regions' q take
+// over; the image still agrees with nee.
+TEST(ConnectionAllocation, PilotAtItsOwnProbabilityMatchesNee) {
+    const std::string pilot =
+        std::string(kLearned) +
+        R"(<float name="connect_probability" value="0.25"/><string name="allocation" value="learned"/>)";
+    std::string xml = droplet(pilot, 0.6);
+    xml.replace(xml.find(R"(<integer name="pilot_spp" value="2"/>)"), 37, R"(<integer name="pilot_spp" value="16"/>)");
+    LoadedScene nee = load_xml(droplet("", 0.6), {{"integrator", "nee"}});
+    LoadedScene mnee = load_xml(xml, {{"integrator", "mnee"}});
+    expect_agreement(block_estimates(nee, *nee.integrator, 512, 8, 6, 100),
+                     block_estimates(mnee, *mnee.integrator, 64, 8, 6, 200), 0.01, "pilot at q = 1/4");
+}
+
+// The learned allocation agrees with nee per pixel block, under a large light (the regions
+// choose differently, some without walks) and a smaller one, and the same blocks see a light
+// 3 % brighter in one of the two renders.
+TEST(ConnectionAllocation, LearnedAllocationMatchesNee) {
+    for (double size : {1.5, 0.6}) {
+        LoadedScene nee = load_xml(droplet("", size), {{"integrator", "nee"}});
+        LoadedScene mnee = load_xml(droplet(kLearned, size), {{"integrator", "mnee"}});
+        LoadedScene brighter = load_xml(droplet(kLearned, size), {{"integrator", "mnee"}, {"radiance", "3.09"}});
+        const std::string what = "learned allocation, light " + std::to_string(size);
+        // The regions' choices: not all alike, so regions with and without walks are tested.
+        RenderOptions opt;
+        opt.spp = 4;
+        opt.progress = false;
+        const std::vector<uint64_t> regions =
+            render(*mnee.scene, *mnee.integrator, mnee.film, opt).counters.bins(walk_counters::allocation_regions);
+        int kinds = 0;
+        std::string chosen;
+        for (uint64_t n : regions) {
+            kinds += n > 0;
+            chosen += " " + std::to_string(n);
+        }
+        std::cout << "[" << what << "] regions by q (0, 1/64 .. 1):" << chosen << "\n";
+        EXPECT_GE(kinds, 2) << what << ": every region chose alike";
+
+        const auto a = block_estimates(nee, *nee.integrator, 512, 8, 6, 100);
+        const auto b = block_estimates(mnee, *mnee.integrator, 64, 8, 6, 200);
+        expect_agreement(a, b, 0.01, what.c_str());
+        const auto c = block_estimates(brighter, *brighter.integrator, 64, 8, 6, 200);
+        EXPECT_GE(count_disagreements(a, c, 0.01), 1) << what << ": a 3 % brighter light passes";
+    }
+}
+
+// The image stays a pure function of the seed: one thread with 16-pixel tiles and two threads
+// with 7-pixel tiles give the same bits, and a crop whose edges lie on the regions' grid gives
+// the full render's pixels (its regions learn from the same pilot samples).
+TEST(ConnectionAllocation, ImageIsIndependentOfThreadsTilesAndCrops) {
+    const std::string xml = droplet(kLearned, 1.5);
+    LoadedScene ls = load_xml(xml, {{"integrator", "mnee"}});
+    RenderOptions opt;
+    opt.spp = 6;
+    opt.progress = false;
+    opt.threads = 1;
+    const auto a = render(*ls.scene, *ls.integrator, ls.film, opt).film.to_linear_srgb();
+    opt.threads = 2;
+    opt.tile_size = 7;
+    const auto b = render(*ls.scene, *ls.integrator, ls.film, opt).film.to_linear_srgb();
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << "pixel component " << i;
+
+    std::string cropped = xml;
+    const std::string at = R"(<integer name="height" value="18"/>)";
+    cropped.insert(cropped.find(at) + at.size(),
+                   R"(<integer name="crop_offset_x" value="8"/><integer name="crop_offset_y" value="0"/>
+                      <integer name="crop_width" value="16"/><integer name="crop_height" value="16"/>)");
+    LoadedScene lc = load_xml(cropped, {{"integrator", "mnee"}});
+    const auto c = render(*lc.scene, *lc.integrator, lc.film, opt).film.to_linear_srgb();
+    ASSERT_EQ(c.size(), size_t(16 * 16 * 3));
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x)
+            for (int k = 0; k < 3; ++k)
+                ASSERT_EQ(c[(size_t(y) * 16 + size_t(x)) * 3 + size_t(k)],
+                          a[(size_t(y) * 24 + size_t(x + 8)) * 3 + size_t(k)])
+                    << "crop pixel " << x << "," << y;
+}
