@@ -15,6 +15,10 @@ snell_library(snell_manifold
   src/manifold/solution_set.cpp
   src/manifold/half_vectors.cpp
   src/manifold/manifold_technique.cpp
+  src/manifold/estimator_base.cpp
+  src/manifold/straight_seed_estimator.cpp
+  src/manifold/multi_solution_estimator.cpp
+  src/manifold/fallback_estimator.cpp
   src/manifold/surface_seed.cpp
 )
 target_link_libraries(snell_manifold PUBLIC snell_scene snell_geometry snell_bsdf snell_light snell_core

@@ -2,22 +2,30 @@
 
 #include <algorithm>
 
-#include "core/rng.h"
-#include "geometry/shape.h"
-#include "manifold/seed_path.h"
-#include "manifold/surface_seed.h"
-#include "manifold/walk_counters.h"
+#include "manifold/all_solutions_estimator.h"
+#include "manifold/fallback_estimator.h"
+#include "manifold/straight_seed_estimator.h"
+#include "manifold/unbiased_estimator.h"
 
 namespace snell {
 
 namespace {
 
-// Whether `set` holds, from index `from` on and for wavelength slot `slot`, the solution `chain`.
-bool holds_solution(const SolutionSet& set, size_t from, int slot, const Vec3& xb,
-                    const std::vector<ManifoldVertex>& chain, const Vec3& xc) {
-    for (size_t i = from; i < set.solutions.size(); ++i)
-        if (set.solutions[i].slot == slot && same_solution(xb, chain, set.solutions[i].chain, xc)) return true;
-    return false;
+// Runs `f` with the estimator the settings name (one class per estimator; each is a pair of
+// pointers, built on the stack per call).
+template <typename F>
+auto with_estimator(const Scene& scene, const MneeSettings& st, F&& f) {
+    switch (st.solutions) {
+        case MneeSolutions::One:
+            return f(StraightSeedEstimator(scene, st));
+        case MneeSolutions::All:
+            return f(AllSolutionsEstimator(scene, st));
+        case MneeSolutions::Unbiased:
+            return f(UnbiasedEstimator(scene, st));
+        case MneeSolutions::Fallback:
+            return f(FallbackEstimator(scene, st));
+    }
+    return f(StraightSeedEstimator(scene, st));
 }
 
 }  // namespace
@@ -25,236 +33,30 @@ bool holds_solution(const SolutionSet& set, size_t from, int slot, const Vec3& x
 SolutionSet ManifoldTechnique::solve(const ManifoldQuery& q, const Light& light, double pmf, const LightPoint& lp,
                                      const std::vector<ManifoldVertex>& seed, Sampler& sampler, int max_k) const {
     SolutionSet out;
-    const bool dispersive =
-        std::any_of(seed.begin(), seed.end(), [](const ManifoldVertex& v) { return v.bsdf->dispersive(); });
-    if (dispersive && m_settings->spectral_walks && q.ctx.wl.count() > 1 && !q.hero_only) {
-        for (int i = 0; i < q.ctx.wl.count(); ++i) {
-            std::vector<ManifoldVertex> chain = seed;
-            for (ManifoldVertex& v : chain) v.eta = v.bsdf->eta(q.ctx.wl[i]);
-            const BSDFContext ctx_i{SampledWavelengths::single(q.ctx.wl[i], q.ctx.wl.pdf(i)), q.ctx.mode};
-            solve_once(q, ctx_i, i, light, pmf, lp, chain, sampler, max_k, out);
+    with_estimator(*m_scene, *m_settings, [&](const auto& estimator) {
+        const bool dispersive =
+            std::any_of(seed.begin(), seed.end(), [](const ManifoldVertex& v) { return v.bsdf->dispersive(); });
+        if (dispersive && m_settings->spectral_walks && q.ctx.wl.count() > 1 && !q.hero_only) {
+            for (int i = 0; i < q.ctx.wl.count(); ++i) {
+                std::vector<ManifoldVertex> chain = seed;
+                for (ManifoldVertex& v : chain) v.eta = v.bsdf->eta(q.ctx.wl[i]);
+                const BSDFContext ctx_i{SampledWavelengths::single(q.ctx.wl[i], q.ctx.wl.pdf(i)), q.ctx.mode};
+                estimator.solve(q, ctx_i, i, light, pmf, lp, chain, sampler, max_k, out);
+            }
+            return 0;
         }
-        return out;
-    }
-    solve_once(q, q.ctx, -1, light, pmf, lp, seed, sampler, max_k, out);
+        estimator.solve(q, q.ctx, -1, light, pmf, lp, seed, sampler, max_k, out);
+        return 0;
+    });
     return out;
-}
-
-void ManifoldTechnique::solve_once(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light,
-                                   double pmf, const LightPoint& lp, const std::vector<ManifoldVertex>& seed,
-                                   Sampler& sampler, int max_k, SolutionSet& out) const {
-    const MneeSettings& st = *m_settings;
-    const size_t before = out.solutions.size();
-    HalfVectorDraws draws(sampler);
-    bool straight_converged = false;
-    if (q.straight_seed && walks_straight_seed())
-        add_solution(q, ctx, slot, light, pmf, lp, seed, draws, max_k, false, out, &straight_converged);
-    if (st.solutions == MneeSolutions::One || st.seeding == MneeSeeding::Straight) return;
-    // fallback: the surface seeds run only where an opaque surface blocks the straight seed.
-    if (st.solutions == MneeSolutions::Fallback && q.straight_seed) return;
-    // surface_weight: beside a clear straight seed, surface solutions count only where the
-    // straight walk converged (to another one, or its own): a function of x_b and the light
-    // point that density() repeats with Alg. 2's walk. Where it fails (mostly receivers with no
-    // solution at all: a shadow), the trials would only fail too, at the cost of full walks.
-    const bool weighted = q.straight_seed && weighs_surface_solutions();
-    if (weighted && !straight_converged) return;
-    // There, too, only the paths Alg. 2 can tell apart are the technique's: those crossing the
-    // straight seed's shapes in its order, refracting at each (density() gives the others 0,
-    // BSDF sampling's). A trial that finds another one has failed.
-    const auto foreign = [&](const std::vector<ManifoldVertex>& chain) {
-        if (!weighted) return false;
-        if (chain.size() != seed.size()) return true;
-        for (size_t i = 0; i < seed.size(); ++i)
-            if (chain[i].shape != seed[i].shape || chain[i].reflect) return true;
-        return false;
-    };
-    // Surface seeds on every caster, from their own stream (one sampler dimension in all).
-    PCG32 rng(uint64_t(sampler.next_1d() * 0x1p53), 0x5eed);
-    const double lambda = ctx.hero();
-    for (const Shape* caster : manifold_casters(*m_scene, lambda)) {
-        if (st.solutions == MneeSolutions::All) {
-            // Walk each seed to its solution first (no visibility, no measurement) and evaluate
-            // only the new ones.
-            for (int j = 0; j < st.trials; ++j) {
-                std::vector<ManifoldVertex> chain;
-                if (surface_trial(q, ctx, *caster, rng, lp, draws, max_k, &chain) && !foreign(chain) &&
-                    !holds_solution(out, before, slot, q.xb->p, chain, lp.p))
-                    add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, true, out);
-            }
-            continue;
-        }
-        // solutions=unbiased: SMS's estimator with M = `trials` first trials. Every distinct
-        // solution Y the M trials find (other than the straight seed's, counted as such) is
-        // weighted by R = ceil(N / M), N the number of further independent trials up to and
-        // including the first that finds Y again. A round of M trials finds Y with probability
-        // q = 1 - (1 - p(Y))^M, and R counts rounds up to the first that finds Y, so R is
-        // geometric with E[R] = 1 / q: every reachable solution counts once in expectation.
-        // M = 1 is SMS's 1 / p estimate; a larger M finds solutions with small p(Y) in the first
-        // round more often, and once M p(Y) >> 1, R = 1 almost surely (the `all` estimator,
-        // without its bias).
-        std::vector<int> found;
-        for (int j = 0; j < st.trials; ++j) {
-            std::vector<ManifoldVertex> chain;
-            if (!surface_trial(q, ctx, *caster, rng, lp, draws, max_k, &chain) || foreign(chain)) continue;
-            if (holds_solution(out, before, slot, q.xb->p, chain, lp.p)) continue;
-            const int index = add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, true, out);
-            if (index >= 0) found.push_back(index);
-        }
-        for (const int index : found) {
-            int n = 1;
-            for (; n <= st.max_trials; ++n) {
-                std::vector<ManifoldVertex> again;
-                if (surface_trial(q, ctx, *caster, rng, lp, draws, max_k, &again) &&
-                    same_solution(q.xb->p, again, out.solutions[size_t(index)].chain, lp.p))
-                    break;
-            }
-            ++walk_counters::bernoulli_loops;
-            walk_counters::bernoulli_trials += uint64_t(std::min(n, st.max_trials));
-            if (n > st.max_trials) ++walk_counters::bernoulli_capped;
-            const int trials = std::min(n, st.max_trials);
-            out.solutions[size_t(index)].count = double((trials + st.trials - 1) / st.trials);
-        }
-    }
-    // surface_weight: the solutions the straight seed does not walk to (all found by surface
-    // seeds; the straight seed's own is never added twice) weigh c times their density in MIS,
-    // as density() answers for their BSDF-sampled copies.
-    if (weighted)
-        for (size_t i = before; i < out.solutions.size(); ++i)
-            if (out.solutions[i].from_surface) out.solutions[i].density *= st.surface_weight;
-    walk_counters::solutions_per_connection.add(uint32_t(out.solutions.size() - size_t(before)));
-}
-
-bool ManifoldTechnique::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster, PCG32& rng,
-                                      const LightPoint& lp, HalfVectorDraws& draws, int max_k,
-                                      std::vector<ManifoldVertex>* chain) const {
-    const MneeSettings& st = *m_settings;
-    // Seeds from x_b: the best of `seed_candidates` traced seeds, the one whose last ray passes
-    // closest to the light point (tracing is cheap, walks are not). Any fixed procedure is a
-    // valid trial: the 1 / p estimate repeats the same one, and every solution keeps p > 0 (its
-    // neighbourhood passes closest with positive probability).
-    if (st.surface_side == SurfaceSide::Receiver) {
-        double best = kInfinity;
-        std::vector<ManifoldVertex> candidate;
-        for (int c = 0; c < st.seed_candidates; ++c) {
-            const Vec2 u(rng.next_double(), rng.next_double());
-            Vec3 exit_dir;
-            if (trace_surface_seed(*m_scene, *q.xb, caster, u, ctx.hero(), st, draws, &candidate, &rng, &exit_dir) !=
-                SurfaceSeedEnd::Ok)
-                continue;
-            if (max_k >= 0 && int(candidate.size()) > max_k) continue;
-            const double miss = st.seed_candidates > 1 ? seed_miss(candidate, exit_dir, lp.p) : 0.0;
-            if (miss < best) {
-                best = miss;
-                std::swap(*chain, candidate);
-            }
-        }
-        if (best == kInfinity) return false;
-    } else {
-        const Vec2 u(rng.next_double(), rng.next_double());
-        // With both, u.x picks the side and is stretched back to [0, 1).
-        SurfaceSide side = st.surface_side;
-        Vec2 v = u;
-        if (side == SurfaceSide::Both) {
-            side = u.x < 0.5 ? SurfaceSide::Receiver : SurfaceSide::Light;
-            v.x = u.x < 0.5 ? 2 * u.x : 2 * u.x - 1;
-        }
-        const SurfaceSeedEnd end =
-            side == SurfaceSide::Receiver
-                ? trace_surface_seed(*m_scene, *q.xb, caster, v, ctx.hero(), st, draws, chain, &rng)
-                : trace_light_seed(*m_scene, lp.p, caster, v, ctx.hero(), st, draws, chain, &rng);
-        if (end != SurfaceSeedEnd::Ok) return false;
-        if (max_k >= 0 && int(chain->size()) > max_k) return false;
-    }
-    // Which solution the seed walks to is all a trial asks: no visibility rays, no measurement.
-    if (mnee_walk(*m_scene, *m_settings, *q.xb, *q.bsdf_b, lp, *chain, draws, /*trial_only=*/true) !=
-        MneeOutcome::Success)
-        return false;
-    polish_solution(m_scene, q.xb->p, *chain, light_point_basis(lp.p, lp.n, normalize(lp.p - q.xb->p)),
-                    m_settings->walk);
-    return true;
-}
-
-int ManifoldTechnique::add_solution(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light,
-                                    double pmf, const LightPoint& lp, std::vector<ManifoldVertex> chain,
-                                    HalfVectorDraws& draws, int max_k, bool from_surface, SolutionSet& out,
-                                    bool* walk_converged) const {
-    if (max_k >= 0 && int(chain.size()) > max_k) return -1;
-    const MneeConnection c =
-        mnee_connect(*m_scene, *m_settings, *q.xb, *q.bsdf_b, ctx, q.media, light, pmf, lp, chain, draws);
-    if (walk_converged) *walk_converged = c.walk_converged;
-    if (c.outcome != MneeOutcome::Success) return -1;
-    if (from_surface || m_settings->solutions == MneeSolutions::All ||
-        m_settings->solutions == MneeSolutions::Unbiased) {
-        // Distinct paths only: compare polished chains (solution_set.h).
-        std::vector<ManifoldVertex> polished = chain;
-        polish_solution(m_scene, q.xb->p, polished, light_point_basis(lp.p, lp.n, normalize(lp.p - q.xb->p)),
-                        m_settings->walk);
-        for (const ManifoldSolution& other : out.solutions)
-            if (other.slot == slot && same_solution(q.xb->p, polished, other.chain, lp.p)) return -1;
-        chain = std::move(polished);
-    }
-    ManifoldSolution s;
-    s.chain = std::move(chain);
-    s.slot = slot;
-    if (slot >= 0) {
-        s.value[slot] = c.value[0];
-    } else {
-        // A dispersive chain solved for the hero alone (no per-wavelength walks): scale the hero
-        // once, unless the path's throughput already did.
-        s.value = c.hero_only && !q.hero_only ? q.ctx.wl.hero_only(c.value) : c.value;
-    }
-    s.density = c.pdf_mnee;
-    s.pdf_bsdf = c.pdf_bsdf;
-    s.pdf_nee_last = c.pdf_nee_last;
-    s.from_surface = from_surface;
-    out.solutions.push_back(std::move(s));
-    return int(out.solutions.size()) - 1;
-}
-
-bool ManifoldTechnique::walks_straight_seed() const {
-    return m_settings->solutions == MneeSolutions::One || m_settings->seeding != MneeSeeding::Surface;
-}
-
-bool ManifoldTechnique::weighs_surface_solutions() const {
-    const MneeSettings& st = *m_settings;
-    return st.seeding == MneeSeeding::StraightAndSurface && st.surface_weight < 1 &&
-           (st.solutions == MneeSolutions::All || st.solutions == MneeSolutions::Unbiased);
 }
 
 double ManifoldTechnique::density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain,
                                   int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
                                   double lambda) const {
-    // A path through an emissive interface is the straight seed's alone (surface seeds neither
-    // start on nor pass such a shape, surface_seed.cpp), for every estimator that walks the
-    // straight seed: Alg. 2 (with surface seeds alone, no one's: solution_density gives 0).
-    if (m_settings->solutions == MneeSolutions::One ||
-        (walks_straight_seed() && std::any_of(chain, chain + std::max(k, 0),
-                                              [](const SurfaceInteraction& v) { return v.emitter() != nullptr; })))
-        return mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
-    if (m_settings->solutions == MneeSolutions::Fallback) {
-        // The straight seed's technique where the seed is clear of opaque surfaces (Alg. 2), the
-        // surface seeds' where one blocks it; the seed is traced once for either.
-        const StraightSeed seed = trace_straight_seed(*m_scene, xb, xc, lambda, *m_settings);
-        if (seed.status == SeedStatus::BlockedRefractive)
-            return solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
-        return mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
-    }
-    if (weighs_surface_solutions()) {
-        // Behind a blocker the full solution density; beside a clear straight seed Alg. 2 for
-        // the path its walk reaches (the same value), c times the solution density for another
-        // where that walk converges (to the other one), 0 where it does not. solve() counts the
-        // same paths with the same weights.
-        const StraightSeed seed = trace_straight_seed(*m_scene, xb, xc, lambda, *m_settings);
-        if (seed.status != SeedStatus::Refractive)
-            return solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
-        bool converged = false;
-        const double reached =
-            mnee_pdf(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed, &converged);
-        if (reached > 0 || !converged) return reached;
-        return m_settings->surface_weight *
-               solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
-    }
-    return solution_density(*m_scene, *m_settings, xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
+    return with_estimator(*m_scene, *m_settings, [&](const auto& estimator) {
+        return estimator.density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
+    });
 }
 
 }  // namespace snell

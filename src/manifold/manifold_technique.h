@@ -2,7 +2,10 @@
 // The manifold light-connection technique (paper Alg. 1 and Alg. 2) behind one interface: from
 // a light sample at x_b and its seed path, the admissible paths found (a SolutionSet, each with
 // its value and the densities MIS needs), and the density with which the technique produces a
-// given path. The `mnee` integrator composes with it; it knows nothing of integrators.
+// given path. It runs the estimator the settings name (straight_seed_estimator.h: the paper's;
+// all_solutions_estimator.h, unbiased_estimator.h, fallback_estimator.h), once per wavelength
+// through dispersive chains. The `mnee` integrator composes with it; it knows nothing of
+// integrators.
 #include <vector>
 
 #include "core/medium_stack.h"
@@ -62,28 +65,6 @@ public:
                    const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda) const;
 
 private:
-    /// One solve of Alg. 1 at the wavelengths of `ctx`; appends the solution if one was found.
-    void solve_once(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light, double pmf,
-                    const LightPoint& lp, const std::vector<ManifoldVertex>& seed, Sampler& sampler, int max_k,
-                    SolutionSet& out) const;
-    /// Walks `chain` (its seed) and adds the admissible, visible path unless `out` holds it;
-    /// returns the index of the added solution, or -1. `walk_converged`: whether the walk
-    /// converged, whatever became of the path.
-    int add_solution(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light, double pmf,
-                     const LightPoint& lp, std::vector<ManifoldVertex> chain, HalfVectorDraws& draws, int max_k,
-                     bool from_surface, SolutionSet& out, bool* walk_converged = nullptr) const;
-    /// surface_weight < 1 with both kinds of seeds (all or unbiased): beside a clear straight seed
-    /// the surface solutions weigh c times their density, and count only where the straight walk
-    /// converged. solve() and density() both ask this.
-    bool weighs_surface_solutions() const;
-    /// Whether the straight seed is walked at all (every setting but surface seeds alone with a
-    /// multi-solution estimator). solve() and density() both ask this.
-    bool walks_straight_seed() const;
-    /// One surface seed on `caster` walked to a polished admissible path; false if it fails.
-    bool surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster, PCG32& rng,
-                       const LightPoint& lp, HalfVectorDraws& draws, int max_k,
-                       std::vector<ManifoldVertex>* chain) const;
-
     const Scene* m_scene;
     const MneeSettings* m_settings;
 };

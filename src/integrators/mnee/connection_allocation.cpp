@@ -9,33 +9,32 @@ namespace {
 
 int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
-/// (a / b)^2, 0 where it is not finite (a path no technique at that q produces).
-double sqr_ratio(double a, double b) {
-    const double r = a / b;
-    return std::isfinite(r) ? r * r : 0.0;
-}
+double finite_or_zero(double v) { return std::isfinite(v) ? v : 0.0; }
 
 }  // namespace
 
-void PilotSample::add_connection(double value, double p_m, double p_other, double q_pilot) {
-    if (!(value > 0) || !(p_m > 0) || !std::isfinite(value)) return;
+void PilotSample::add_path(double f, double p_m, double p_other, double q_pilot) {
+    if (!(f > 0) || !std::isfinite(f) || !(p_m > 0)) return;
     if (!(p_other > 0)) needs_mnee = true;
-    // Made with probability q and counted 1 / q, with the balance weight q p_m / (q p_m + p_o):
-    // value p_m / (q p_m + p_o) when made. Its square's expectation under q is q / q_pilot times
-    // the square observed here (made with probability q_pilot).
+    // Every pilot sample of every technique estimates the integral of g over the refracted
+    // paths as g / (q_pilot p_m + p_other) (the balance heuristic's combination of the pilot's
+    // own techniques), so the techniques that find a path rarely are judged by the samples of
+    // those that find it often: with g = f^2 / (q p_m + p_other), the balance heuristic's
+    // second moment at q.
+    const double pilot = q_pilot * p_m + p_other;
     for (int j = 0; j < kCandidateCount; ++j) {
-        const double q = kConnectCandidates[size_t(j)];
-        if (q > 0 && p_other + q * p_m > 0) m2[size_t(j)] += q / q_pilot * sqr_ratio(value * p_m, q * p_m + p_other);
+        const double mix = kConnectCandidates[size_t(j)] * p_m + p_other;
+        if (mix > 0) m2[size_t(j)] += finite_or_zero(f * f / (mix * pilot));
     }
-    m2_pilot += sqr_ratio(value * p_m, q_pilot * p_m + p_other);
+    m2_pilot += finite_or_zero(f * f / (pilot * pilot));
+}
+
+void PilotSample::add_connection(double value, double p_m, double p_other, double q_pilot) {
+    add_path(value * p_m, p_m, p_other, q_pilot);
 }
 
 void PilotSample::add_other(double value, double p_t, double p_m, double p_other, double q_pilot) {
-    if (!(value > 0) || !(p_t > 0) || !std::isfinite(value)) return;
-    // Always sampled; its balance weight p_t / (q p_m + p_o) is all that q changes.
-    for (int j = 0; j < kCandidateCount; ++j)
-        m2[size_t(j)] += sqr_ratio(value * p_t, kConnectCandidates[size_t(j)] * p_m + p_other);
-    m2_pilot += sqr_ratio(value * p_t, q_pilot * p_m + p_other);
+    add_path(value * p_t, p_m, p_other, q_pilot);
 }
 
 ConnectionAllocation::ConnectionAllocation(int width, int height, int crop_x, int crop_y, int block, double q_pilot)

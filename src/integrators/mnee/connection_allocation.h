@@ -6,10 +6,10 @@
 // plane) BSDF sampling finds the same paths at a fraction of the cost; where the light is small
 // behind glass (a pool) only the walks find them. MIS weighs samples, not their cost, so the
 // choice is made here, as efficiency-aware MIS does (Grittmann et al. 2022): the first
-// `pilot_spp` samples of every pixel record, for every candidate q, the second moment that the
-// refracted paths of each sample would have had under q (each technique's samples reweighted
-// by the balance heuristic with n_mnee = q, exactly computable from the densities every sample
-// carries), and the sample's work. Each region then takes the q that minimises its variance
+// `pilot_spp` samples of every pixel record, for every candidate q, an estimate of the second
+// moment the refracted light would have under q (the balance heuristic with n_mnee = q, from the
+// densities every path carries, every technique's paths estimating it for all), and the
+// sample's work. Each region then takes the q that minimises its variance
 // times its work. q = 0 leaves a region's refracted light to BSDF sampling alone (`nee`'s
 // estimator there), and is ruled out where the pilot saw light only MNEE produces.
 //
@@ -33,10 +33,12 @@ inline constexpr int kCandidateCount = int(kConnectCandidates.size());
 /// (its connections) and those the other techniques produce that MNEE could too (BSDF
 /// sampling's emitter hits through the interfaces, NEE from a rough last interface vertex).
 struct PilotSample {
-    /// Sum over those paths of their squared contribution under each candidate q (balance
-    /// heuristic, a connection made with probability q and counted 1 / q), in expectation.
+    /// Estimates, from this sample's paths, of the second moment of the refracted light under
+    /// each candidate q: the balance heuristic with n_mnee = q has second moment
+    /// int f^2 / (q p_m + p_other), and each path estimates it divided by the pilot's own
+    /// combined density q_pilot p_m + p_other.
     std::array<double, kCandidateCount> m2{};
-    double m2_pilot = 0;      ///< the same under the pilot's own q
+    double m2_pilot = 0;      ///< the squares of the paths' contributions under the pilot's q
     double work_connect = 0;  ///< work of the MNEE connections made (at the pilot's q)
     double work_density = 0;  ///< work of MNEE's densities for the other techniques' MIS weights
     bool needs_mnee = false;  ///< light that only MNEE produces here: q = 0 would lose it
@@ -48,6 +50,10 @@ struct PilotSample {
     /// A path sampled by another technique with density p_t: `value` its contribution before
     /// MIS; p_m and p_other as above (p_other includes p_t).
     void add_other(double value, double p_t, double p_m, double p_other, double q_pilot);
+
+private:
+    /// A path of integrand f (path throughput included) found by any technique.
+    void add_path(double f, double p_m, double p_other, double q_pilot);
 };
 
 class ConnectionAllocation {

@@ -1,0 +1,74 @@
+#include "manifold/multi_solution_estimator.h"
+
+#include "geometry/shape.h"
+#include "manifold/seed_path.h"
+#include "manifold/surface_seed.h"
+#include "manifold/walk_counters.h"
+
+namespace snell {
+
+bool MultiSolutionEstimator::walks_straight_seed() const { return m_settings->seeding != MneeSeeding::Surface; }
+
+bool MultiSolutionEstimator::weighs_surface_solutions() const {
+    return m_settings->seeding == MneeSeeding::StraightAndSurface && m_settings->surface_weight < 1;
+}
+
+void MultiSolutionEstimator::solve(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light,
+                                   double pmf, const LightPoint& lp, const std::vector<ManifoldVertex>& seed,
+                                   Sampler& sampler, int max_k, SolutionSet& out) const {
+    const size_t before = out.solutions.size();
+    HalfVectorDraws draws(sampler);
+    bool straight_converged = false;
+    if (q.straight_seed && walks_straight_seed())
+        add_solution(q, ctx, slot, light, pmf, lp, seed, draws, max_k, false, true, out, &straight_converged);
+    if (m_settings->seeding == MneeSeeding::Straight) return;  // settings made in code: no surface seeds
+    // surface_weight: beside a clear straight seed, surface solutions count only where the
+    // straight walk converged (to another one, or its own): a function of x_b and the light
+    // point that density() repeats with Alg. 2's walk. Where it fails (mostly receivers with no
+    // solution at all: a shadow), the trials would only fail too, at the cost of full walks.
+    const bool weighted = q.straight_seed && weighs_surface_solutions();
+    if (weighted && !straight_converged) return;
+    // There, too, only the paths Alg. 2 can tell apart are the technique's: those crossing the
+    // straight seed's shapes in its order, refracting at each (density() gives the others 0,
+    // BSDF sampling's). A trial that finds another one has failed.
+    const Foreign foreign = [&](const std::vector<ManifoldVertex>& chain) {
+        if (!weighted) return false;
+        if (chain.size() != seed.size()) return true;
+        for (size_t i = 0; i < seed.size(); ++i)
+            if (chain[i].shape != seed[i].shape || chain[i].reflect) return true;
+        return false;
+    };
+    PCG32 rng = trial_stream(sampler);
+    for (const Shape* caster : manifold_casters(*m_scene, ctx.hero()))
+        trials_on(q, ctx, slot, light, pmf, lp, *caster, rng, draws, max_k, foreign, before, out);
+    // The solutions the straight seed does not walk to (all found by surface seeds; the straight
+    // seed's own is never added twice) weigh c times their density in MIS, as density() answers
+    // for their BSDF-sampled copies.
+    if (weighted)
+        for (size_t i = before; i < out.solutions.size(); ++i)
+            if (out.solutions[i].from_surface) out.solutions[i].density *= m_settings->surface_weight;
+    walk_counters::solutions_per_connection.add(uint32_t(out.solutions.size() - before));
+}
+
+double MultiSolutionEstimator::density(const SurfaceInteraction& xb, const BSDF& bsdf_b,
+                                       const SurfaceInteraction* chain, int k, const Light& light, double pmf,
+                                       const Vec3& xc, const Vec3& nc, double lambda) const {
+    // With surface seeds alone, a path through an emissive interface is no one's: the solution
+    // density gives 0.
+    if (walks_straight_seed() && passes_emitter(chain, k))
+        return alg2_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
+    if (!weighs_surface_solutions()) return every_solution_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
+    // Behind a blocker the full solution density; beside a clear straight seed Alg. 2 for the
+    // path its walk reaches (the same value), c times the solution density for another where
+    // that walk converges (to the other one), 0 where it does not. solve() counts the same paths
+    // with the same weights.
+    const StraightSeed seed = trace_straight_seed(*m_scene, xb, xc, lambda, *m_settings);
+    if (seed.status != SeedStatus::Refractive)
+        return every_solution_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
+    bool converged = false;
+    const double reached = alg2_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed, &converged);
+    if (reached > 0 || !converged) return reached;
+    return m_settings->surface_weight * every_solution_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
+}
+
+}  // namespace snell
