@@ -58,8 +58,12 @@ MneeSettings MneeSettings::from_props(const Props& p) {
     // `all` counts each solution once (no 1 / p) and keeps surface_weight 1.
     const bool both_seeds = (s.solutions == MneeSolutions::Unbiased || s.solutions == MneeSolutions::All) &&
                             s.seeding == MneeSeeding::StraightAndSurface;
-    s.surface_weight = p.get_float("surface_weight",
-                                   both_seeds && s.solutions == MneeSolutions::Unbiased ? kDefaultSurfaceWeight : 1.0);
+    // The biased mode keeps SMS's weighting (1): its outlier rule drops the BSDF-sampled paths
+    // MNEE's density gives 0, and with c < 1 that is every path beside a straight walk that did
+    // not converge (docs/experiments.md, "The biased mode keeps the caustic").
+    s.surface_weight =
+        p.get_float("surface_weight",
+                    both_seeds && s.solutions == MneeSolutions::Unbiased && !s.biased ? kDefaultSurfaceWeight : 1.0);
     if (!(s.surface_weight > 0 && s.surface_weight <= 1))
         p.raise_param("surface_weight", "surface_weight must lie in (0, 1]");
     if (p.has("surface_weight") && !both_seeds)

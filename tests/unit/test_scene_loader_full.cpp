@@ -260,8 +260,11 @@ TEST(SceneLoaderFull, MomentAndAovWrappersAreUnwrapped) {
 }
 
 // mnee's estimator defaults: SMS's unbiased estimator with the straight seed and surface_weight
-// 0.03, in the biased mode too; `all` weighs its surface solutions fully. A surface_weight
-// out of (0, 1], or given where no straight and surface solutions meet, names the line.
+// 0.03, in the biased mode with surface_weight 1 (its outlier rule would drop what c < 1 leaves
+// to BSDF sampling); `all` weighs its surface solutions fully. The allocation is learned but
+// where q is given, in the biased mode and for the paper's estimator. A surface_weight out of
+// (0, 1], or given where no straight and surface solutions meet, names the line, and so does a
+// learned allocation in the biased mode.
 TEST(SceneLoaderFull, MneeDefaultsAndSurfaceWeight) {
     const auto settings = [](const std::string& params) {
         const LoadedScene ls = load_string(scene_with("<integrator type=\"mnee\">" + params + "</integrator>"));
@@ -275,7 +278,18 @@ TEST(SceneLoaderFull, MneeDefaultsAndSurfaceWeight) {
     EXPECT_EQ(def.surface_weight, kDefaultSurfaceWeight);
     EXPECT_EQ(settings(R"(<string name="solutions" value="unbiased"/>)").surface_weight, kDefaultSurfaceWeight);
     EXPECT_EQ(settings(R"(<boolean name="biased" value="true"/>)").solutions, MneeSolutions::Unbiased);
-    EXPECT_EQ(settings(R"(<boolean name="biased" value="true"/>)").surface_weight, kDefaultSurfaceWeight);
+    EXPECT_EQ(settings(R"(<boolean name="biased" value="true"/>)").surface_weight, 1.0);
+    EXPECT_TRUE(def.learned_allocation);
+    EXPECT_FALSE(settings(R"(<boolean name="biased" value="true"/>)").learned_allocation);
+    EXPECT_FALSE(settings(R"(<string name="solutions" value="one"/>)").learned_allocation);
+    EXPECT_FALSE(settings(R"(<float name="connect_probability" value="0.5"/>)").learned_allocation);
+    EXPECT_TRUE(settings(R"(<string name="solutions" value="one"/><string name="allocation" value="learned"/>)")
+                    .learned_allocation);
+    expect_error(scene_with("<integrator type=\"mnee\">\n<boolean name=\"biased\" value=\"true\"/><string "
+                            "name=\"allocation\" value=\"learned\"/></integrator>"),
+                 "test.xml:4", "allocation=learned may leave a region without walks");
+    expect_error(scene_with("<integrator type=\"mnee\">\n<integer name=\"pilot_spp\" value=\"0\"/></integrator>"),
+                 "test.xml:4", "pilot_spp must lie in [1, 4096]");
     EXPECT_EQ(settings(R"(<string name="solutions" value="all"/>)").surface_weight, 1.0);
     EXPECT_EQ(settings(R"(<float name="surface_weight" value="1"/>)").surface_weight, 1.0);
     expect_error(scene_with("<integrator type=\"mnee\">\n<float name=\"surface_weight\" value=\"0\"/></integrator>"),
