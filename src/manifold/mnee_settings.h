@@ -24,7 +24,7 @@ enum class MneeSeeding { Straight, Surface, StraightAndSurface };
 /// where that seed is clear of opaque surfaces and, where an opaque surface blocks it (an object
 /// inside glass), the unbiased estimator's surface solutions (`fallback`: unbiased; MIS by Alg. 2
 /// where the seed is clear, by the solution density where it is blocked). A scene's `mnee`
-/// defaults to `unbiased` with surface_weight 0.03, in the biased mode too (issue 26).
+/// defaults to `unbiased`, in the biased mode too, with surface_weight 0.03 (the biased mode: 1).
 enum class MneeSolutions { One, All, Unbiased, Fallback };
 /// (surface_side) where a surface seed starts: at x_b (SMS's seeds), at the light point (traced
 /// through the glass from the light), or either with probability 1/2.
