@@ -19,6 +19,7 @@ snell_library(snell_manifold
   src/manifold/straight_seed_estimator.cpp
   src/manifold/multi_solution_estimator.cpp
   src/manifold/fallback_estimator.cpp
+  src/manifold/keyed_trials_estimator.cpp
   src/manifold/surface_seed.cpp
 )
 target_link_libraries(snell_manifold PUBLIC snell_scene snell_geometry snell_bsdf snell_light snell_core

@@ -66,7 +66,7 @@ int EstimatorBase::add_solution(const ManifoldQuery& q, const BSDFContext& ctx, 
 
 bool EstimatorBase::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster, PCG32& rng,
                                   const LightPoint& lp, HalfVectorDraws& draws, int max_k,
-                                  std::vector<ManifoldVertex>* chain) const {
+                                  std::vector<ManifoldVertex>* chain, bool trace_smooth) const {
     const MneeSettings& st = *m_settings;
     // Seeds from x_b: the best of `seed_candidates` traced seeds, the one whose last ray passes
     // closest to the light point (tracing is cheap, walks are not). Any fixed procedure is a
@@ -78,8 +78,8 @@ bool EstimatorBase::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx
         for (int c = 0; c < st.seed_candidates; ++c) {
             const Vec2 u(rng.next_double(), rng.next_double());
             Vec3 exit_dir;
-            if (trace_surface_seed(*m_scene, *q.xb, caster, u, ctx.hero(), st, draws, &candidate, &rng, &exit_dir) !=
-                SurfaceSeedEnd::Ok)
+            if (trace_surface_seed(*m_scene, *q.xb, caster, u, ctx.hero(), st, trace_smooth ? nullptr : &draws,
+                                   &candidate, &rng, &exit_dir) != SurfaceSeedEnd::Ok)
                 continue;
             if (max_k >= 0 && int(candidate.size()) > max_k) continue;
             const double miss = st.seed_candidates > 1 ? seed_miss(candidate, exit_dir, lp.p) : 0.0;
@@ -100,7 +100,8 @@ bool EstimatorBase::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx
         }
         const SurfaceSeedEnd end =
             side == SurfaceSide::Receiver
-                ? trace_surface_seed(*m_scene, *q.xb, caster, v, ctx.hero(), st, draws, chain, &rng)
+                ? trace_surface_seed(*m_scene, *q.xb, caster, v, ctx.hero(), st, trace_smooth ? nullptr : &draws,
+                                     chain, &rng)
                 : trace_light_seed(*m_scene, lp.p, caster, v, ctx.hero(), st, draws, chain, &rng);
         if (end != SurfaceSeedEnd::Ok) return false;
         if (max_k >= 0 && int(chain->size()) > max_k) return false;

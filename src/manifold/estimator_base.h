@@ -28,9 +28,12 @@ protected:
                      const LightPoint& lp, std::vector<ManifoldVertex> chain, HalfVectorDraws& draws, int max_k,
                      bool from_surface, bool dedupe, SolutionSet& out, bool* walk_converged = nullptr) const;
     /// One surface seed on `caster` walked to a polished admissible path; false if it fails.
+    /// `trace_smooth`: the seeds are traced about the shading normals (the walk still solves for
+    /// `draws`), so that which seed is walked does not depend on the half vectors of slots the
+    /// path does not have (the keyed estimator replays trials for a given path).
     bool surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster, PCG32& rng,
-                       const LightPoint& lp, HalfVectorDraws& draws, int max_k,
-                       std::vector<ManifoldVertex>* chain) const;
+                       const LightPoint& lp, HalfVectorDraws& draws, int max_k, std::vector<ManifoldVertex>* chain,
+                       bool trace_smooth = false) const;
     /// `trials` surface trials on `caster`, every new solution among them added, counted once
     /// (solutions=all).
     void walk_every_trial(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light, double pmf,

@@ -9,8 +9,20 @@
 
 namespace snell {
 
+HalfVectorDraws HalfVectorDraws::of_unit_slopes(std::vector<Vec2> slopes) {
+    HalfVectorDraws d;
+    d.m_slopes = std::move(slopes);
+    return d;
+}
+
+Vec2 HalfVectorDraws::unit_slope(int i, int type) {
+    if (!m_sampler) return size_t(i) < m_slopes.size() ? m_slopes[size_t(i)] : Vec2(0, 0);
+    const Vec3 m = MicrofacetDistribution(MicrofacetDistribution::Type(type), 1.0, 1.0).sample_m(slot(i));
+    return Vec2(m.x / m.z, m.y / m.z);
+}
+
 Vec2 HalfVectorDraws::slot(int i) {
-    assert(i >= 0 && i < kMaxSlots);
+    assert(m_sampler && i >= 0 && i < kMaxSlots);
     while (m_drawn <= i) m_u[size_t(m_drawn++)] = m_sampler->next_2d();
     return m_u[size_t(i)];
 }
@@ -38,8 +50,7 @@ Vec2 unit_slope_of(const ManifoldVertex& v, const Vec2& h) {
 Vec2 target_half_vector(ManifoldVertex& v, int i, HalfVectorDraws& draws) {
     const auto d = v.bsdf->microfacet(BSDFContext{}.at(v.si));
     if (!d) return Vec2(0, 0);
-    const Vec3 m = MicrofacetDistribution(d->type(), 1.0, 1.0).sample_m(draws.slot(i));
-    v.unit_slope = Vec2(m.x / m.z, m.y / m.z);
+    v.unit_slope = draws.unit_slope(i, int(d->type()));
     v.has_unit_slope = true;
     return target_from_unit_slope(v, v.unit_slope);
 }

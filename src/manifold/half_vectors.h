@@ -18,11 +18,18 @@ class HalfVectorDraws {
 public:
     static constexpr int kMaxSlots = 16;
     explicit HalfVectorDraws(Sampler& sampler) : m_sampler(&sampler) {}
-    /// The pair of slot i (0 <= i < kMaxSlots).
+    /// Slots given as unit-roughness slopes instead of draws (slopes of a given path's half
+    /// vectors, as Alg. 2 walks them); the slots past the end read slope (0, 0).
+    static HalfVectorDraws of_unit_slopes(std::vector<Vec2> slopes);
+    /// The pair of slot i (0 <= i < kMaxSlots); drawn slots only.
     Vec2 slot(int i);
+    /// Slot i as the unit-roughness slope of distribution `type` it stands for.
+    Vec2 unit_slope(int i, int type);
 
 private:
-    Sampler* m_sampler;
+    HalfVectorDraws() = default;
+    Sampler* m_sampler = nullptr;
+    std::vector<Vec2> m_slopes;  ///< given slopes (m_sampler null)
     std::array<Vec2, kMaxSlots> m_u{};
     int m_drawn = 0;
 };

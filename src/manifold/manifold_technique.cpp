@@ -4,6 +4,7 @@
 
 #include "manifold/all_solutions_estimator.h"
 #include "manifold/fallback_estimator.h"
+#include "manifold/keyed_trials_estimator.h"
 #include "manifold/straight_seed_estimator.h"
 #include "manifold/unbiased_estimator.h"
 
@@ -24,6 +25,8 @@ auto with_estimator(const Scene& scene, const MneeSettings& st, F&& f) {
             return f(UnbiasedEstimator(scene, st));
         case MneeSolutions::Fallback:
             return f(FallbackEstimator(scene, st));
+        case MneeSolutions::Keyed:
+            return f(KeyedTrialsEstimator(scene, st));
     }
     return f(StraightSeedEstimator(scene, st));
 }

@@ -262,6 +262,27 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     return out;
 }
 
+bool chain_of_path(const SurfaceInteraction& xb, const SurfaceInteraction* path, int k, const Vec3& xc, double lambda,
+                   std::vector<ManifoldVertex>* chain, std::vector<Vec2>* unit_slopes) {
+    chain->assign(size_t(std::max(k, 0)), ManifoldVertex{});
+    unit_slopes->assign(chain->size(), Vec2(0, 0));
+    for (int i = 0; i < k; ++i) {
+        const BSDF* b = path[i].bsdf();
+        if (!is_manifold_interface(b, lambda)) return false;
+        (*chain)[size_t(i)] = ManifoldVertex::from_interaction(path[i], b->eta(lambda));
+    }
+    for (size_t i = 0; i < chain->size(); ++i) {
+        ManifoldVertex& v = (*chain)[i];
+        Vec3 wi, wo;
+        vertex_directions(xb.p, *chain, xc, i, &wi, &wo);
+        v.reflect = dot(wi, v.ng) * dot(wo, v.ng) > 0;
+        if (is_specular(v)) continue;
+        v.h_target = tangential(v, generalized_half_vector(v, wi, wo));
+        (*unit_slopes)[i] = unit_slope_of(v, v.h_target);
+    }
+    return true;
+}
+
 StraightSeed trace_straight_seed(const Scene& scene, const SurfaceInteraction& xb, const Vec3& xc, double lambda,
                                  const MneeSettings& settings) {
     StraightSeed s;

@@ -125,6 +125,14 @@ double mnee_pdf(const Scene& scene, const MneeSettings& settings, const SurfaceI
                 const SurfaceInteraction* chain, int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
                 double lambda, const StraightSeed* traced = nullptr, bool* walk_converged = nullptr);
 
+/// The path x_b, path[0..k), x_c as a manifold chain at wavelength `lambda`, each vertex's target
+/// its own half vector (Alg. 2, line 3) and scattering as the path scatters there, with the
+/// unit-roughness slope of each slot (the draw that gives that target; (0, 0) where specular):
+/// the keyed estimator walks its replayed trials with them. False where a vertex is not a
+/// manifold interface.
+bool chain_of_path(const SurfaceInteraction& xb, const SurfaceInteraction* path, int k, const Vec3& xc, double lambda,
+                   std::vector<ManifoldVertex>* chain, std::vector<Vec2>* unit_slopes);
+
 /// Culling of a seed at x_b with the tolerance margin of Fig. 3.
 bool mnee_seed_culled(const SurfaceInteraction& xb, const BSDF& bsdf_b, const Vec3& xc, double margin);
 

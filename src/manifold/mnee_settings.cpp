@@ -28,7 +28,8 @@ MneeSettings MneeSettings::from_props(const Props& p) {
                                {{"one", MneeSolutions::One},
                                 {"all", MneeSolutions::All},
                                 {"unbiased", MneeSolutions::Unbiased},
-                                {"fallback", MneeSolutions::Fallback}});
+                                {"fallback", MneeSolutions::Fallback},
+                                {"keyed", MneeSolutions::Keyed}});
     // The estimators of several solutions walk both kinds of seeds unless told otherwise
     // (fallback: surface seeds where the straight one is blocked).
     if (s.solutions != MneeSolutions::One && !p.has("seeding")) s.seeding = MneeSeeding::StraightAndSurface;
@@ -36,8 +37,11 @@ MneeSettings MneeSettings::from_props(const Props& p) {
         p.raise_param("seeding", "solutions=fallback takes seeding=straight+surface");
     // trials: surface seeds per caster for `all`; the first round M of `unbiased` (M = 1 is
     // SMS's 1 / p estimate; docs/mnee.md measures larger rounds).
-    s.trials = int(p.get_int(
-        "trials", s.solutions == MneeSolutions::Unbiased || s.solutions == MneeSolutions::Fallback ? 1 : s.trials));
+    // `keyed` walks every one, and replays them in its density: kKeyedTrials.
+    const int default_trials = s.solutions == MneeSolutions::Unbiased || s.solutions == MneeSolutions::Fallback ? 1
+                               : s.solutions == MneeSolutions::Keyed                                           ? kKeyedTrials
+                                                                                                               : s.trials;
+    s.trials = int(p.get_int("trials", default_trials));
     if (s.trials < 1) p.raise_param("trials", "trials must be >= 1");
     s.max_trials = int(p.get_int("max_trials", s.max_trials));
     if (s.max_trials < 1) p.raise_param("max_trials", "max_trials must be >= 1");

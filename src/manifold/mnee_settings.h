@@ -10,6 +10,8 @@ class Props;
 /// surface_weight's default with solutions=unbiased and both kinds of seeds (the best measured
 /// at equal time on the droplets' caustics; docs/mnee.md, "surface_weight").
 inline constexpr double kDefaultSurfaceWeight = 0.03;
+/// trials' default with solutions=keyed (docs/mnee.md, "Keyed trials").
+inline constexpr int kKeyedTrials = 4;
 /// The most refractive vertices a path records after x_b (max_vertices' upper bound).
 inline constexpr int kMaxChainVertices = 16;
 
@@ -25,7 +27,10 @@ enum class MneeSeeding { Straight, Surface, StraightAndSurface };
 /// inside glass), the unbiased estimator's surface solutions (`fallback`: unbiased; MIS by Alg. 2
 /// where the seed is clear, by the solution density where it is blocked). A scene's `mnee`
 /// defaults to `unbiased`, in the biased mode too, with surface_weight 0.03 (the biased mode: 1).
-enum class MneeSolutions { One, All, Unbiased, Fallback };
+/// `keyed`: every distinct solution of the straight seed and `trials` surface trials per caster,
+/// counted once, the trials drawn from a stream keyed by the connection so that the density
+/// replays them (keyed_trials_estimator.h; unbiased).
+enum class MneeSolutions { One, All, Unbiased, Fallback, Keyed };
 /// (surface_side) where a surface seed starts: at x_b (SMS's seeds), at the light point (traced
 /// through the glass from the light), or either with probability 1/2.
 enum class SurfaceSide { Receiver, Light, Both };

@@ -77,11 +77,11 @@ SurfaceSeedEnd trace_through(const Scene& scene, Ray ray, const Shape& caster, d
 }  // namespace
 
 SurfaceSeedEnd trace_surface_seed(const Scene& scene, const SurfaceInteraction& xb, const Shape& caster, const Vec2& u,
-                                  double lambda, const MneeSettings& settings, HalfVectorDraws& draws,
+                                  double lambda, const MneeSettings& settings, HalfVectorDraws* draws,
                                   std::vector<ManifoldVertex>* chain, PCG32* scatter, Vec3* exit_dir) {
     const auto y = caster.sample_from(xb.p, u);
     const SurfaceSeedEnd end = y ? trace_through(scene, scene.spawn_ray_to(xb, y->p, std::max(0.0, y->p_error)), caster,
-                                                 lambda, settings, &draws, scatter, chain, exit_dir)
+                                                 lambda, settings, draws, scatter, chain, exit_dir)
                                  : SurfaceSeedEnd::MissedCaster;
     walk_counters::surface_seed_end.add(uint32_t(end));
     return end;

@@ -277,6 +277,7 @@ TEST(ConnectionAllocation, EveryEstimatorAgreesWithNeeOnABallOnAPlane) {
         {"all", std::string(R"(<string name="solutions" value="all"/>)") + fixed},
         {"unbiased", std::string(R"(<string name="solutions" value="unbiased"/>)") + fixed},
         {"fallback", std::string(R"(<string name="solutions" value="fallback"/>)") + fixed},
+        {"keyed", std::string(R"(<string name="solutions" value="keyed"/>)") + fixed},
         {"learned allocation", kLearned},
     };
     for (const auto& [what, extra] : estimators) {

@@ -687,7 +687,7 @@ TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
         for (int j = 0; j < n; ++j) {
             std::vector<ManifoldVertex> chain;
             Vec3 exit_dir;
-            if (trace_surface_seed(scene, xb, *glass, Vec2((i + 0.5) / n, (j + 0.5) / n), 550, st, draws, &chain,
+            if (trace_surface_seed(scene, xb, *glass, Vec2((i + 0.5) / n, (j + 0.5) / n), 550, st, &draws, &chain,
                                    nullptr, &exit_dir) != SurfaceSeedEnd::Ok)
                 continue;
             SeedCell cell{seed_miss(chain, exit_dir, lp.p), -1};
@@ -784,6 +784,54 @@ TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
         EXPECT_NEAR(double(best_counts[k].n) / runs, pk[k], 4.5 * std::sqrt(pk[k] / runs) + 1200.0 / (n * n))
             << "path " << k;
     }
+}
+
+// solutions=keyed: its trials are a function of the connection, so density() replays them.
+// Every solution solve() finds has density() equal to its own density; every other exact
+// solution at the same light point (all 2000 trials find them) has density 0, and is BSDF
+// sampling's. An estimator that draws its trials from the sampler, or one whose density credits
+// every solution, fails one of the two.
+TEST(ManifoldSolutions, KeyedDensityReplaysTheTrials) {
+    size_t count = 0;
+    const Vec3 at = multi_solution_receiver(&count);
+    const LoadedScene ls = droplet(kSphereLight);
+    const Scene& scene = *ls.scene;
+    const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z);
+    // One trial of one candidate: it misses solutions often enough to see them left out.
+    MneeSettings st = all_solutions(1);
+    st.solutions = MneeSolutions::Keyed;
+    st.seed_candidates = 1;
+    const MneeSettings exhaustive = all_solutions(2000);
+    const ManifoldTechnique keyed(scene, st), every(scene, exhaustive);
+    const Light& light = *scene.lights()[0];
+    const SampledWavelengths wl = SampledWavelengths::single(550);
+    IndependentSampler smp(13);
+    smp.start_pixel_sample(0, 0, 0);
+    int found = 0, missed = 0, exact = 0;
+    for (int n = 0; n < 400; ++n) {
+        LightPoint lp;
+        std::vector<ManifoldVertex> seed;
+        if (straight_seed_to_light(scene, xb, smp, &lp, &seed) != SeedStatus::Refractive) continue;
+        const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false};
+        const SolutionSet mine = keyed.solve(q, light, 1.0, lp, seed, smp);
+        for (const ManifoldSolution& s : mine.solutions) {
+            EXPECT_NEAR(density_of(keyed, scene, xb, path_of(s), lp), s.density, 1e-5 * s.density);
+            ++found;
+        }
+        for (const ManifoldSolution& s : every.solve(q, light, 1.0, lp, seed, smp).solutions) {
+            ++exact;
+            const bool held = std::any_of(mine.solutions.begin(), mine.solutions.end(), [&](const ManifoldSolution& m) {
+                return same_solution(xb.p, m.chain, s.chain, lp.p);
+            });
+            if (held) continue;
+            EXPECT_EQ(density_of(keyed, scene, xb, path_of(s), lp), 0.0) << "a solution the trials did not find";
+            ++missed;
+        }
+    }
+    std::cout << "[keyed] " << found << " of " << exact << " solutions found, " << missed
+              << " left to BSDF sampling\n";
+    EXPECT_GE(found, 300);
+    EXPECT_GE(missed, 5);
 }
 
 // Alg. 2 (lines 5-7) credits MNEE with a path only if the straight seed walks to that very path.

@@ -297,6 +297,14 @@ TEST(SceneLoaderFull, MneeDefaultsAndSurfaceWeight) {
     expect_error(scene_with("<integrator type=\"mnee\">\n<string name=\"solutions\" value=\"one\"/><float "
                             "name=\"surface_weight\" value=\"0.1\"/></integrator>"),
                  "test.xml:4", "needs solutions=all or unbiased with seeding=straight+surface");
+    const MneeSettings keyed = settings(R"(<string name="solutions" value="keyed"/>)");
+    EXPECT_EQ(keyed.solutions, MneeSolutions::Keyed);
+    EXPECT_EQ(keyed.seeding, MneeSeeding::StraightAndSurface);
+    EXPECT_EQ(keyed.trials, kKeyedTrials);
+    EXPECT_TRUE(keyed.learned_allocation);
+    expect_error(scene_with("<integrator type=\"mnee\">\n<string name=\"solutions\" value=\"keyed\"/><float "
+                            "name=\"surface_weight\" value=\"0.1\"/></integrator>"),
+                 "test.xml:4", "needs solutions=all or unbiased with seeding=straight+surface");
 }
 
 // The SMS code's integrators render as mnee with the matching estimator, and say what differs;
