@@ -100,8 +100,8 @@ bool EstimatorBase::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx
         }
         const SurfaceSeedEnd end =
             side == SurfaceSide::Receiver
-                ? trace_surface_seed(*m_scene, *q.xb, caster, v, ctx.hero(), st, trace_smooth ? nullptr : &draws,
-                                     chain, &rng)
+                ? trace_surface_seed(*m_scene, *q.xb, caster, v, ctx.hero(), st, trace_smooth ? nullptr : &draws, chain,
+                                     &rng)
                 : trace_light_seed(*m_scene, lp.p, caster, v, ctx.hero(), st, draws, chain, &rng);
         if (end != SurfaceSeedEnd::Ok) return false;
         if (max_k >= 0 && int(chain->size()) > max_k) return false;

@@ -38,9 +38,9 @@ MneeSettings MneeSettings::from_props(const Props& p) {
     // trials: surface seeds per caster for `all`; the first round M of `unbiased` (M = 1 is
     // SMS's 1 / p estimate; docs/mnee.md measures larger rounds).
     // `keyed` walks every one, and replays them in its density: kKeyedTrials.
-    const int default_trials = s.solutions == MneeSolutions::Unbiased || s.solutions == MneeSolutions::Fallback ? 1
-                               : s.solutions == MneeSolutions::Keyed                                           ? kKeyedTrials
-                                                                                                               : s.trials;
+    int default_trials = s.trials;
+    if (s.solutions == MneeSolutions::Unbiased || s.solutions == MneeSolutions::Fallback) default_trials = 1;
+    if (s.solutions == MneeSolutions::Keyed) default_trials = kKeyedTrials;
     s.trials = int(p.get_int("trials", default_trials));
     if (s.trials < 1) p.raise_param("trials", "trials must be >= 1");
     s.max_trials = int(p.get_int("max_trials", s.max_trials));

@@ -30,10 +30,10 @@ std::vector<const Shape*> manifold_casters(const Scene& scene, double lambda);
 
 /// Draws y on `caster` as seen from x_b (u), traces x_b -> y, and refracts at every refractive
 /// interface hit about the vertex's target half vector (slot i of `draws`: the shading normal for
-/// smooth vertices, and for every vertex without `draws`), until the ray meets anything else or leaves the scene. Fills `chain` with
-/// the interface vertices (h_target set). With settings.reflections and a `scatter` stream, a
-/// vertex reflects instead with Fresnel's probability (always under total internal reflection)
-/// and is marked `reflect`. `exit_dir`: the direction of the ray after the last vertex.
+/// smooth vertices, and for every vertex without `draws`), until the ray meets anything else or
+/// leaves the scene. Fills `chain` with the interface vertices (h_target set). With settings.reflections and a
+/// `scatter` stream, a vertex reflects instead with Fresnel's probability (always under total internal reflection) and
+/// is marked `reflect`. `exit_dir`: the direction of the ray after the last vertex.
 SurfaceSeedEnd trace_surface_seed(const Scene& scene, const SurfaceInteraction& xb, const Shape& caster, const Vec2& u,
                                   double lambda, const MneeSettings& settings, HalfVectorDraws* draws,
                                   std::vector<ManifoldVertex>* chain, PCG32* scatter = nullptr,

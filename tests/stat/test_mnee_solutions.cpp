@@ -828,8 +828,7 @@ TEST(ManifoldSolutions, KeyedDensityReplaysTheTrials) {
             ++missed;
         }
     }
-    std::cout << "[keyed] " << found << " of " << exact << " solutions found, " << missed
-              << " left to BSDF sampling\n";
+    std::cout << "[keyed] " << found << " of " << exact << " solutions found, " << missed << " left to BSDF sampling\n";
     EXPECT_GE(found, 300);
     EXPECT_GE(missed, 5);
 }
