@@ -55,7 +55,10 @@ MneeSettings MneeSettings::from_props(const Props& p) {
     s.surface_side =
         p.get_choice("surface_side", s.surface_side,
                      {{"receiver", SurfaceSide::Receiver}, {"light", SurfaceSide::Light}, {"both", SurfaceSide::Both}});
-    s.seed_candidates = int(p.get_int("seed_candidates", s.seed_candidates));
+    // `keyed` counts what its trials find once, so it wants them diverse: single random seeds
+    // (the best of several goes to the largest basin again and again; docs/mnee.md).
+    s.seed_candidates =
+        int(p.get_int("seed_candidates", s.solutions == MneeSolutions::Keyed ? 1 : s.seed_candidates));
     if (s.seed_candidates < 1 || s.seed_candidates > 1024)
         p.raise_param("seed_candidates", "seed_candidates must lie in [1, 1024]");
     s.reflections = p.get_bool("reflections", s.reflections);
@@ -86,7 +89,10 @@ MneeSettings MneeSettings::from_props(const Props& p) {
     // The allocation is learned unless q is given, or the outlier rule of the biased mode needs
     // every region's walks (issue 26; docs/experiments.md, "Where the walks pay").
     // The paper's estimator (solutions=one) walks everywhere unless told to learn.
-    const bool learned_default = !s.biased && !p.has("connect_probability") && s.solutions != MneeSolutions::One;
+    // `keyed` walks everywhere too: on the ball on a plane the learned q made its caustic 4x
+    // noisier (docs/experiments.md, "Keyed trials").
+    const bool learned_default = !s.biased && !p.has("connect_probability") && s.solutions != MneeSolutions::One &&
+                                 s.solutions != MneeSolutions::Keyed;
     s.learned_allocation = p.get_choice("allocation", learned_default, {{"learned", true}, {"fixed", false}});
     if (s.learned_allocation && s.biased)
         p.raise_param("allocation",

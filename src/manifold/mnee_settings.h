@@ -11,7 +11,7 @@ class Props;
 /// at equal time on the droplets' caustics; docs/mnee.md, "surface_weight").
 inline constexpr double kDefaultSurfaceWeight = 0.03;
 /// trials' default with solutions=keyed (docs/mnee.md, "Keyed trials").
-inline constexpr int kKeyedTrials = 4;
+inline constexpr int kKeyedTrials = 16;
 /// The most refractive vertices a path records after x_b (max_vertices' upper bound).
 inline constexpr int kMaxChainVertices = 16;
 

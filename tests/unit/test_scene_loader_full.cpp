@@ -301,7 +301,8 @@ TEST(SceneLoaderFull, MneeDefaultsAndSurfaceWeight) {
     EXPECT_EQ(keyed.solutions, MneeSolutions::Keyed);
     EXPECT_EQ(keyed.seeding, MneeSeeding::StraightAndSurface);
     EXPECT_EQ(keyed.trials, kKeyedTrials);
-    EXPECT_TRUE(keyed.learned_allocation);
+    EXPECT_EQ(keyed.seed_candidates, 1);
+    EXPECT_FALSE(keyed.learned_allocation);
     expect_error(scene_with("<integrator type=\"mnee\">\n<string name=\"solutions\" value=\"keyed\"/><float "
                             "name=\"surface_weight\" value=\"0.1\"/></integrator>"),
                  "test.xml:4", "needs solutions=all or unbiased with seeding=straight+surface");
