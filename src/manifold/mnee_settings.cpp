@@ -57,8 +57,7 @@ MneeSettings MneeSettings::from_props(const Props& p) {
                      {{"receiver", SurfaceSide::Receiver}, {"light", SurfaceSide::Light}, {"both", SurfaceSide::Both}});
     // `keyed` counts what its trials find once, so it wants them diverse: single random seeds
     // (the best of several goes to the largest basin again and again; docs/mnee.md).
-    s.seed_candidates =
-        int(p.get_int("seed_candidates", s.solutions == MneeSolutions::Keyed ? 1 : s.seed_candidates));
+    s.seed_candidates = int(p.get_int("seed_candidates", s.solutions == MneeSolutions::Keyed ? 1 : s.seed_candidates));
     if (s.seed_candidates < 1 || s.seed_candidates > 1024)
         p.raise_param("seed_candidates", "seed_candidates must lie in [1, 1024]");
     s.reflections = p.get_bool("reflections", s.reflections);
