@@ -12,6 +12,7 @@
 
 #include "integrators/mnee/connection_allocation.h"
 #include "manifold/walk_counters.h"
+#include "stat/droplet_scene.h"
 #include "stat/render_stats.h"
 
 using namespace snell;
@@ -134,36 +135,12 @@ TEST(ConnectionAllocation, ACropChoosesAsTheFullFilm) {
 
 namespace {
 
-// The droplet of test_mnee_agreement under a large light, with regions of 8 pixels so that its
-// 24 x 18 film holds several, one pilot sample per pixel.
-const char* kDroplet = R"(<scene version="3.0.0">
-  <default name="integrator" value="nee"/>
-  <default name="radiance" value="3"/>
-  <integrator type="$integrator"><integer name="max_depth" value="8"/>$extra</integrator>
-  <sensor type="perspective">
-    <float name="fov" value="30"/>
-    <transform name="to_world"><lookat origin="0, 3.2, 3.2" target="0, 0.2, 0" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="24"/><integer name="height" value="18"/></film>
-  </sensor>
-  <shape type="rectangle">
-    <transform name="to_world"><rotate x="1" angle="-90"/><scale value="4"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.7, 0.7"/></bsdf>
-  </shape>
-  <shape type="sphere">
-    <point name="center" x="0" y="0.35" z="0"/><float name="radius" value="0.8"/>
-    <bsdf type="dielectric"><float name="int_ior" value="1.33"/><float name="ext_ior" value="1"/></bsdf>
-  </shape>
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="$light_size"/><rotate x="1" angle="90"/><translate x="-0.8" y="3" z="-0.5"/></transform>
-    <emitter type="area"><rgb name="radiance" value="$radiance"/></emitter>
-  </shape>
-</scene>)";
-
+// The droplet of test_mnee_agreement (smooth water) under a light of `light_size`, with regions
+// of 8 pixels so that its 24 x 18 film holds several, one pilot sample per pixel.
 std::string droplet(const std::string& extra, double light_size) {
-    std::string s = kDroplet;
-    s.replace(s.find("$extra"), 6, extra);
-    s.replace(s.find("$light_size"), 11, std::to_string(light_size));
-    return s;
+    return droplet_scene(
+        R"(<bsdf type="dielectric"><float name="int_ior" value="1.33"/><float name="ext_ior" value="1"/></bsdf>)",
+        extra, std::to_string(light_size));
 }
 
 const char* kLearned = R"(<integer name="allocation_block" value="8"/><integer name="pilot_spp" value="2"/>)";

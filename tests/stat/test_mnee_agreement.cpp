@@ -6,6 +6,7 @@
 
 #include "integrators/path/technique_stats.h"
 #include "manifold/walk_counters.h"
+#include "stat/droplet_scene.h"
 #include "stat/render_stats.h"
 
 using namespace snell;
@@ -13,42 +14,14 @@ using namespace snell::test;
 
 namespace {
 
-// A droplet (water sphere sunk into a diffuse plane) under a large rectangular light: BSDF
-// sampling reaches the light through the droplet often enough for `nee` to converge.
-const char* kDroplet = R"(<scene version="3.0.0">
-  <default name="integrator" value="nee"/>
-  <default name="alpha" value="0.0"/>
-  <default name="biased" value="false"/>
-  <integrator type="$integrator"><integer name="max_depth" value="8"/>$extra</integrator>
-  <sensor type="perspective">
-    <float name="fov" value="30"/>
-    <transform name="to_world"><lookat origin="0, 3.2, 3.2" target="0, 0.2, 0" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="24"/><integer name="height" value="18"/></film>
-  </sensor>
-  <shape type="rectangle">
-    <transform name="to_world"><rotate x="1" angle="-90"/><scale value="4"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.7, 0.7"/></bsdf>
-  </shape>
-  <shape type="sphere">
-    <point name="center" x="0" y="0.35" z="0"/><float name="radius" value="0.8"/>
-    $droplet_bsdf
-  </shape>
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="1.5"/><rotate x="1" angle="90"/><translate x="-0.8" y="3" z="-0.5"/></transform>
-    <emitter type="area"><rgb name="radiance" value="3, 3, 3"/></emitter>
-  </shape>
-</scene>)";
-
 std::string scene_with(const std::string& droplet_bsdf, const std::string& extra = "", const std::string& light = "") {
-    std::string s = kDroplet;
+    std::string s = droplet_scene(droplet_bsdf, extra);
     if (!light.empty()) {
         const size_t a =
             s.find("  <shape type=\"rectangle\">\n    <transform name=\"to_world\"><scale value=\"1.5\"/>");
         const size_t b = s.find("</shape>", a) + 8;
         s.replace(a, b - a, light);
     }
-    s.replace(s.find("$droplet_bsdf"), 13, droplet_bsdf);
-    s.replace(s.find("$extra"), 6, extra);
     return s;
 }
 
