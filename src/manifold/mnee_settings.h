@@ -67,6 +67,7 @@ struct MneeSettings {
     /// (seed_candidates) a surface trial from x_b traces this many seeds and walks the one whose
     /// last ray passes closest to the light point (seed_miss). 4 halved the variance per second
     /// of the glass sphere's caustic against 1 (SMS's single seed); 2, 8 and 16 lay between.
+    /// solutions=keyed defaults to 1: its trials must spread over the basins (docs/mnee.md).
     int seed_candidates = 4;
     /// (reflections) surface seeds may reflect at an interface (with Fresnel's probability, and
     /// always under total internal reflection), so that solutions=all and unbiased also find
@@ -97,8 +98,8 @@ struct MneeSettings {
     /// (allocation) `learned`: q chosen per image region from the render's first samples
     /// (integrators/mnee/connection_allocation.h), the default of a scene's unbiased `mnee`;
     /// `fixed`: connect_probability everywhere (the default with connect_probability given,
-    /// in the biased mode, whose outlier rule needs every region's walks, and inside pssmlt
-    /// and erpt, which have no pixels to learn per).
+    /// in the biased mode, whose outlier rule needs every region's walks, with solutions=keyed,
+    /// and inside pssmlt and erpt, which have no pixels to learn per).
     bool learned_allocation = false;
     int pilot_spp = 4;          ///< (pilot_spp) samples per pixel the allocation learns from, at q
     int allocation_block = 16;  ///< (allocation_block) pixels on a side of a region
