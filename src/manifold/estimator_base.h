@@ -46,6 +46,8 @@ protected:
                                 double pmf, const LightPoint& lp, const Shape& caster, PCG32& rng,
                                 HalfVectorDraws& draws, int max_k, const Foreign& foreign, size_t before,
                                 SolutionSet& out) const;
+    /// With seeding=surface alone the straight seed is not walked.
+    bool walks_straight_seed() const { return m_settings->seeding != MneeSeeding::Surface; }
     /// The surface seeds' own stream, drawn with one number from the sampler (so that the
     /// sampler's dimensions stay bounded for primary-sample-space samplers).
     static PCG32 trial_stream(Sampler& sampler);

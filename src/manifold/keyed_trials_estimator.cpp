@@ -15,8 +15,6 @@ PCG32 keyed_trial_stream(const Vec3& xb, const Vec3& xc, double lambda, size_t c
     return PCG32(h, uint64_t(caster));
 }
 
-bool KeyedTrialsEstimator::walks_straight_seed() const { return m_settings->seeding != MneeSeeding::Surface; }
-
 void KeyedTrialsEstimator::solve(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light,
                                  double pmf, const LightPoint& lp, const std::vector<ManifoldVertex>& seed,
                                  Sampler& sampler, int max_k, SolutionSet& out) const {
@@ -29,11 +27,10 @@ void KeyedTrialsEstimator::solve(const ManifoldQuery& q, const BSDFContext& ctx,
         PCG32 rng = keyed_trial_stream(q.xb->p, lp.p, ctx.hero(), c);
         for (int j = 0; j < m_settings->trials; ++j) {
             // Traced about the shading normals and chosen without max_k, so that density()
-            // replays the same choice from the path alone; too long a chain is dropped after.
+            // replays the same choice from the path alone; add_solution drops too long a chain
+            // and the solutions held already (the straight seed's among them).
             std::vector<ManifoldVertex> chain;
             if (!surface_trial(q, ctx, *casters[c], rng, lp, draws, -1, &chain, /*trace_smooth=*/true)) continue;
-            if (max_k >= 0 && int(chain.size()) > max_k) continue;
-            // add_solution skips the solutions held already (the straight seed's among them).
             add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, true, true, out);
         }
     }

@@ -20,9 +20,6 @@ public:
                SolutionSet& out) const;
     double density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain, int k,
                    const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda) const;
-
-private:
-    bool walks_straight_seed() const;
 };
 
 /// The keyed trials' stream on caster number `caster` (in manifold_casters' order) for the

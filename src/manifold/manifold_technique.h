@@ -3,7 +3,8 @@
 // a light sample at x_b and its seed path, the admissible paths found (a SolutionSet, each with
 // its value and the densities MIS needs), and the density with which the technique produces a
 // given path. It runs the estimator the settings name (straight_seed_estimator.h: the paper's;
-// all_solutions_estimator.h, unbiased_estimator.h, fallback_estimator.h), once per wavelength
+// all_solutions_estimator.h, unbiased_estimator.h, fallback_estimator.h,
+// keyed_trials_estimator.h), once per wavelength
 // through dispersive chains. The `mnee` integrator composes with it; it knows nothing of
 // integrators.
 #include <vector>

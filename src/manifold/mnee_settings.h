@@ -57,8 +57,9 @@ struct MneeSettings {
     // straight+surface seeds and surface_weight 0.03 (from_props).
     MneeSeeding seeding = MneeSeeding::Straight;
     MneeSolutions solutions = MneeSolutions::One;
-    /// (trials) surface seeds per caster and light connection: every one walked (solutions=all),
-    /// or the first round M of solutions=unbiased (the scene parameter defaults to 1 there)
+    /// (trials) surface seeds per caster and light connection: every one walked (solutions=all
+    /// and keyed), or the first round M of solutions=unbiased (the scene parameter defaults to 1
+    /// there, to kKeyedTrials for keyed)
     int trials = 16;
     /// (max_trials) cap C on the Bernoulli trials of solutions=unbiased: its estimate of 1 / p is
     /// short by the factor (1 - p)^C (docs/mnee.md).

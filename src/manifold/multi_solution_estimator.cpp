@@ -7,8 +7,6 @@
 
 namespace snell {
 
-bool MultiSolutionEstimator::walks_straight_seed() const { return m_settings->seeding != MneeSeeding::Surface; }
-
 bool MultiSolutionEstimator::weighs_surface_solutions() const {
     return m_settings->seeding == MneeSeeding::StraightAndSurface && m_settings->surface_weight < 1;
 }

@@ -29,8 +29,6 @@ protected:
                            const Foreign& foreign, size_t before, SolutionSet& out) const = 0;
 
 private:
-    /// With seeding=surface alone the straight seed is not walked.
-    bool walks_straight_seed() const;
     /// surface_weight < 1 with both kinds of seeds: beside a clear straight seed the surface
     /// solutions weigh c times their density, and count only where the straight walk converged.
     /// solve() and density() both ask this.

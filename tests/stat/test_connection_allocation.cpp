@@ -243,37 +243,55 @@ std::string ball_on_a_plane(const std::string& extra) {
     return s;
 }
 
+using SceneOf = std::string (*)(const std::string& extra);
+
+// Each (name, integrator parameters) of `estimators` renders `scene` as mnee, at `spp` (the
+// learned allocation at `learned_spp`: its regions without walks are BSDF sampling's noise), and
+// must agree with nee per pixel block, see a 3 % brighter light in some block, and walk (so that
+// the agreement is MNEE's and not nee's alone).
+void expect_estimators_agree(SceneOf scene, const std::vector<std::pair<std::string, std::string>>& estimators,
+                             int learned_spp) {
+    LoadedScene nee = load_xml(scene(""), {{"integrator", "nee"}});
+    const auto a = block_estimates(nee, *nee.integrator, 512, 8, 6, 100);
+    for (const auto& [what, extra] : estimators) {
+        LoadedScene mnee = load_xml(scene(extra), {{"integrator", "mnee"}});
+        LoadedScene brighter = load_xml(scene(extra), {{"integrator", "mnee"}, {"radiance", "3.09"}});
+        const int spp = what == "learned allocation" ? learned_spp : 64;
+        RenderOptions opt;
+        opt.spp = 4;
+        opt.progress = false;
+        EXPECT_GT(render(*mnee.scene, *mnee.integrator, mnee.film, opt).counters[walk_counters::walks_converged], 100u)
+            << what << ": no walks";
+        expect_agreement(a, block_estimates(mnee, *mnee.integrator, spp, 8, 6, 200), 0.01, what.c_str());
+        EXPECT_GE(count_disagreements(a, block_estimates(brighter, *brighter.integrator, spp, 8, 6, 200), 0.01), 1)
+            << what << ": a 3 % brighter light passes";
+    }
+}
+
 }  // namespace
 
 // Every estimator class, and the learned allocation, agrees with nee per pixel block on a ball on
 // a plane (issue 26), and each render sees a light 3 % brighter in the same blocks.
 TEST(ConnectionAllocation, EveryEstimatorAgreesWithNeeOnABallOnAPlane) {
-    LoadedScene nee = load_xml(ball_on_a_plane(""), {{"integrator", "nee"}});
-    const auto a = block_estimates(nee, *nee.integrator, 512, 8, 6, 100);
     const char* fixed = R"(<string name="allocation" value="fixed"/>)";
-    const std::vector<std::pair<std::string, std::string>> estimators = {
-        {"paper's (solutions=one)", R"(<string name="solutions" value="one"/>)"},
-        {"all", std::string(R"(<string name="solutions" value="all"/>)") + fixed},
-        {"unbiased", std::string(R"(<string name="solutions" value="unbiased"/>)") + fixed},
-        {"fallback", std::string(R"(<string name="solutions" value="fallback"/>)") + fixed},
-        {"keyed", std::string(R"(<string name="solutions" value="keyed"/>)") + fixed},
-        {"learned allocation", kLearned},
-    };
-    for (const auto& [what, extra] : estimators) {
-        LoadedScene mnee = load_xml(ball_on_a_plane(extra), {{"integrator", "mnee"}});
-        LoadedScene brighter = load_xml(ball_on_a_plane(extra), {{"integrator", "mnee"}, {"radiance", "3.09"}});
-        expect_agreement(a, block_estimates(mnee, *mnee.integrator, 64, 8, 6, 200), 0.01, what.c_str());
-        EXPECT_GE(count_disagreements(a, block_estimates(brighter, *brighter.integrator, 64, 8, 6, 200), 0.01), 1)
-            << what << ": a 3 % brighter light passes";
-    }
+    expect_estimators_agree(ball_on_a_plane,
+                            {
+                                {"paper's (solutions=one)", R"(<string name="solutions" value="one"/>)"},
+                                {"all", std::string(R"(<string name="solutions" value="all"/>)") + fixed},
+                                {"unbiased", std::string(R"(<string name="solutions" value="unbiased"/>)") + fixed},
+                                {"fallback", std::string(R"(<string name="solutions" value="fallback"/>)") + fixed},
+                                {"keyed", std::string(R"(<string name="solutions" value="keyed"/>)") + fixed},
+                                {"learned allocation", kLearned},
+                            },
+                            64);
 }
 
 namespace {
 
-// A water height field over a floor (the gallery's pool.xml, small): a 16 x 16 grid of the
-// surface y = 0.6 + 0.06 sin(3x) cos(2.5z) over [-1, 1]^2, smooth normals, written as an OBJ; the
-// floor lies beneath it and a large light above, so every bit of floor light comes through the
-// water and nee (BSDF sampling through it) converges.
+// A water height field over a floor (the gallery's pool.xml, small and without walls): a 16 x 16
+// grid of the surface y = 0.6 + 0.06 sin(3x) cos(2.5z) over [-1, 1]^2, smooth normals, written as
+// an OBJ, over the droplet's floor, under a large light: the floor beneath the water sees the
+// light only through it, often enough for nee (BSDF sampling through the water) to converge.
 std::string water_over_a_floor(const std::string& extra) {
     const auto obj = std::filesystem::temp_directory_path() / "snell_test_water.obj";
     {
@@ -310,22 +328,14 @@ std::string water_over_a_floor(const std::string& extra) {
 // The estimators and the learned allocation agree with nee per pixel block on water over a floor
 // (a mesh caster with smooth normals, one interface per path), and see a 3 % brighter light.
 TEST(ConnectionAllocation, EveryEstimatorAgreesWithNeeUnderWater) {
-    LoadedScene nee = load_xml(water_over_a_floor(""), {{"integrator", "nee"}});
-    const auto a = block_estimates(nee, *nee.integrator, 512, 8, 6, 100);
     const char* fixed = R"(<string name="allocation" value="fixed"/>)";
-    const std::vector<std::pair<std::string, std::string>> estimators = {
-        {"paper's (solutions=one)", R"(<string name="solutions" value="one"/>)"},
-        {"unbiased", std::string(R"(<string name="solutions" value="unbiased"/>)") + fixed},
-        {"keyed", R"(<string name="solutions" value="keyed"/><integer name="trials" value="4"/>)"},
-        {"learned allocation", kLearned},
-    };
-    for (const auto& [what, extra] : estimators) {
-        LoadedScene mnee = load_xml(water_over_a_floor(extra), {{"integrator", "mnee"}});
-        LoadedScene brighter = load_xml(water_over_a_floor(extra), {{"integrator", "mnee"}, {"radiance", "3.09"}});
-        // The learned allocation leaves some regions to BSDF sampling, whose noise needs more samples.
-        const int spp = what == "learned allocation" ? 192 : 64;
-        expect_agreement(a, block_estimates(mnee, *mnee.integrator, spp, 8, 6, 200), 0.01, what.c_str());
-        EXPECT_GE(count_disagreements(a, block_estimates(brighter, *brighter.integrator, spp, 8, 6, 200), 0.01), 1)
-            << what << ": a 3 % brighter light passes";
-    }
+    expect_estimators_agree(
+        water_over_a_floor,
+        {
+            {"paper's (solutions=one)", R"(<string name="solutions" value="one"/>)"},
+            {"unbiased", std::string(R"(<string name="solutions" value="unbiased"/>)") + fixed},
+            {"keyed", R"(<string name="solutions" value="keyed"/><integer name="trials" value="4"/>)"},
+            {"learned allocation", kLearned},
+        },
+        192);
 }
