@@ -4,9 +4,12 @@ snell_library(snell_integrators
   src/integrators/integrator.cpp
   src/integrators/light_connection.cpp
   src/integrators/path/path_tracer.cpp
+  src/integrators/path/camera_walk.cpp
+  src/integrators/path/path_settings.cpp
   src/integrators/path/technique_stats.cpp
   src/integrators/direct/direct.cpp
   src/integrators/mnee/mnee_integrator.cpp
+  src/integrators/mnee/mnee_path.cpp
   src/integrators/mnee/connection_allocation.cpp
   src/integrators/bdpt/bdpt.cpp
   src/integrators/bdpt/vertex.cpp

@@ -3,6 +3,7 @@
 # integrators that use it.
 snell_library(snell_scene
   src/scene/scene.cpp
+  src/scene/light_choice.cpp
 )
 target_link_libraries(snell_scene PUBLIC snell_geometry snell_light snell_camera snell_core embree)
 

@@ -11,16 +11,6 @@
 
 namespace snell {
 
-std::optional<LightSample> sample_light(const Scene& scene, const SurfaceInteraction& si, const SampledWavelengths& wl,
-                                        Sampler& sampler, const Light** light, double* pmf, bool keep_dark) {
-    *light = scene.light_sampler().sample(sampler.next_1d(), pmf);
-    const Vec2 u = sampler.next_2d();
-    if (!*light || !(*pmf > 0)) return std::nullopt;
-    auto ls = (*light)->sample_li({si.p, si.n}, u, wl);
-    if (!ls || !(ls->pdf > 0) || !(keep_dark || ls->Le.is_nonzero())) return std::nullopt;
-    return ls;
-}
-
 SampledSpectrum nee_estimate(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
                              const MediumStack& path_media, const LightSample& ls, const SampledSpectrum& f, double pmf,
                              double w) {

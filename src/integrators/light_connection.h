@@ -6,6 +6,7 @@
 
 #include "core/medium_stack.h"
 #include "core/sampled_spectrum.h"
+#include "scene/light_choice.h"
 
 namespace snell {
 
@@ -16,13 +17,6 @@ class Light;
 struct BSDFContext;
 struct LightSample;
 struct SurfaceInteraction;
-
-/// Picks a light (the scene's light sampler) and samples a point on it as seen from `si`; the
-/// chosen light and its probability go to `light` and `pmf`. `keep_dark` keeps samples that
-/// emit nothing towards si (a spot light seen from outside its cone): MNEE reaches the light
-/// along another direction. Draws next_1d() then next_2d(), whatever happens.
-std::optional<LightSample> sample_light(const Scene& scene, const SurfaceInteraction& si, const SampledWavelengths& wl,
-                                        Sampler& sampler, const Light** light, double* pmf, bool keep_dark = false);
 
 /// NEE for an already drawn light sample: shadow ray, power heuristic against BSDF sampling.
 /// `media` is the medium the path is in at si. `light_share`, `bsdf_share`: the two techniques'

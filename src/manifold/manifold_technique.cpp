@@ -1,12 +1,17 @@
 #include "manifold/manifold_technique.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "manifold/all_solutions_estimator.h"
 #include "manifold/fallback_estimator.h"
 #include "manifold/keyed_trials_estimator.h"
+#include "manifold/seed_path.h"
 #include "manifold/straight_seed_estimator.h"
 #include "manifold/unbiased_estimator.h"
+#include "manifold/walk_counters.h"
+#include "manifold/work_meter.h"
+#include "scene/scene.h"
 
 namespace snell {
 
@@ -32,6 +37,62 @@ auto with_estimator(const Scene& scene, const MneeSettings& st, F&& f) {
 }
 
 }  // namespace
+
+ManifoldConnection ManifoldTechnique::connect(const ManifoldQuery& query, Sampler& sampler) const {
+    ManifoldConnection c;
+    const Scene& scene = *m_scene;
+    const SurfaceInteraction& xb = *query.xb;
+    // Line 1: the light point. Dark samples are kept: MNEE reaches the light along another
+    // direction than the straight one (a spot light seen from outside its cone).
+    const auto ls = sample_light(scene, xb, query.ctx.wl, sampler, &c.light, &c.pmf, /*keep_dark=*/true);
+    if (!ls) return c;
+    c.ls = *ls;
+    c.q = c.light->is_delta() ? 1.0 : query.connect_probability;
+    if (!(c.q > 0)) {
+        // The region leaves the refracted light to BSDF sampling: what is left of the connection
+        // is NEE's, one shadow ray (a seed that meets glass gives 0).
+        const SampledSpectrum f = query.bsdf_b->eval(query.ctx.at(xb), xb.to_local(xb.wo), xb.to_local(ls->wi));
+        const Ray shadow =
+            std::isinf(ls->dist) ? scene.spawn_ray(xb, ls->wi) : scene.spawn_ray_to(xb, ls->p, ls->p_error);
+        if (f.is_nonzero() && !scene.occluded(shadow)) c.kind = ManifoldConnection::Kind::Direct;
+        return c;
+    }
+    const LightPoint lp = light_point(scene, *c.light, *ls, xb.p);
+
+    // Line 2: the seed path.
+    std::vector<ManifoldVertex> seed;
+    const SeedStatus status = trace_seed_path(scene, xb, lp.p, query.ctx.hero(), *m_settings, &seed);
+    switch (status) {
+        case SeedStatus::Clear:
+            // Nothing refracts in between: MNEE is NEE (same sample, same weight).
+            c.kind = ManifoldConnection::Kind::Direct;
+            return c;
+        case SeedStatus::Occluded:
+            ++walk_counters::seeds_occluded;
+            return c;
+        case SeedStatus::BlockedRefractive:
+            // (Multi-solution estimators only.) The straight seed is blocked; the surface seeds
+            // may still find refracted paths around the blocker (an object inside glass).
+            ++walk_counters::seeds_occluded;
+            break;
+        case SeedStatus::TooMany:
+            ++walk_counters::seeds_too_many;
+            return c;
+        case SeedStatus::Refractive:
+            break;
+    }
+    if (m_settings->solutions == MneeSolutions::One && query.max_k >= 0 && int(seed.size()) > query.max_k) return c;
+    // The connection is made with probability q (and counted 1 / q by the caller).
+    if (c.q < 1 && !(sampler.next_1d() < c.q)) return c;
+    // Lines 3-5 (half vectors, walk, measurement) for every solution the estimator finds.
+    ManifoldQuery q = query;
+    q.straight_seed = status == SeedStatus::Refractive;
+    const double w0 = query.meter_work ? work_so_far() : 0.0;
+    c.set = solve(q, *c.light, c.pmf, lp, seed, sampler, query.max_k);
+    if (query.meter_work) c.work = work_so_far() - w0;
+    c.kind = ManifoldConnection::Kind::Manifold;
+    return c;
+}
 
 SolutionSet ManifoldTechnique::solve(const ManifoldQuery& q, const Light& light, double pmf, const LightPoint& lp,
                                      const std::vector<ManifoldVertex>& seed, Sampler& sampler, int max_k) const {

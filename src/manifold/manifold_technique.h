@@ -16,6 +16,7 @@
 #include "manifold/mnee.h"
 #include "manifold/mnee_settings.h"
 #include "manifold/solution_set.h"
+#include "scene/light_choice.h"
 
 namespace snell {
 
@@ -30,13 +31,45 @@ struct ManifoldQuery {
     MediumStack media;       ///< the medium at x_b
     bool hero_only = false;  ///< the path's throughput already carries the hero wavelength alone
     /// The straight seed may be walked (false: an opaque surface blocks the segment x_b -> x_c,
-    /// SeedStatus::BlockedRefractive; only surface seeds are tried).
+    /// SeedStatus::BlockedRefractive; only surface seeds are tried). connect() sets it.
     bool straight_seed = true;
+    /// connect(): q, the probability with which a connection to a light that BSDF sampling can
+    /// hit is made (ConnectionAllocation; 0: not at all, its light is left to BSDF sampling).
+    /// Delta lights are always connected.
+    double connect_probability = 1;
+    /// The longest chain max_depth allows here (-1: any).
+    int max_k = -1;
+    /// connect() measures the work of its walks (ManifoldConnection::work; the allocation's pilot).
+    bool meter_work = false;
+};
+
+/// One light connection from x_b (ManifoldTechnique::connect).
+struct ManifoldConnection {
+    enum class Kind {
+        None,      ///< no light sample, a blocked or culled seed, or no connection drawn
+        Direct,    ///< x_c is in plain sight of x_b (nothing refracts on the segment): NEE's sample
+        Manifold,  ///< the seed path was walked: `set` holds what the walks found
+    };
+    Kind kind = Kind::None;
+    const Light* light = nullptr;  ///< Alg. 1 line 1: the light chosen ...
+    double pmf = 0;                ///< ... with this probability ...
+    LightSample ls;                ///< ... and the point sampled on it (valid unless kind is None)
+    /// The probability the connection was made with: MIS weighs each solution by q p_mnee and the
+    /// estimate counts it 1 / q (1 for delta lights and for solutions=one's fixed q).
+    double q = 1;
+    SolutionSet set;  ///< Kind::Manifold: the admissible paths, each f / p of Alg. 1's last line
+    double work = 0;  ///< with ManifoldQuery::meter_work: the work of the walks (work_meter.h)
 };
 
 class ManifoldTechnique {
 public:
     ManifoldTechnique(const Scene& scene, const MneeSettings& settings) : m_scene(&scene), m_settings(&settings) {}
+
+    /// Alg. 1 whole, from x_b: line 1, the light point (drawn exactly as NEE draws it); line 2,
+    /// the seed path (Sec. 3.1); then, with probability q, lines 3-5 for every solution the
+    /// estimator finds (solve()). A clear segment is NEE's connection (Kind::Direct), as is every
+    /// connection where q = 0, after its one shadow ray.
+    ManifoldConnection connect(const ManifoldQuery& query, Sampler& sampler) const;
 
     /// Alg. 1 lines 3-5 from the seed path `seed` (line 2) to the light point `lp` (line 1, light
     /// `light` chosen with probability `pmf`). Through a dispersive chain with every wavelength

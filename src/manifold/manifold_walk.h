@@ -39,10 +39,9 @@ struct WalkSettings {
     /// `stall_window` iterations earlier (rejected steps count) ends as Stalled. Where no
     /// solution exists (most of a glass sphere's shadow outside its caustic) the error settles
     /// on a plateau and the walk would run to max_iterations; walks that converge fall by large
-    /// factors per iteration. On the glass sphere's floor caustic, 4 and 0.7 save 41 % of the
-    /// iterations and give up 1.9 % of the walks that would have converged (docs/mnee.md). Any
-    /// such rule keeps MNEE unbiased: Alg. 2 walks by the same rule, and the multi-solution
-    /// estimators count what their trials reach. stall_window 0 turns the test off.
+    /// factors per iteration (what 4 and 0.7 save and give up: docs/mnee.md). Any such rule
+    /// keeps MNEE unbiased: Alg. 2 walks by the same rule, and the multi-solution estimators
+    /// count what their trials reach. stall_window 0 turns the test off.
     int stall_window = 0;
     double stall_ratio = 0.7;
 

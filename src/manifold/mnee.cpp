@@ -46,6 +46,27 @@ void vertex_directions(const Vec3& xb, const std::vector<ManifoldVertex>& chain,
     *wo = normalize((i + 1 == chain.size() ? xc : chain[i + 1].p) - chain[i].p);
 }
 
+/// The path's vertices x_1..x_k as manifold vertices at wavelength `lambda`; false where one is
+/// not a manifold interface.
+bool manifold_vertices_of(const SurfaceInteraction* path, int k, double lambda, std::vector<ManifoldVertex>* chain) {
+    chain->assign(size_t(std::max(k, 0)), ManifoldVertex{});
+    for (int i = 0; i < k; ++i) {
+        const BSDF* b = path[i].bsdf();
+        if (!is_manifold_interface(b, lambda)) return false;
+        (*chain)[size_t(i)] = ManifoldVertex::from_interaction(path[i], b->eta(lambda));
+    }
+    return true;
+}
+
+/// Each vertex scatters as the path does there: reflects where both its directions lie on one side.
+void scatter_as_the_path(const Vec3& xb, std::vector<ManifoldVertex>& chain, const Vec3& xc) {
+    for (size_t i = 0; i < chain.size(); ++i) {
+        Vec3 wi, wo;
+        vertex_directions(xb, chain, xc, i, &wi, &wo);
+        chain[i].reflect = dot(wi, chain[i].ng) * dot(wo, chain[i].ng) > 0;
+    }
+}
+
 wc::WalkEnd walk_end_of(WalkOutcome o) {
     switch (o) {
         case WalkOutcome::Converged:
@@ -84,18 +105,17 @@ double half_vector_density(const ManifoldVertex& v, const Vec3& h) {
     return hl.z > 0 ? v.bsdf->microfacet(BSDFContext{}.at(v.si))->D(hl) : 0.0;
 }
 
-SampledSpectrum vertex_throughput(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo,
-                                  const BSDFContext& path_ctx) {
+SampledSpectrum vertex_measurement(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo,
+                                   const BSDFContext& path_ctx) {
     const BSDFContext ctx = path_ctx.at(v.si);
     const Vec3 wi_l = v.si.to_local(wi), wo_l = v.si.to_local(wo);
     // BSDF convention: its wo is our camera-side wi, its wi our light-side wo.
     if (is_specular(v)) return v.bsdf->eval_delta(ctx, wi_l, wo_l);  // Eq. 9: kappa
     const Vec3 h = generalized_half_vector(v, wi, wo);
-    const double D = half_vector_density(v, h);
     const double cos_h = std::abs(dot(h, v.n));
-    if (!(D > 0) || !(cos_h > 0)) return {};
-    // Eq. 6: f_r |do/dh| |<o, n>| / |<h, n>| over p_dH(h) = D(h).
-    return v.bsdf->eval(ctx, wi_l, wo_l) * (std::abs(wo_l.z) * half_vector_jacobian(v, wi, wo, h) / (cos_h * D));
+    if (!(cos_h > 0)) return {};
+    // Eq. 6: f_r |do/dh| |<o, n>| / |<h, n>|.
+    return v.bsdf->eval(ctx, wi_l, wo_l) * (std::abs(wo_l.z) * half_vector_jacobian(v, wi, wo, h) / cos_h);
 }
 
 double vertex_bsdf_density(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const BSDFContext& path_ctx) {
@@ -212,8 +232,8 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
         out.outcome = MneeOutcome::Singular;
         return out;
     }
-    SampledSpectrum throughput(1.0);
-    double p_dH = 1;
+    SampledSpectrum f_dH(1.0);  // the chain's measurement in half-vector space (Eq. 6)
+    double p_dH = 1;            // p_dH(H): the density of the half vectors drawn (Sec. 3.2)
     MediumStack m = media;
     SampledSpectrum tr = m.transmittance(length(chain[0].p - xb.p), ctx.wl);
     // BSDF-sampling density of the same path (area measure), and its prefix up to x_k.
@@ -224,7 +244,7 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
         Vec3 wi, wo;
         vertex_directions(xb.p, chain, xc, i, &wi, &wo);
         const ManifoldVertex& v = chain[i];
-        throughput *= vertex_throughput(v, wi, wo, ctx);
+        f_dH *= vertex_measurement(v, wi, wo, ctx);
         // The chain was solved for the hero's eta: with dispersion it is the hero's path alone.
         out.hero_only = out.hero_only || v.bsdf->dispersive();
         p_dH *= half_vector_density(v, generalized_half_vector(v, wi, wo));
@@ -237,14 +257,16 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
         p_bsdf *= vertex_bsdf_density(v, wi, wo, ctx) * std::abs(dot(next_n, wo)) / length_squared(next - v.p);
     }
     const double p_point = lp.pdf;
-    if (throughput.is_zero() || !(p_point > 0)) {
+    if (f_dH.is_zero() || !(p_dH > 0) || !(p_point > 0)) {
         wc::count_walk_end(false, wc::WalkEnd::Zero);
         out.outcome = MneeOutcome::Zero;
         return out;
     }
     wc::count_walk_end(false, wc::WalkEnd::Found);
     out.outcome = MneeOutcome::Success;
-    out.value = f_b * throughput * Le * tr * (jac.do_b_dx_c / (pmf * p_point));  // Alg. 1, last line
+    // Alg. 1, last line: f_r(x_b) f_dH(X) L_e(x_c) / (p_dH(H) p_dx(x_c)), with the light's pmf in
+    // p_dx; |do_b/dx_c| turns x_b's projected solid angle into x_c's area.
+    out.value = f_b * f_dH * Le * tr * (jac.do_b_dx_c / (p_dH * pmf * p_point));
     // The generalised geometry term over the free-space one (dimensionless, scale-free); the
     // optional clamp of its fold tail.
     const double cos_c = length_squared(lp.n) > 0 ? std::abs(dot(lp.n, from_light)) : 1.0;
@@ -264,19 +286,14 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
 
 bool chain_of_path(const SurfaceInteraction& xb, const SurfaceInteraction* path, int k, const Vec3& xc, double lambda,
                    std::vector<ManifoldVertex>* chain, std::vector<Vec2>* unit_slopes) {
-    chain->assign(size_t(std::max(k, 0)), ManifoldVertex{});
-    unit_slopes->assign(chain->size(), Vec2(0, 0));
-    for (int i = 0; i < k; ++i) {
-        const BSDF* b = path[i].bsdf();
-        if (!is_manifold_interface(b, lambda)) return false;
-        (*chain)[size_t(i)] = ManifoldVertex::from_interaction(path[i], b->eta(lambda));
-    }
+    unit_slopes->assign(size_t(std::max(k, 0)), Vec2(0, 0));
+    if (!manifold_vertices_of(path, k, lambda, chain)) return false;
+    scatter_as_the_path(xb.p, *chain, xc);
     for (size_t i = 0; i < chain->size(); ++i) {
         ManifoldVertex& v = (*chain)[i];
+        if (is_specular(v)) continue;
         Vec3 wi, wo;
         vertex_directions(xb.p, *chain, xc, i, &wi, &wo);
-        v.reflect = dot(wi, v.ng) * dot(wo, v.ng) > 0;
-        if (is_specular(v)) continue;
         v.h_target = tangential(v, generalized_half_vector(v, wi, wo));
         (*unit_slopes)[i] = unit_slope_of(v, v.h_target);
     }
@@ -296,19 +313,14 @@ double solution_density(const Scene& scene, const MneeSettings& st, const Surfac
     if (k <= 0 || k > st.max_vertices) return 0;
     const double p_point = light_point_pdf(scene, light, xb.p, xc, nc);  // Alg. 2 line 1
     if (!(p_point > 0) || mnee_seed_culled(xb, bsdf_b, xc, st.cull_margin)) return 0;
-    std::vector<ManifoldVertex> input(static_cast<size_t>(k));
-    for (int i = 0; i < k; ++i) {
-        const BSDF* b = path[i].bsdf();
-        if (!is_manifold_interface(b, lambda) || path[i].emitter()) return 0;
-        input[size_t(i)] = ManifoldVertex::from_interaction(path[i], b->eta(lambda));
-    }
+    std::vector<ManifoldVertex> input;
+    if (!manifold_vertices_of(path, k, lambda, &input)) return 0;
+    for (int i = 0; i < k; ++i)
+        if (path[i].emitter()) return 0;
     // Each vertex as the path itself scatters there (reflections only with settings.reflections).
-    for (int i = 0; i < k; ++i) {
-        Vec3 wi, wo;
-        vertex_directions(xb.p, input, xc, size_t(i), &wi, &wo);
-        input[size_t(i)].reflect = dot(wi, input[size_t(i)].ng) * dot(wo, input[size_t(i)].ng) > 0;
-        if (input[size_t(i)].reflect && !st.reflections) return 0;
-    }
+    scatter_as_the_path(xb.p, input, xc);
+    for (const ManifoldVertex& v : input)
+        if (v.reflect && !st.reflections) return 0;
     if (!admissible(xb.p, input, xc)) return 0;
     // The domain: refractive interfaces lie on the straight segment x_b -> x_c, blocked by an
     // opaque surface or not (the integrator runs the surface seeds for both).
@@ -335,12 +347,8 @@ double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInterac
     if (!(p_point > 0) || mnee_seed_culled(xb, bsdf_b, xc, st.cull_margin)) return 0;
 
     // The input path as manifold vertices, with its own half vectors.
-    std::vector<ManifoldVertex> input(static_cast<size_t>(k));
-    for (int i = 0; i < k; ++i) {
-        const BSDF* b = path[i].bsdf();
-        if (!is_manifold_interface(b, lambda)) return 0;
-        input[size_t(i)] = ManifoldVertex::from_interaction(path[i], b->eta(lambda));
-    }
+    std::vector<ManifoldVertex> input;
+    if (!manifold_vertices_of(path, k, lambda, &input)) return 0;
     if (!admissible(xb.p, input, xc)) return 0;
 
     // Line 2: the seed path from x_b to x_c must cross the same shapes in the same order.

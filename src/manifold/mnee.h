@@ -62,9 +62,10 @@ struct MneeConnection {
 /// vertex v, with the camera-side direction wi fixed (Walter et al. 2007, Eqs. 14 and 16).
 double half_vector_jacobian(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const Vec3& h);
 
-/// The scattering factor of vertex v in half-vector measure: kappa (Eq. 9) if specular, else
-/// f_r |cos o| |do/dh| / (|cos h| D(h)) (Eq. 6 over p_dH = D, projected solid angle).
-SampledSpectrum vertex_throughput(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const BSDFContext& ctx);
+/// The scattering factor of vertex v in half-vector measure (Eq. 6's factor of f_dH): kappa
+/// (Eq. 9) if specular, else f_r |cos o| |do/dh| / |cos h|. Alg. 1 divides the product by
+/// p_dH(H) (half_vector_density) in its last line.
+SampledSpectrum vertex_measurement(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const BSDFContext& ctx);
 
 /// Density with which BSDF sampling at v produces wo from wi: solid angle for rough
 /// vertices, lobe probability / |do/dh| for specular ones (delta factored out in h).

@@ -88,8 +88,8 @@ MneeSettings MneeSettings::from_props(const Props& p) {
     // The allocation is learned unless q is given, or the outlier rule of the biased mode needs
     // every region's walks (issue 26; docs/experiments.md, "Where the walks pay").
     // The paper's estimator (solutions=one) walks everywhere unless told to learn.
-    // `keyed` walks everywhere too: on the ball on a plane the learned q made its caustic 4x
-    // noisier (docs/experiments.md, "Keyed trials").
+    // `keyed` walks everywhere too: the learned q made its ball caustic noisier
+    // (docs/experiments.md, "Keyed trials").
     const bool learned_default = !s.biased && !p.has("connect_probability") && s.solutions != MneeSolutions::One &&
                                  s.solutions != MneeSolutions::Keyed;
     s.learned_allocation = p.get_choice("allocation", learned_default, {{"learned", true}, {"fixed", false}});

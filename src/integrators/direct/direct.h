@@ -17,8 +17,9 @@ struct DirectSettings {
 class DirectIntegrator : public PathTracer {
 public:
     explicit DirectIntegrator(const DirectSettings& s);
-    SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler,
-                       const SampledWavelengths& wl) const override;
+    /// (`observer` is not told: `direct` is nobody's inner estimator.)
+    SampledSpectrum radiance(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl,
+                             PathObserver* observer) const override;
 
 private:
     DirectSettings m_direct;

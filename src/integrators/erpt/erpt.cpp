@@ -54,7 +54,7 @@ ErptSettings ErptSettings::from_props(const Props& props) {
 
 std::unique_ptr<ErptTracer> ErptIntegrator::prepare_erpt(const Scene& scene, const FilmSpec& film,
                                                          const RenderOptions& opt) const {
-    const std::shared_ptr<const PathTracer> inner =
+    const std::shared_ptr<const RadianceEstimator> inner =
         make_watching_estimator(m_settings.sampler, m_settings.path, m_settings.mnee,
                                 resolve_shape_ids(scene, m_settings.shapes, m_settings.loc));
     const int n_lambda = spectral_samples();

@@ -53,7 +53,7 @@ struct ErptSettings {
 /// pixel sample's own sampler.
 class ErptTracer final : public SampleTracer {
 public:
-    ErptTracer(const ErptSettings& settings, std::shared_ptr<const PathTracer> inner, const FilmSpec& film,
+    ErptTracer(const ErptSettings& settings, std::shared_ptr<const RadianceEstimator> inner, const FilmSpec& film,
                int spectral_samples, double deposit, double mean_energy)
         : m_settings(settings),
           m_inner(std::move(inner)),
@@ -71,7 +71,7 @@ public:
 
 private:
     const ErptSettings& m_settings;
-    std::shared_ptr<const PathTracer> m_inner;
+    std::shared_ptr<const RadianceEstimator> m_inner;
     FilmSpec m_film;
     int m_spectral_samples;
     double m_deposit, m_mean_energy;

@@ -5,6 +5,7 @@
 
 #include "geometry/shape.h"
 #include "integrators/mnee/mnee_integrator.h"
+#include "integrators/path/path_tracer.h"
 #include "scene/scene.h"
 
 namespace snell {
@@ -15,32 +16,42 @@ namespace {
 // sample between threads in the middle of an evaluation.
 thread_local bool t_touched = false;
 
-/// Base (PathTracer or MneeIntegrator) with its arrival hook also checking the shape.
-template <class Base>
-class ShapeWatching final : public Base {
+/// Sets the flag when the path arrives on a watched shape.
+class ShapeObserver final : public PathObserver {
 public:
-    template <class... Args>
-    explicit ShapeWatching(std::vector<const Shape*> watched, Args&&... args)
-        : Base(std::forward<Args>(args)...), m_watched(std::move(watched)) {}
-
-    SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler,
-                       const SampledWavelengths& wl) const override {
-        t_touched = false;
-        return Base::li(ray, scene, sampler, wl);
-    }
-
-protected:
-    // on_arrival runs at every vertex of the camera subpath and at nothing else (light
-    // samples and manifold walks do not arrive), which is what "touches" means.
-    void on_arrival(PathState& state, const SurfaceInteraction& si, const Ray& ray,
-                    const BSDFContext& ctx) const override {
-        Base::on_arrival(state, si, ray, ctx);
-        if (!t_touched && si.shape && std::find(m_watched.begin(), m_watched.end(), si.shape) != m_watched.end())
+    explicit ShapeObserver(const std::vector<const Shape*>& watched) : m_watched(&watched) {}
+    void arrived(const SurfaceInteraction& si) override {
+        if (!t_touched && si.shape && std::find(m_watched->begin(), m_watched->end(), si.shape) != m_watched->end())
             t_touched = true;
     }
 
 private:
-    std::vector<const Shape*> m_watched;  // a handful: a linear search is cheapest
+    const std::vector<const Shape*>* m_watched;  // a handful: a linear search is cheapest
+};
+
+/// The inner estimator, its camera subpaths watched (the observer sees every vertex of the
+/// camera subpath and nothing else: light samples and manifold walks do not arrive).
+class ShapeWatching final : public RadianceEstimator {
+public:
+    ShapeWatching(std::vector<const Shape*> watched, std::shared_ptr<const RadianceEstimator> inner)
+        : m_watched(std::move(watched)), m_inner(std::move(inner)) {}
+
+    SampledSpectrum radiance(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl,
+                             PathObserver* /*observer*/) const override {
+        t_touched = false;
+        ShapeObserver watch(m_watched);
+        return m_inner->radiance(ray, scene, sampler, wl, &watch);
+    }
+    std::unique_ptr<SampleTracer> prepare(const Scene& /*scene*/, const FilmSpec& /*film*/,
+                                          const RenderOptions& /*options*/) const override {
+        return std::make_unique<RadianceTracer>(*this);
+    }
+    std::string name() const override { return m_inner->name(); }
+    const PathSettings& settings() const override { return m_inner->settings(); }
+
+private:
+    std::vector<const Shape*> m_watched;
+    std::shared_ptr<const RadianceEstimator> m_inner;
 };
 
 }  // namespace
@@ -83,10 +94,15 @@ std::vector<const Shape*> resolve_shape_ids(const Scene& scene, const std::vecto
     return shapes;
 }
 
-std::shared_ptr<PathTracer> make_watching_estimator(const std::string& sampler, const PathSettings& path,
-                                                    const MneeSettings& mnee, std::vector<const Shape*> watched) {
-    if (sampler == "mnee") return std::make_shared<ShapeWatching<MneeIntegrator>>(std::move(watched), path, mnee);
-    return std::make_shared<ShapeWatching<PathTracer>>(std::move(watched), path, true);
+std::shared_ptr<RadianceEstimator> make_watching_estimator(const std::string& sampler, const PathSettings& path,
+                                                           const MneeSettings& mnee,
+                                                           std::vector<const Shape*> watched) {
+    std::shared_ptr<const RadianceEstimator> inner;
+    if (sampler == "mnee")
+        inner = std::make_shared<MneeIntegrator>(path, mnee);
+    else
+        inner = std::make_shared<PathTracer>(path, true);
+    return std::make_shared<ShapeWatching>(std::move(watched), std::move(inner));
 }
 
 bool camera_path_touched() { return t_touched; }

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/props.h"
-#include "integrators/path/path_tracer.h"
+#include "integrators/path/radiance_estimator.h"
 #include "manifold/mnee_settings.h"
 
 namespace snell {
@@ -29,8 +29,8 @@ std::vector<const Shape*> resolve_shape_ids(const Scene& scene, const std::vecto
 /// by camera_path_touched(), whether the camera subpath of its latest li() had a vertex (a
 /// surface hit by the camera ray or by a BSDF-sampled ray) on one of `watched`. Estimates and
 /// random numbers are exactly those of the unwrapped estimator.
-std::shared_ptr<PathTracer> make_watching_estimator(const std::string& sampler, const PathSettings& path,
-                                                    const MneeSettings& mnee, std::vector<const Shape*> watched);
+std::shared_ptr<RadianceEstimator> make_watching_estimator(const std::string& sampler, const PathSettings& path,
+                                                           const MneeSettings& mnee, std::vector<const Shape*> watched);
 
 /// The flag of the latest li() of a watching estimator on the calling thread. A thread runs
 /// one li() at a time, so reading it right after the call gives that call's answer.

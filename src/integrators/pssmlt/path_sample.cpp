@@ -10,7 +10,7 @@
 namespace snell {
 
 // Same conversion as render(): raster jitter (2D), then the wavelengths (2D), then li().
-PathSample evaluate(const Scene& scene, const Camera& camera, const PathTracer& inner, int spectral_samples,
+PathSample evaluate(const Scene& scene, const Camera& camera, const RadianceEstimator& inner, int spectral_samples,
                     const FilmSpec& spec, Sampler& sampler) {
     const int w = spec.out_width(), h = spec.out_height();
     const Vec2 u = sampler.next_2d();

@@ -10,7 +10,7 @@
 namespace snell {
 
 class Scene;
-class PathTracer;
+class RadianceEstimator;
 
 /// One evaluation of the inner estimator at the sampler's current primary sample.
 struct PathSample {
@@ -23,7 +23,7 @@ struct PathSample {
 /// Draws the film position u in [0,1)^2 (over the output window) and the wavelength from
 /// `sampler` (`spectral_samples` wavelengths), then runs `inner`. Invalid (NaN, infinite, negative) estimates become
 /// zero and are counted, as in render().
-PathSample evaluate(const Scene& scene, const Camera& camera, const PathTracer& inner, int spectral_samples,
+PathSample evaluate(const Scene& scene, const Camera& camera, const RadianceEstimator& inner, int spectral_samples,
                     const FilmSpec& spec, Sampler& sampler);
 
 }  // namespace snell

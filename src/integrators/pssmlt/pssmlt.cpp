@@ -45,7 +45,7 @@ PssmltSettings PssmltSettings::from_props(const Props& props) {
     return s;
 }
 
-std::shared_ptr<PathTracer> make_pssmlt_inner(const PssmltSettings& s) {
+std::shared_ptr<RadianceEstimator> make_pssmlt_inner(const PssmltSettings& s) {
     if (s.sampler == "mnee") return std::make_shared<MneeIntegrator>(s.path, s.mnee);
     return std::make_shared<PathTracer>(s.path, true);
 }

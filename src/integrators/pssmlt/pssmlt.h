@@ -36,7 +36,7 @@ struct PssmltSettings {
 };
 
 /// The inner per-sample estimator that the chains drive (`nee` or `mnee`).
-std::shared_ptr<PathTracer> make_pssmlt_inner(const PssmltSettings& settings);
+std::shared_ptr<RadianceEstimator> make_pssmlt_inner(const PssmltSettings& settings);
 
 /// Renders `film` with PSSMLT. The target function is the luminance Y of a sample's XYZ;
 /// the normalisation b = E[Y] comes from `bootstrap_samples` independent paths, from which

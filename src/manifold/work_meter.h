@@ -8,9 +8,8 @@
 namespace snell {
 
 /// One vertex projection of a manifold walk (a closest-point query, the constraint blocks and
-/// their share of the block-tridiagonal solve) in ray queries: the ratio of their thread times
-/// per count on the caustic gallery lies between 0.6 and 1.2 (docs/mnee.md, "Where the walks
-/// pay").
+/// their share of the block-tridiagonal solve) in ray queries: their thread times per count are
+/// alike on the caustic gallery (measured in docs/mnee.md, "Where the walks pay").
 inline constexpr double kWalkStepWork = 1.0;
 
 /// The calling thread's work so far: the difference of two readings is what the code between

@@ -1,0 +1,227 @@
+#include "integrators/mnee/mnee_path.h"
+
+#include <cmath>
+
+#include "core/sampler.h"
+#include "integrators/light_connection.h"
+#include "integrators/mis.h"
+#include "manifold/light_point.h"
+#include "manifold/mnee.h"
+#include "manifold/seed_path.h"
+#include "manifold/work_meter.h"
+#include "render/camera_sample.h"
+#include "scene/scene.h"
+
+namespace snell {
+
+MneePath::MneePath(const Scene& scene, const PathSettings& path, const MneeSettings& mnee, const SampledWavelengths& wl,
+                   const Ray& camera_ray, PathObserver* observer, double q, PilotSample* pilot)
+    : m_scene(&scene),
+      m_path(&path),
+      m_mnee(&mnee),
+      m_technique(scene, mnee),
+      m_ctx{wl, TransportMode::Radiance},
+      m_walk(scene, path, wl, camera_ray, observer),
+      m_q(q),
+      m_pilot(pilot) {
+    m_prev.at = {camera_ray.o, Vec3()};
+}
+
+SampledSpectrum MneePath::trace(Sampler& sampler) {
+    ++render_stats::paths;
+    const Scene& scene = *m_scene;
+    const SampledWavelengths& wl = m_ctx.wl;
+    CameraWalk& walk = m_walk;
+    SurfaceInteraction si;  // overwritten by every hit
+    for (;; ++walk.depth) {
+        // The emitter's weight depends on the path *before* this vertex (it ends here), so it
+        // is computed before the vertex joins the suffix.
+        if (!walk.trace(&si)) {
+            if (walk.emitters_visible())
+                for (const Light* light : scene.infinite_lights()) {
+                    const SampledSpectrum le = light->le_escaped(walk.ray.d, wl);
+                    walk.add_emission(m_out, emitter_technique(), le, [&] {
+                        return emitter_weight(*light, Vec3(), Vec3(), walk.ray.d, walk.tp.beta * le);
+                    });
+                }
+            break;
+        }
+        if (const Light* em = si.emitter(); em && walk.emitters_visible()) {
+            const SampledSpectrum le = em->le(si.p, si.n, si.uv, -walk.ray.d, wl);
+            walk.add_emission(m_out, emitter_technique(), le,
+                              [&] { return emitter_weight(*em, si.p, si.n, walk.ray.d, walk.tp.beta * le); });
+        }
+        arrive(si);
+        const BSDF* bsdf = si.bsdf();
+        if (!walk.may_scatter() || !bsdf) break;
+        const BSDFContext sctx = m_ctx.at(si);  // textures are read at this vertex
+        if (bsdf->is_smooth_sampled()) connect(si, *bsdf, sctx, sampler);
+        const MediumStack media_before = walk.media;
+        const auto bs = walk.scatter(si, *bsdf, sctx, sampler);
+        if (!bs) break;
+        m_prev.record(si, *bs);
+        scattered(si, *bsdf, *bs, media_before);
+    }
+    return m_out.finish(wl);
+}
+
+void MneePath::connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& sctx, Sampler& sampler) {
+    const SampledSpectrum& beta = m_walk.tp.beta;
+    if (is_manifold_interface(&bsdf, m_ctx.hero())) {
+        m_out.add(Technique::Nee, beta * connect_at_interface(si, bsdf, sctx, sampler));
+        return;
+    }
+    // Alg. 1 from x_b = si. The connection adds k + 1 segments to the depth + 1 the path has
+    // (max_depth, Mitsuba's meaning); BSDF sampling cannot produce longer paths, so neither may
+    // MNEE.
+    ManifoldQuery query{&si, &bsdf, sctx, m_walk.media, m_walk.tp.hero_only};
+    query.connect_probability = m_q >= 0 ? m_q : m_mnee->connect_probability;
+    query.max_k = m_path->max_depth >= 0 ? m_path->max_depth - m_walk.depth - 2 : -1;
+    query.meter_work = m_pilot != nullptr;
+    const ManifoldConnection c = m_technique.connect(query, sampler);
+    switch (c.kind) {
+        case ManifoldConnection::Kind::None:
+            return;
+        case ManifoldConnection::Kind::Direct: {
+            // NEE's sample, with NEE's weight.
+            const SampledSpectrum f = bsdf.eval(sctx, si.to_local(si.wo), si.to_local(c.ls.wi));
+            if (f.is_nonzero())
+                m_out.add(Technique::Nee, beta * nee_estimate(si, bsdf, sctx, m_walk.media, c.ls, f, c.pmf,
+                                                              nee_weight(si, bsdf, sctx, c.ls, c.pmf)));
+            return;
+        }
+        case ManifoldConnection::Kind::Manifold:
+            break;
+    }
+    // Delta lights keep q = 1 in every region: their connections are no part of the choice.
+    if (m_pilot && !c.light->is_delta()) {
+        m_pilot->work_connect += c.work;
+        for (const ManifoldSolution& sol : c.set.solutions)
+            m_pilot->add_connection((beta * sol.value * sol.count).average(), sol.density,
+                                    sol.pdf_bsdf + sol.pdf_nee_last, c.q);
+    }
+    // Each solution weighed against the techniques that produce the same path: the connection was
+    // made with probability q, so it counts 1 / q and its density is q p_mnee (BSDF sampling's
+    // paths are weighed the same way in emitter_weight and connect_at_interface).
+    for (const ManifoldSolution& sol : c.set.solutions)
+        m_out.add(sol.from_surface ? Technique::MneeSurface : Technique::MneeStraight,
+                  beta * sol.value *
+                      (sol.count * power_heuristic(c.q * sol.density, {sol.pdf_bsdf, sol.pdf_nee_last}) / c.q));
+}
+
+SampledSpectrum MneePath::connect_at_interface(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& sctx,
+                                               Sampler& sampler) {
+    const Scene& scene = *m_scene;
+    const RefractiveSuffix& s = m_suffix;
+    const Light* light = nullptr;
+    double pmf = 0;
+    const auto ls = sample_light(scene, si, m_ctx.wl, sampler, &light, &pmf);
+    if (!ls) return {};
+    if (!s.has_xb || s.k == 0) return nee_connect(scene, si, bsdf, sctx, m_walk.media, *ls, pmf);
+    const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls->wi);
+    const SampledSpectrum f = bsdf.eval(sctx, wo, wi);
+    if (f.is_zero()) return {};
+    const Ray shadow = std::isinf(ls->dist) ? scene.spawn_ray(si, ls->wi) : scene.spawn_ray_to(si, ls->p, ls->p_error);
+    if (scene.occluded(shadow)) return {};
+    // The path x_b, x_1..x_k = si, x_c in area measure (lights at infinity on MNEE's far sphere).
+    const LightPoint lp = light_point_hit(scene, *light, ls->p, ls->n, ls->uv, ls->wi, s.xb.p);
+    const double p_nee = s.p_prefix * pmf * light_point_pdf(scene, *light, si.p, lp.p, lp.n);
+    const double p_bsdf =
+        lp.delta ? 0.0
+                 : s.p_prefix * bsdf.pdf(sctx, wo, wi) * std::abs(dot(lp.n, ls->wi)) / length_squared(lp.p - si.p);
+    const bool refracts = dot(si.wo, si.ng) * dot(ls->wi, si.ng) < 0;
+    const double q = connect_probability(*light);
+    const double p_m = mnee_density(refracts, *light, pmf, lp.p, lp.n, q);
+    const double p_mnee = q * p_m;
+    if (m_mnee->biased && covers(refracts) && !(p_mnee > 0)) return {};
+    const SampledSpectrum unweighted = nee_estimate(si, bsdf, sctx, m_walk.media, *ls, f, pmf, 1.0);
+    if (m_pilot && p_m > 0 && !light->is_delta())
+        m_pilot->add_other((m_walk.tp.beta * unweighted).average(), p_nee, p_m, p_nee + p_bsdf, q);
+    return unweighted * power_heuristic(p_nee, {p_bsdf, p_mnee});
+}
+
+double MneePath::emitter_weight(const Light& light, const Vec3& p, const Vec3& n, const Vec3& d,
+                                const SampledSpectrum& value) const {
+    const Scene& scene = *m_scene;
+    const RefractiveSuffix& s = m_suffix;
+    if (!s.has_xb || s.k == 0) return m_prev.emitter_weight(scene, light, p, n, d);
+    // A BSDF-sampled path x_b, x_1..x_k (refractive), x_c: three techniques can produce it.
+    const LightPoint lp = light_point_hit(scene, light, p, n, Vec2(), d, s.xb.p);  // densities only: no uv
+    const double pmf = scene.light_sampler().pmf(&light);
+    const size_t last = size_t(s.k - 1);
+    const double p_bsdf = s.p_prefix * s.q_last * std::abs(dot(lp.n, d)) / length_squared(lp.p - s.chain[last].p);
+    const double q = connect_probability(light);
+    const double p_m = mnee_density(true, light, pmf, lp.p, lp.n, q);
+    const double p_mnee = q * p_m;
+    const double p_nee =
+        s.specular[last] ? 0.0 : s.p_prefix * pmf * light_point_pdf(scene, light, s.chain[last].p, lp.p, lp.n);
+    if (m_pilot && p_m > 0) m_pilot->add_other(value.average(), p_bsdf, p_m, p_bsdf + p_nee, q);
+    // Sec. 3.5: outlier removal drops the light that BSDF sampling finds through interfaces after
+    // x_b but MNEE cannot: transmissive suffixes its walks do not reach, and suffixes with an
+    // internal reflection (rare, bright hits through the glass: fireflies that no sample count
+    // averages away).
+    if (m_mnee->biased && !(p_mnee > 0)) return 0.0;
+    return power_heuristic(p_bsdf, {p_mnee, p_nee});
+}
+
+Technique MneePath::emitter_technique() const {
+    if (!m_suffix.has_xb || m_suffix.k == 0) return Technique::BsdfHit;
+    return m_suffix.transmissions_only ? Technique::BsdfRefracted : Technique::BsdfReflected;
+}
+
+void MneePath::arrive(const SurfaceInteraction& si) {
+    RefractiveSuffix& s = m_suffix;
+    if (!s.has_xb || !is_manifold_interface(si.bsdf(), m_ctx.hero())) return;
+    if (s.k >= RefractiveSuffix::kMaxVertices) {
+        s.has_xb = false;
+        return;
+    }
+    // Area density of reaching this vertex: solid-angle density times |cos| / d^2.
+    s.p_prefix *= s.q_last * std::abs(dot(si.ng, m_walk.ray.d)) / (si.t * si.t);
+    s.chain[size_t(s.k++)] = si;
+}
+
+void MneePath::scattered(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFSample& bs,
+                         const MediumStack& media_before) {
+    RefractiveSuffix& s = m_suffix;
+    if (is_manifold_interface(&bsdf, m_ctx.hero())) {
+        if (!s.has_xb) return;
+        const size_t i = size_t(s.k - 1);
+        s.specular[i] = bs.is_delta();
+        if (!(bs.lobe & kTransmission)) s.transmissions_only = false;
+        const ManifoldVertex v = ManifoldVertex::from_interaction(si, bsdf.eta(m_ctx.hero()));
+        s.q_last = vertex_bsdf_density(v, si.wo, bs.wi, m_ctx.at(si));
+    } else if (bsdf.is_smooth_sampled() && !bs.is_delta()) {
+        // A new x_b: MNEE connected from here.
+        s = RefractiveSuffix();
+        s.has_xb = true;
+        s.xb = si;
+        s.xb_media = media_before;
+        s.q_last = bs.pdf;
+    } else {
+        s.has_xb = false;
+    }
+}
+
+double MneePath::mnee_density(bool last_refracts, const Light& light, double pmf, const Vec3& p, const Vec3& n,
+                              double q) const {
+    const RefractiveSuffix& s = m_suffix;
+    // q = 0: the region leaves these paths to BSDF sampling, and MIS needs no density (nor its walk).
+    if (!covers(last_refracts) || !(q > 0)) return 0.0;
+    const double w0 = m_pilot ? work_so_far() : 0.0;
+    const double d = m_technique.density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light, pmf, p, n, m_ctx.hero());
+    if (m_pilot) m_pilot->work_density += work_so_far() - w0;
+    return d;
+}
+
+double MneePath::connect_probability(const Light& light) const {
+    if (light.is_delta()) return 1.0;
+    return m_q >= 0 ? m_q : m_mnee->connect_probability;
+}
+
+bool MneePath::covers(bool last_refracts) const {
+    if (m_mnee->reflections && m_mnee->solutions != MneeSolutions::One) return true;
+    return m_suffix.transmissions_only && last_refracts;
+}
+
+}  // namespace snell

@@ -1,0 +1,70 @@
+#pragma once
+// One camera sample of the `mnee` integrator (paper Sec. 3): path tracing whose light connection
+// from a non-specular vertex x_b is manifold next event estimation (ManifoldTechnique::connect,
+// Alg. 1), weighted against BSDF sampling through the interfaces after x_b and against NEE from
+// a rough last interface vertex by the power heuristic, with Alg. 2's densities. The loop is
+// the path tracer's (camera_walk.h); what MNEE adds is the refractive suffix since x_b, which
+// every MIS weight needs.
+#include "integrators/mnee/connection_allocation.h"
+#include "integrators/mnee/refractive_suffix.h"
+#include "integrators/path/camera_walk.h"
+#include "manifold/manifold_technique.h"
+#include "manifold/mnee_settings.h"
+
+namespace snell {
+
+class MneePath {
+public:
+    /// `q`: the connection probability of this sample's region (ConnectionAllocation; < 0:
+    /// MneeSettings::connect_probability). `pilot`: the allocation's pilot records this sample.
+    MneePath(const Scene& scene, const PathSettings& path, const MneeSettings& mnee, const SampledWavelengths& wl,
+             const Ray& camera_ray, PathObserver* observer, double q, PilotSample* pilot);
+
+    /// The sample's radiance (all randomness from `sampler`).
+    SampledSpectrum trace(Sampler& sampler);
+
+private:
+    /// At a non-specular vertex that is no interface: Alg. 1 from x_b = si. At a rough
+    /// interface vertex: NEE, weighted against BSDF sampling and MNEE from the path's x_b.
+    void connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& sctx, Sampler& sampler);
+    SampledSpectrum connect_at_interface(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& sctx,
+                                         Sampler& sampler);
+    /// MIS weight of an emitter that BSDF sampling reached at (p, n) (zero for lights at
+    /// infinity) along d, emitting `value` (path throughput included) towards the path.
+    double emitter_weight(const Light& light, const Vec3& p, const Vec3& n, const Vec3& d,
+                          const SampledSpectrum& value) const;
+    /// The technique credited with such an emitter (statistics only).
+    Technique emitter_technique() const;
+    /// The path arrived at `si`: an interface after x_b joins the suffix.
+    void arrive(const SurfaceInteraction& si);
+    /// The BSDF at `si` sampled `bs` (world space) with the path in `media_before` at si: the
+    /// suffix grows, or si becomes the new x_b, or the path leaves MNEE's class.
+    void scattered(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFSample& bs,
+                   const MediumStack& media_before);
+
+    /// q for a light on this path: the region's or the settings'; 1 for delta lights, which BSDF
+    /// sampling cannot hit.
+    double connect_probability(const Light& light) const;
+    /// Whether the manifold technique can produce a path whose suffix after x_b is the
+    /// recorded one (the last vertex refracting or not): refractions only, or any suffix when
+    /// its surface seeds also reflect (solutions other than one, with reflections).
+    bool covers(bool last_refracts) const;
+    /// MNEE's density of the BSDF-sampled suffix ending at the light point (p, n), or 0 when the
+    /// technique cannot produce it or q is 0; its work goes to the pilot's record.
+    double mnee_density(bool last_refracts, const Light& light, double pmf, const Vec3& p, const Vec3& n,
+                        double q) const;
+
+    const Scene* m_scene;
+    const PathSettings* m_path;
+    const MneeSettings* m_mnee;
+    ManifoldTechnique m_technique;
+    BSDFContext m_ctx;
+    CameraWalk m_walk;
+    PreviousVertex m_prev;
+    RefractiveSuffix m_suffix;
+    double m_q;
+    PilotSample* m_pilot;
+    SampleRadiance m_out;
+};
+
+}  // namespace snell
