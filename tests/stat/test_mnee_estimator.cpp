@@ -5,8 +5,10 @@
 
 #include "bsdf/fresnel.h"
 #include "integrators/mis.h"
+#include "manifold/manifold_technique.h"
 #include "manifold/mnee.h"
 #include "manifold/seed_path.h"
+#include "manifold/walk_counters.h"
 #include "sampler/independent.h"
 #include "stat/droplet_points.h"
 #include "stat/render_stats.h"
@@ -223,4 +225,87 @@ TEST(MneeEstimator, MaxGeometryOffByDefaultAndClampsAboveThreshold) {
         EXPECT_NEAR(clamped.value[0], 0.5 * off.value[0], 1e-12 * off.value[0]);
         EXPECT_EQ(clamped.pdf_mnee, off.pdf_mnee);  // densities, hence MIS weights, are untouched
     }
+}
+
+// ManifoldTechnique::connect is Alg. 1 whole: the light sample, the seed and the solutions are
+// those of the pieces run by hand from the same sampler state; where nothing refracts it is NEE's
+// sample (Kind::Direct); with q = 0 it never walks, and with q = 1/2 it walks for half of the
+// refracting seeds (binomial, 5 standard deviations).
+TEST(MneeConnect, IsAlgorithmOneWhole) {
+    LoadedScene ls = droplet(kAreaLight);
+    const Scene& scene = *ls.scene;
+    const MneeSettings st;  // the paper's estimator: one solution, from the straight seed
+    const ManifoldTechnique technique(scene, st);
+    const SurfaceInteraction under = droplet_receiver(scene, 0.1, 0.05, 2);
+    const SurfaceInteraction aside = droplet_receiver(scene, 2.5, 0.05, 2);  // the light in plain sight
+    const auto query = [&](const SurfaceInteraction& xb, double q) {
+        ManifoldQuery mq{&xb, xb.bsdf(), kCtx, MediumStack(), false};
+        mq.connect_probability = q;
+        return mq;
+    };
+    IndependentSampler smp(11), by_hand(11);
+    int manifold = 0, solutions = 0;
+    for (int n = 0; n < 300; ++n) {
+        smp.start_pixel_sample(n, 0, 0);
+        by_hand.start_pixel_sample(n, 0, 0);
+        const ManifoldConnection c = technique.connect(query(under, 1.0), smp);
+        // Line 1, line 2, then solve() from the same numbers.
+        double pmf = 0;
+        const Light* light = scene.light_sampler().sample(by_hand.next_1d(), &pmf);
+        const auto s = light->sample_li({under.p, under.n}, by_hand.next_2d(), kCtx.wl);
+        if (!s) {
+            EXPECT_EQ(c.kind, ManifoldConnection::Kind::None);
+            continue;
+        }
+        const LightPoint lp = light_point(scene, *light, *s, under.p);
+        std::vector<ManifoldVertex> seed;
+        if (trace_seed_path(scene, under, lp.p, 550, st, &seed) != SeedStatus::Refractive) continue;
+        ASSERT_EQ(c.kind, ManifoldConnection::Kind::Manifold);
+        EXPECT_EQ(c.light, light);
+        EXPECT_EQ(c.q, 1.0);
+        ManifoldQuery mq = query(under, 1.0);
+        const SolutionSet set = technique.solve(mq, *light, pmf, lp, seed, by_hand);
+        ASSERT_EQ(c.set.solutions.size(), set.solutions.size());
+        for (size_t i = 0; i < set.solutions.size(); ++i) {
+            EXPECT_EQ(c.set.solutions[i].value[0], set.solutions[i].value[0]);
+            EXPECT_EQ(c.set.solutions[i].density, set.solutions[i].density);
+        }
+        ++manifold;
+        solutions += int(set.solutions.size());
+    }
+    EXPECT_GT(manifold, 200);
+    EXPECT_GT(solutions, 100);
+
+    // In plain sight: NEE's sample, with or without walks allowed.
+    for (double q : {1.0, 0.0}) {
+        int direct = 0;
+        for (int n = 0; n < 100; ++n) {
+            smp.start_pixel_sample(n, 1, 0);
+            const ManifoldConnection c = technique.connect(query(aside, q), smp);
+            EXPECT_NE(c.kind, ManifoldConnection::Kind::Manifold);
+            direct += c.kind == ManifoldConnection::Kind::Direct;
+        }
+        EXPECT_GT(direct, 90) << "q = " << q;
+    }
+
+    // q = 0 under the droplet: no walk, and the glass blocks NEE's shadow ray.
+    const uint64_t walks_before = walk_counters::walks_started.this_thread();
+    for (int n = 0; n < 200; ++n) {
+        smp.start_pixel_sample(n, 2, 0);
+        EXPECT_EQ(technique.connect(query(under, 0.0), smp).kind, ManifoldConnection::Kind::None);
+    }
+    EXPECT_EQ(walk_counters::walks_started.this_thread(), walks_before);
+
+    // q = 1/2: half of the refracting seeds are walked.
+    int walked = 0;
+    const int n_half = 4000;
+    for (int n = 0; n < n_half; ++n) {
+        smp.start_pixel_sample(n, 3, 0);
+        const ManifoldConnection c = technique.connect(query(under, 0.5), smp);
+        if (c.kind == ManifoldConnection::Kind::Manifold) {
+            EXPECT_EQ(c.q, 0.5);
+            ++walked;
+        }
+    }
+    EXPECT_NEAR(double(walked), 0.5 * n_half, 5 * std::sqrt(0.25 * n_half));
 }
