@@ -6,6 +6,7 @@
 #include "core/props.h"
 #include "integrators/light_connection.h"
 #include "integrators/mis.h"
+#include "integrators/path/camera_walk.h"
 #include "integrators/scatter.h"
 #include "light/light.h"
 #include "render/camera_sample.h"
@@ -45,25 +46,19 @@ SampledSpectrum DirectIntegrator::radiance(const Ray& ray, const Scene& scene, S
                                            const SampledWavelengths& wl, PathObserver* /*observer*/) const {
     ++render_stats::paths;
     const BSDFContext ctx{wl, TransportMode::Radiance};
-    TechniqueLog log;
-    SampledSpectrum L;
-    const auto add = [&](Technique t, const SampledSpectrum& v) {
-        L += v;
-        log.add(t, v);
-    };
+    SampleRadiance out;
     SurfaceInteraction si;
     if (!scene.intersect(ray, &si)) {
         if (!m_direct.hide_emitters)
-            for (const Light* light : scene.infinite_lights()) add(Technique::Emitted, light->le_escaped(ray.d, wl));
-        log.record(wl);
-        return L;
+            for (const Light* light : scene.infinite_lights())
+                out.add(Technique::Emitted, light->le_escaped(ray.d, wl));
+        return out.finish(wl);
     }
     if (const Light* em = si.emitter(); em && !m_direct.hide_emitters)
-        add(Technique::Emitted, em->le(si.p, si.n, si.uv, -ray.d, wl));
+        out.add(Technique::Emitted, em->le(si.p, si.n, si.uv, -ray.d, wl));
     const BSDF* bsdf = si.bsdf();
     if (!bsdf) {
-        log.record(wl);
-        return L;
+        return out.finish(wl);
     }
     const int ne = bsdf->is_smooth_sampled() ? m_direct.emitter_samples : 0, nb = m_direct.bsdf_samples;
     // Each technique's density weighted by its share of the samples (Veach's n_i p_i).
@@ -76,7 +71,8 @@ SampledSpectrum DirectIntegrator::radiance(const Ray& ray, const Scene& scene, S
         double pmf = 0;
         const auto ls = sample_light(scene, si, wl, sampler, &light, &pmf);
         if (ls)
-            add(Technique::Nee, nee_connect(scene, si, *bsdf, ctx.at(si), none, *ls, pmf, frac_e, frac_b) / double(ne));
+            out.add(Technique::Nee,
+                    nee_connect(scene, si, *bsdf, ctx.at(si), none, *ls, pmf, frac_e, frac_b) / double(ne));
     }
 
     for (int j = 0; j < nb; ++j) {
@@ -95,16 +91,16 @@ SampledSpectrum DirectIntegrator::radiance(const Ray& ray, const Scene& scene, S
         SurfaceInteraction hit;
         if (!scene.intersect(scene.spawn_ray(si, d), &hit)) {
             for (const Light* light : scene.infinite_lights())
-                add(Technique::BsdfHit, tp.beta * light->le_escaped(d, wl) * (weight(*light, Vec3(), Vec3()) / nb));
+                out.add(Technique::BsdfHit, tp.beta * light->le_escaped(d, wl) * (weight(*light, Vec3(), Vec3()) / nb));
             continue;
         }
         const Light* em = hit.emitter();
         if (!em) continue;
         const SampledSpectrum tr = media.inside() ? media.transmittance(hit.t, wl) : SampledSpectrum(1.0);
-        add(Technique::BsdfHit, tp.beta * tr * em->le(hit.p, hit.n, hit.uv, -d, wl) * (weight(*em, hit.p, hit.n) / nb));
+        out.add(Technique::BsdfHit,
+                tp.beta * tr * em->le(hit.p, hit.n, hit.uv, -d, wl) * (weight(*em, hit.p, hit.n) / nb));
     }
-    log.record(wl);
-    return L;
+    return out.finish(wl);
 }
 
 }  // namespace snell

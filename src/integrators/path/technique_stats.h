@@ -29,13 +29,6 @@ const char* technique_name(Technique t);
 /// All of them in Technique's order (SampleTracer::technique_names).
 std::vector<std::string> path_technique_names();
 
-/// What one light connection contributes, by technique (to be multiplied by the path's
-/// throughput).
-struct LightConnection {
-    std::array<SampledSpectrum, kTechniqueCount> by{};
-    void add(Technique t, const SampledSpectrum& v) { by[size_t(t)] += v; }
-};
-
 /// One camera sample's radiance per technique; converted to luminance once, when recorded.
 class TechniqueLog {
 public:
