@@ -34,8 +34,7 @@ SampledSpectrum nee_connect(const Scene& scene, const SurfaceInteraction& si, co
                             double bsdf_share) {
     const SampledSpectrum f = bsdf.eval(ctx.at(si), si.to_local(si.wo), si.to_local(ls.wi));
     if (f.is_zero()) return {};
-    const Ray shadow = std::isinf(ls.dist) ? scene.spawn_ray(si, ls.wi) : scene.spawn_ray_to(si, ls.p, ls.p_error);
-    if (scene.occluded(shadow)) return {};
+    if (!light_visible(scene, si, ls)) return {};
     return nee_estimate(si, bsdf, ctx, media, ls, f, pmf, nee_weight(si, bsdf, ctx, ls, pmf, light_share, bsdf_share));
 }
 

@@ -1,7 +1,6 @@
 #include "manifold/manifold_technique.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include "manifold/all_solutions_estimator.h"
 #include "manifold/fallback_estimator.h"
@@ -48,13 +47,13 @@ ManifoldConnection ManifoldTechnique::connect(const ManifoldQuery& query, Sample
     if (!ls) return c;
     c.ls = *ls;
     c.q = c.light->is_delta() ? 1.0 : query.connect_probability;
+    // x_b's BSDF towards the sample, for the case the connection turns out to be NEE's.
+    const auto f_b = [&] { return query.bsdf_b->eval(query.ctx.at(xb), xb.to_local(xb.wo), xb.to_local(ls->wi)); };
     if (!(c.q > 0)) {
         // The region leaves the refracted light to BSDF sampling: what is left of the connection
         // is NEE's, one shadow ray (a seed that meets glass gives 0).
-        const SampledSpectrum f = query.bsdf_b->eval(query.ctx.at(xb), xb.to_local(xb.wo), xb.to_local(ls->wi));
-        const Ray shadow =
-            std::isinf(ls->dist) ? scene.spawn_ray(xb, ls->wi) : scene.spawn_ray_to(xb, ls->p, ls->p_error);
-        if (f.is_nonzero() && !scene.occluded(shadow)) c.kind = ManifoldConnection::Kind::Direct;
+        c.f_b = f_b();
+        if (c.f_b.is_nonzero() && light_visible(scene, xb, *ls)) c.kind = ManifoldConnection::Kind::Direct;
         return c;
     }
     const LightPoint lp = light_point(scene, *c.light, *ls, xb.p);
@@ -65,7 +64,8 @@ ManifoldConnection ManifoldTechnique::connect(const ManifoldQuery& query, Sample
     switch (status) {
         case SeedStatus::Clear:
             // Nothing refracts in between: MNEE is NEE (same sample, same weight).
-            c.kind = ManifoldConnection::Kind::Direct;
+            c.f_b = f_b();
+            if (c.f_b.is_nonzero()) c.kind = ManifoldConnection::Kind::Direct;
             return c;
         case SeedStatus::Occluded:
             ++walk_counters::seeds_occluded;

@@ -47,13 +47,14 @@ struct ManifoldQuery {
 struct ManifoldConnection {
     enum class Kind {
         None,      ///< no light sample, a blocked or culled seed, or no connection drawn
-        Direct,    ///< x_c is in plain sight of x_b (nothing refracts on the segment): NEE's sample
+        Direct,    ///< x_c is in plain sight of x_b (nothing refracts on the segment), f_b > 0: NEE's sample
         Manifold,  ///< the seed path was walked: `set` holds what the walks found
     };
     Kind kind = Kind::None;
     const Light* light = nullptr;  ///< Alg. 1 line 1: the light chosen ...
     double pmf = 0;                ///< ... with this probability ...
     LightSample ls;                ///< ... and the point sampled on it (valid unless kind is None)
+    SampledSpectrum f_b;           ///< Kind::Direct: x_b's BSDF towards ls (nonzero)
     /// The probability the connection was made with: MIS weighs each solution by q p_mnee and the
     /// estimate counts it 1 / q (1 for delta lights and for solutions=one's fixed q).
     double q = 1;

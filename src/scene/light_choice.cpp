@@ -1,5 +1,7 @@
 #include "scene/light_choice.h"
 
+#include <cmath>
+
 #include "core/sampler.h"
 #include "scene/scene.h"
 
@@ -13,6 +15,10 @@ std::optional<LightSample> sample_light(const Scene& scene, const SurfaceInterac
     auto ls = (*light)->sample_li({si.p, si.n}, u, wl);
     if (!ls || !(ls->pdf > 0) || !(keep_dark || ls->Le.is_nonzero())) return std::nullopt;
     return ls;
+}
+
+bool light_visible(const Scene& scene, const SurfaceInteraction& si, const LightSample& ls) {
+    return !scene.occluded(std::isinf(ls.dist) ? scene.spawn_ray(si, ls.wi) : scene.spawn_ray_to(si, ls.p, ls.p_error));
 }
 
 }  // namespace snell

@@ -20,4 +20,8 @@ struct SurfaceInteraction;
 std::optional<LightSample> sample_light(const Scene& scene, const SurfaceInteraction& si, const SampledWavelengths& wl,
                                         Sampler& sampler, const Light** light, double* pmf, bool keep_dark = false);
 
+/// Whether the light sample `ls` is in plain sight of `si`: its shadow ray (to the point, or
+/// along the direction for lights at infinity) meets nothing.
+bool light_visible(const Scene& scene, const SurfaceInteraction& si, const LightSample& ls);
+
 }  // namespace snell

@@ -82,14 +82,11 @@ void MneePath::connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSD
     switch (c.kind) {
         case ManifoldConnection::Kind::None:
             return;
-        case ManifoldConnection::Kind::Direct: {
+        case ManifoldConnection::Kind::Direct:
             // NEE's sample, with NEE's weight.
-            const SampledSpectrum f = bsdf.eval(sctx, si.to_local(si.wo), si.to_local(c.ls.wi));
-            if (f.is_nonzero())
-                m_out.add(Technique::Nee, beta * nee_estimate(si, bsdf, sctx, m_walk.media, c.ls, f, c.pmf,
-                                                              nee_weight(si, bsdf, sctx, c.ls, c.pmf)));
+            m_out.add(Technique::Nee, beta * nee_estimate(si, bsdf, sctx, m_walk.media, c.ls, c.f_b, c.pmf,
+                                                          nee_weight(si, bsdf, sctx, c.ls, c.pmf)));
             return;
-        }
         case ManifoldConnection::Kind::Manifold:
             break;
     }
@@ -121,8 +118,7 @@ SampledSpectrum MneePath::connect_at_interface(const SurfaceInteraction& si, con
     const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls->wi);
     const SampledSpectrum f = bsdf.eval(sctx, wo, wi);
     if (f.is_zero()) return {};
-    const Ray shadow = std::isinf(ls->dist) ? scene.spawn_ray(si, ls->wi) : scene.spawn_ray_to(si, ls->p, ls->p_error);
-    if (scene.occluded(shadow)) return {};
+    if (!light_visible(scene, si, *ls)) return {};
     // The path x_b, x_1..x_k = si, x_c in area measure (lights at infinity on MNEE's far sphere).
     const LightPoint lp = light_point_hit(scene, *light, ls->p, ls->n, ls->uv, ls->wi, s.xb.p);
     const double p_nee = s.p_prefix * pmf * light_point_pdf(scene, *light, si.p, lp.p, lp.n);
