@@ -79,6 +79,8 @@ RenderReport make_report(const std::string& scene, const std::string& integrator
     rep.threads = threads;
     rep.seed = seed;
     rep.interrupted = r.interrupted;
+    rep.saturated = r.saturated;
+    rep.ranks = process_team().size();
     rep.pixels = r.dominance.pixels;
     rep.pixels_dominated = r.dominance.dominated;
     rep.max_sample_share = r.dominance.max_share;

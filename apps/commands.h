@@ -8,11 +8,41 @@
 
 namespace snell {
 
+/// Exit statuses of every sub-command (docs/rendering.md, "Exit codes").
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitError = 1;        ///< a bad scene, a missing file, an I/O error, a failed rank
+inline constexpr int kExitUsage = 2;        ///< a malformed command line
+inline constexpr int kExitInterrupted = 130;  ///< Ctrl-C (or SIGTERM): the image so far was written
+
+/// Options of `snell render` (docs/rendering.md).
+struct RenderCommandOptions {
+    std::string scene;
+    std::string out;  ///< may hold one %d / %0Nd, replaced by the define `frame`
+    int spp = 0;
+    double time_limit = 0;
+    int threads = 0;
+    std::optional<uint64_t> seed;
+    double exposure = 0;
+    std::string stats_path;
+    bool quiet = false;
+    std::vector<std::string> defines;
+    bool strategies = false;
+    std::vector<std::string> search_paths;
+    std::string crop;          ///< --crop x,y,w,h: a partial film of those pixels
+    std::string sample_range;  ///< --sample-range a:b: a partial film of those samples
+    std::string progress = "bar";  ///< --progress bar | lines | none
+};
+
 /// `snell render` (docs/rendering.md).
-int cmd_render(const std::string& scene_arg, std::string out, int spp, double time_limit, int threads,
-               std::optional<uint64_t> seed_arg, double exposure, std::string stats_path, bool quiet,
-               const std::vector<std::string>& define_items, bool strategies = false,
-               const std::vector<std::string>& search_paths = {});
+int cmd_render(const RenderCommandOptions& opt);
+
+/// `snell merge part*.exr -o frame.exr`: partial films into the frame (docs/distributed.md).
+int cmd_merge(const std::vector<std::string>& parts, std::string out, double exposure, std::string stats_path,
+              bool quiet);
+
+/// `out` with its one %d or %0Nd replaced by `frame` (-o frame_%04d.exr -D frame=12); `out`
+/// unchanged without one. Throws std::runtime_error for other % patterns or a missing frame.
+std::string output_name(const std::string& out, const std::optional<std::string>& frame);
 
 /// `snell diff a.exr b.exr [--crop x,y,w,h]... [--reference-offset x,y | --image-offset x,y]
 /// [--normalise-by r.exr] [--json]`: metrics of a against the reference b (apps/cmd_diff.cpp).

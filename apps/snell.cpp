@@ -1,13 +1,15 @@
-// The `snell` command: `snell render`, `snell diff` and `snell compare`. This file only declares
-// the command line; each sub-command lives in its own cmd_*.cpp.
+// The `snell` command: `snell render`, `snell merge`, `snell diff` and `snell compare`. This file
+// only declares the command line; each sub-command lives in its own cmd_*.cpp.
 #include <CLI/CLI.hpp>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
+#include <sstream>
 
 #include "commands.h"
+#include "render/mpi_team.h"
 
 using namespace snell;
 
@@ -29,38 +31,75 @@ const CLI::Validator kThreads = CLI::Range(0, 4096, "THREADS in [0, 4096], 0 = a
 
 }  // namespace
 
+// Under mpirun every rank runs main(); MPI ends with it, on every path out.
+struct MpiSession {
+    int status = 0;
+    MpiSession(int& argc, char**& argv) : status(start_mpi_if_launched(argc, argv)) {}
+    ~MpiSession() { finish_mpi(); }
+};
+
+int run(int argc, char** argv);
+
 int main(int argc, char** argv) {
+    MpiSession mpi(argc, argv);
+    if (mpi.status) return mpi.status;
+    return run(argc, argv);
+}
+
+int run(int argc, char** argv) {
+    const bool lead = process_team().rank() == 0;
     CLI::App app{"snell: a spectral renderer for caustics through refractive interfaces (MNEE)"};
     app.require_subcommand(1);
 
     CLI::App* render_cmd = app.add_subcommand("render", "render a Mitsuba-style XML scene (or builtin:droplet)");
-    std::string scene_arg, out, stats_path;
-    int spp = 0, threads = 0;
-    double time_limit = 0, exposure = 0;
+    RenderCommandOptions ro;
     uint64_t seed = 0;
-    bool quiet = false, strategies = false;
-    std::vector<std::string> defines, search_paths;
-    render_cmd->add_option("scene", scene_arg, "scene file, or builtin:droplet")->required();
-    render_cmd->add_option("-o,--output", out, "output EXR (a PNG and a stats JSON are written beside it)");
+    render_cmd->add_option("scene", ro.scene, "scene file, or builtin:droplet")->required();
+    render_cmd->add_option("-o,--output", ro.out,
+                           "output EXR (a PNG and a stats JSON are written beside it); one %d or %0Nd is replaced "
+                           "by -D frame=N");
     auto* spp_opt =
-        render_cmd->add_option("--spp", spp, "samples per pixel (default: the scene's sample_count)")->check(kSpp);
-    render_cmd->add_option("--time", time_limit, "render for this many seconds instead (equal-time comparisons)")
-        ->check(kSeconds)
-        ->excludes(spp_opt);
-    render_cmd->add_option("-t,--threads", threads, "worker threads (default: all cores)")->check(kThreads);
+        render_cmd->add_option("--spp", ro.spp, "samples per pixel (default: the scene's sample_count)")->check(kSpp);
+    auto* time_opt =
+        render_cmd->add_option("--time", ro.time_limit, "render for this many seconds instead (equal-time comparisons)")
+            ->check(kSeconds)
+            ->excludes(spp_opt);
+    render_cmd->add_option("-t,--threads", ro.threads, "worker threads (default: all cores)")->check(kThreads);
     auto* seed_opt =
         render_cmd->add_option("--seed", seed, "sampler seed (default: the scene's <sampler> seed, else 0)");
-    render_cmd->add_option("--exposure", exposure, "PNG exposure in stops");
-    render_cmd->add_option("--stats", stats_path, "stats JSON path (default: beside the EXR)");
-    render_cmd->add_option("-D,--define", defines, "override a scene <default>: -D name=value")
+    render_cmd->add_option("--exposure", ro.exposure, "PNG exposure in stops");
+    render_cmd->add_option("--stats", ro.stats_path, "stats JSON path (default: beside the EXR)");
+    render_cmd->add_option("-D,--define", ro.defines, "override a scene <default>: -D name=value")
         ->allow_extra_args(false);
     render_cmd
-        ->add_option("-a,--search-path", search_paths,
+        ->add_option("-a,--search-path", ro.search_paths,
                      "folder to find the scene's files in after its own (Mitsuba's -a; ';' separates several)")
         ->allow_extra_args(false);
-    render_cmd->add_flag("-q,--quiet", quiet, "no progress bar or summary");
-    render_cmd->add_flag("--strategies", strategies,
+    render_cmd->add_flag("-q,--quiet", ro.quiet, "no progress bar or summary");
+    render_cmd->add_flag("--strategies", ro.strategies,
                          "bdpt: also write each strategy's weighted contribution, OUT_d<k>_s<s>_t<t>.exr");
+    render_cmd
+        ->add_option("--crop", ro.crop,
+                     "x,y,w,h: render only these pixels, as a partial film for snell merge (a farm task)")
+        ->excludes(time_opt);
+    render_cmd
+        ->add_option("--sample-range", ro.sample_range,
+                     "a:b: render only the samples a ... b-1 of every pixel, as a partial film for snell merge")
+        ->excludes(time_opt);
+    render_cmd->add_option("--progress", ro.progress, "bar (on a terminal), lines (JSON lines on stdout) or none")
+        ->check(CLI::IsMember({"bar", "lines", "none"}));
+
+    CLI::App* merge_cmd =
+        app.add_subcommand("merge", "add partial films (render --crop / --sample-range) into the frame");
+    std::vector<std::string> merge_parts;
+    std::string merge_out, merge_stats;
+    double merge_exposure = 0;
+    bool merge_quiet = false;
+    merge_cmd->add_option("parts", merge_parts, "partial film EXRs")->required();
+    merge_cmd->add_option("-o,--output", merge_out, "output EXR (a PNG and a stats JSON beside it)")->required();
+    merge_cmd->add_option("--exposure", merge_exposure, "PNG exposure in stops");
+    merge_cmd->add_option("--stats", merge_stats, "stats JSON path (default: beside the EXR)");
+    merge_cmd->add_flag("-q,--quiet", merge_quiet, "no summary");
 
     CLI::App* diff_cmd = app.add_subcommand("diff", "error metrics of an image against a reference (both EXR)");
     std::string diff_a, diff_b;
@@ -133,16 +172,22 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        // Help and version exit 0; every usage error exits 1 with CLI11's message.
-        return app.exit(e) == 0 ? 0 : 1;
+        // Help and version exit 0; every usage error exits 2 with CLI11's message (rank 0's
+        // alone under MPI: every rank parses the same line).
+        if (!lead) {
+            std::ostringstream sink;
+            return app.exit(e, sink, sink) == 0 ? kExitOk : kExitUsage;
+        }
+        return app.exit(e) == 0 ? kExitOk : kExitUsage;
     }
     try {
         if (diff_cmd->parsed())
             return cmd_diff(diff_a, diff_b, diff_crops, diff_offset, diff_image_offset, diff_normalise, diff_json);
-        if (render_cmd->parsed())
-            return cmd_render(scene_arg, out, spp, time_limit, threads,
-                              seed_opt->count() ? std::optional<uint64_t>(seed) : std::nullopt, exposure, stats_path,
-                              quiet, defines, strategies, search_paths);
+        if (render_cmd->parsed()) {
+            if (seed_opt->count()) ro.seed = seed;
+            return cmd_render(ro);
+        }
+        if (merge_cmd->parsed()) return cmd_merge(merge_parts, merge_out, merge_exposure, merge_stats, merge_quiet);
         if (cmp_cmd->parsed()) {
             if (cmp_seed_opt->count()) cmp.seed = cmp_seed;
             if (cmp.reference_file.empty() && cmp.reference_spp == 0 && cmp.reference_time == 0)
@@ -152,8 +197,10 @@ int main(int argc, char** argv) {
             return cmd_compare(cmp);
         }
     } catch (const std::exception& e) {
+        // Under MPI a rank that fails (a missing file on its node, say) ends the whole job.
+        if (process_team().size() > 1) process_team().fail(e.what(), kExitError);
         std::fprintf(stderr, "snell: error: %s\n", e.what());
-        return 1;
+        return kExitError;
     }
-    return 0;
+    return kExitOk;
 }

@@ -9,6 +9,7 @@ add_executable(snell
   apps/cmd_render.cpp
   apps/cmd_diff.cpp
   apps/cmd_compare.cpp
+  apps/cmd_merge.cpp
   ${PROJECT_BINARY_DIR}/generated/builtin_scenes.cpp)
 target_include_directories(snell PRIVATE ${PROJECT_SOURCE_DIR}/apps)
 target_link_libraries(snell PRIVATE snell_loader snell_integrators snell_report CLI11::CLI11)

@@ -18,6 +18,7 @@ PACKAGES=(
   libcli11-dev         # command line
   libstb-dev           # PNG output
   nlohmann-json3-dev   # stats JSON
+  openmpi-bin libopenmpi-dev # one frame over the ranks of an MPI job (issue 27)
   libgtest-dev         # tests
   libbenchmark-dev     # make bench
   chromium             # tests: opens the `snell compare` report page headless

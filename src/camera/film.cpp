@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "core/spectrum.h"
 
@@ -20,6 +21,73 @@ float to_float(double v) {
 }
 
 }  // namespace
+
+bool PixelSamples::ranks_above_largest(const Vec3& xyz, int t) const {
+    if (!(xyz.y > 0)) return false;
+    if (xyz.y != largest.y) return xyz.y > largest.y;
+    if (xyz.x != largest.x) return xyz.x > largest.x;
+    if (xyz.z != largest.z) return xyz.z > largest.z;
+    return t > technique;
+}
+
+bool PixelSamples::add(const Vec3& xyz, int t) {
+    const bool ok = sum.x.add(xyz.x) & sum.y.add(xyz.y) & sum.z.add(xyz.z);
+    ++count;
+    if (ranks_above_largest(xyz, t)) {
+        largest = xyz;
+        technique = t;
+    }
+    return ok;
+}
+
+void Film::merge(const Film& o) {
+    if (o.m_w != m_w || o.m_h != m_h) throw std::invalid_argument("Film::merge: films of different sizes");
+    for (int y = 0; y < m_h; ++y)
+        for (int x = 0; x < m_w; ++x) {
+            const size_t i = size_t(y) * m_w + x;
+            add_samples(x, y, PixelSamples{o.m_sum[i], o.m_n[i], o.m_max_xyz[i], o.m_max_technique[i]});
+        }
+    for (int layer = 0; layer < o.splat_layers(); ++layer) {
+        if (!o.has_splats(layer)) continue;
+        if (size_t(layer) >= m_splats.size()) m_splats.resize(size_t(layer) + 1);
+        auto& s = m_splats[size_t(layer)];
+        if (s.empty()) s.resize(m_sum.size());
+        for (size_t i = 0; i < s.size(); ++i) s[i] += o.m_splats[size_t(layer)][i];
+    }
+}
+
+bool Film::same_samples(const Film& o) const {
+    if (o.m_w != m_w || o.m_h != m_h || m_sum != o.m_sum || m_n != o.m_n || m_max_technique != o.m_max_technique)
+        return false;
+    for (size_t i = 0; i < m_max_xyz.size(); ++i)
+        if (!(m_max_xyz[i] == o.m_max_xyz[i])) return false;
+    const int layers = std::max(splat_layers(), o.splat_layers());
+    for (int layer = 0; layer < layers; ++layer) {
+        const bool a = has_splats(layer), b = o.has_splats(layer);
+        if (!a && !b) continue;
+        for (size_t i = 0; i < m_sum.size(); ++i) {
+            const ExactSum3 zero;
+            if (!((a ? m_splats[size_t(layer)][i] : zero) == (b ? o.m_splats[size_t(layer)][i] : zero))) return false;
+        }
+    }
+    return true;
+}
+
+void Film::set_pixel(int x, int y, const ExactSum3& sum, uint64_t count, const Vec3& largest, int technique) {
+    const size_t i = size_t(y) * m_w + x;
+    m_sum[i] = sum;
+    m_n[i] = count;
+    m_max_xyz[i] = largest;
+    m_max_y[i] = largest.y;
+    m_max_technique[i] = int8_t(std::clamp(technique, -1, 127));
+}
+
+void Film::set_splat(int layer, int x, int y, const ExactSum3& sum) {
+    if (size_t(layer) >= m_splats.size()) m_splats.resize(size_t(layer) + 1);
+    auto& s = m_splats[size_t(layer)];
+    if (s.empty()) s.resize(m_sum.size());
+    s[size_t(y) * m_w + x] = sum;
+}
 
 std::vector<float> Film::to_linear_srgb(int layer) const {
     std::vector<float> rgb(size_t(m_w) * m_h * 3);

@@ -4,11 +4,29 @@
 #include <string>
 #include <vector>
 
+#include "core/exact_sum.h"
 #include "core/vector.h"
 
 namespace snell {
 
-/// Accumulates XYZ per pixel (box filter: each sample lands in the pixel it was taken in).
+/// The samples one pixel received in one piece of work (a pass of a tile, say): their exact sum,
+/// their count and the largest of them. Film::add_samples adds it; any grouping of a pixel's
+/// samples into such pieces, in any order, gives the same film (issue 27).
+struct PixelSamples {
+    ExactSum3 sum;
+    uint64_t count = 0;
+    Vec3 largest;          ///< the sample of largest luminance (Y) so far (zero: none positive)
+    int technique = -1;    ///< the technique that delivered it
+    /// Adds one sample (its XYZ, already filter-weighted) delivered by `technique`. Returns false
+    /// when a component was beyond ExactSum's range and was saturated.
+    bool add(const Vec3& xyz, int technique);
+    /// True when sample (xyz, technique) ranks above the current largest: by luminance, then by
+    /// X, Z and technique, a total order, so that the largest does not depend on the order.
+    bool ranks_above_largest(const Vec3& xyz, int technique) const;
+};
+
+/// Accumulates XYZ per pixel, exactly (ExactSum), so that the film does not depend on the order
+/// in which threads, ranks or merged partial films add their samples (issue 27) (box filter: each sample lands in the pixel it was taken in).
 /// Sample weights are counted per pixel so a partially rendered (interrupted or time-limited)
 /// film still resolves to an unbiased average for the pixels it reached.
 /// A second, unnormalised layer holds splats (contributions of light paths that reach the
@@ -20,7 +38,7 @@ public:
     Film(int width, int height)
         : m_w(width),
           m_h(height),
-          m_xyz(size_t(width) * height),
+          m_sum(size_t(width) * height),
           m_n(size_t(width) * height, 0),
           m_max_y(size_t(width) * height, 0.0),
           m_max_xyz(size_t(width) * height),
@@ -31,17 +49,49 @@ public:
     /// Adds `count` samples at once (whole-pixel sums from a tile); `largest` is the one of
     /// them with the largest luminance (Y); its XYZ is kept for max_sample_share, and the
     /// technique that delivered it (SampleTracer::technique_names index, -1: unknown) for the
-    /// dominance statistics.
+    /// dominance statistics. The sum is one exact term: sums of the same samples grouped
+    /// otherwise may differ in their last bits; add_samples does not.
     void add_sum(int x, int y, const Vec3& xyz_sum, uint64_t count, const Vec3& largest = Vec3(), int technique = -1) {
+        PixelSamples p;
+        p.sum.x.add(xyz_sum.x);
+        p.sum.y.add(xyz_sum.y);
+        p.sum.z.add(xyz_sum.z);
+        p.count = count;
+        if (p.ranks_above_largest(largest, technique)) {
+            p.largest = largest;
+            p.technique = technique;
+        }
+        add_samples(x, y, p);
+    }
+    /// Adds a pixel's samples (exact: any grouping of them gives the same film).
+    void add_samples(int x, int y, const PixelSamples& p) {
         const size_t i = size_t(y) * m_w + x;
-        m_xyz[i] += xyz_sum;
-        m_n[i] += count;
-        if (largest.y > m_max_y[i]) {
-            m_max_y[i] = largest.y;
-            m_max_xyz[i] = largest;
-            m_max_technique[i] = int8_t(std::clamp(technique, -1, 127));
+        m_sum[i] += p.sum;
+        m_n[i] += p.count;
+        if (PixelSamples{{}, 0, m_max_xyz[i], m_max_technique[i]}.ranks_above_largest(p.largest, p.technique)) {
+            m_max_y[i] = p.largest.y;
+            m_max_xyz[i] = p.largest;
+            m_max_technique[i] = int8_t(std::clamp(p.technique, -1, 127));
         }
     }
+    /// Adds another film of the same size (a rank's, a partial render's): samples, counts,
+    /// largest samples and splats. Exact, so merging in any order gives the same film. The
+    /// outlier clamp and the splat scale are not merged: set them on the result.
+    void merge(const Film& other);
+    /// True when every accumulated value (sums, counts, largest samples, splats) is the same.
+    bool same_samples(const Film& other) const;
+
+    /// The exact sums of the pixel's samples, its largest sample and that sample's technique,
+    /// and a splat layer's exact sums (partial films, render/partial_film.h).
+    const ExactSum3& exact_sum(int x, int y) const { return m_sum[size_t(y) * m_w + x]; }
+    Vec3 largest_sample_xyz(int x, int y) const { return m_max_xyz[size_t(y) * m_w + x]; }
+    int splat_layers() const { return int(m_splats.size()); }
+    bool has_splats(int layer) const { return size_t(layer) < m_splats.size() && !m_splats[size_t(layer)].empty(); }
+    const ExactSum3& exact_splat(int layer, int x, int y) const { return m_splats[size_t(layer)][size_t(y) * m_w + x]; }
+    /// Sets a pixel's accumulated values (a partial film read back).
+    void set_pixel(int x, int y, const ExactSum3& sum, uint64_t count, const Vec3& largest, int technique);
+    void set_splat(int layer, int x, int y, const ExactSum3& sum);
+
     /// Outlier clamp (issue 10, mnee `biased`): a pixel's largest sample is scaled down so that
     /// it carries at most the share `s` of the pixel's luminance, i.e. to s / (1 - s) times the
     /// sum of the others. Biased, and consistent: with a finite mean the largest of n samples
@@ -63,8 +113,9 @@ public:
     /// The luminance (Y) the clamp removes from the pixel's sample sum (0 when it is off).
     double clamped_y(int x, int y) const {
         const size_t i = size_t(y) * m_w + x;
-        if (!(m_max_share > 0) || m_n[i] < 2 || !(m_xyz[i].y > 0)) return 0;
-        const double cap = m_max_share / (1 - m_max_share) * std::max(0.0, m_xyz[i].y - m_max_y[i]);
+        const double sum_y = m_sum[i].y.value();
+        if (!(m_max_share > 0) || m_n[i] < 2 || !(sum_y > 0)) return 0;
+        const double cap = m_max_share / (1 - m_max_share) * std::max(0.0, sum_y - m_max_y[i]);
         return std::max(0.0, m_max_y[i] - cap);
     }
     uint64_t samples(int x, int y) const { return m_n[size_t(y) * m_w + x]; }
@@ -78,13 +129,15 @@ public:
         const size_t i = size_t(y) * m_w + x;
         if (!m_n[i]) return 0;
         const double n = double(m_n[i]), c = clamped_y(x, y);
-        const double total = (m_xyz[i].y - c) / n + (m_spread.empty() ? 0.0 : m_spread[i].y);
+        const double total = (m_sum[i].y.value() - c) / n + (m_spread.empty() ? 0.0 : m_spread[i].y);
         // As means (a piece is one), so that a piece at exactly the share does not round above it.
         const double largest = std::max((m_max_y[i] - c) / n, m_piece_y.empty() ? 0.0 : m_piece_y[i]);
         return total > 0 ? std::min(1.0, largest / total) : 0.0;
     }
     /// The summed luminance (Y) of the pixel's own samples (before any clamp; no splats).
-    double sample_sum_y(int x, int y) const { return m_xyz[size_t(y) * m_w + x].y; }
+    double sample_sum_y(int x, int y) const { return m_sum[size_t(y) * m_w + x].y.value(); }
+    /// The summed XYZ of the pixel's own samples (before any clamp; no splats).
+    Vec3 sample_sum(int x, int y) const { return value(m_sum[size_t(y) * m_w + x]); }
     /// The largest luminance (Y) one of the pixel's samples carried (before any clamp).
     double largest_sample_y(int x, int y) const { return m_max_y[size_t(y) * m_w + x]; }
     /// The largest contribution to the pixel after the clamp, as a sample's luminance (the
@@ -111,24 +164,28 @@ public:
     void add_splat(int x, int y, const Vec3& xyz, int layer = 0) {
         if (size_t(layer) >= m_splats.size()) m_splats.resize(size_t(layer) + 1);
         auto& s = m_splats[size_t(layer)];
-        if (s.empty()) s.resize(m_xyz.size());
-        s[size_t(y) * m_w + x] += xyz;
+        if (s.empty()) s.resize(m_sum.size());
+        ExactSum3& t = s[size_t(y) * m_w + x];
+        t.x.add(xyz.x);
+        t.y.add(xyz.y);
+        t.z.add(xyz.z);
     }
     void set_splat_scale(double scale) { m_splat_scale = scale; }
+    double splat_scale() const { return m_splat_scale; }
     /// Pixel value: mean XYZ of the pixel's own samples (zero if none) plus its scaled splats.
     Vec3 xyz(int x, int y) const {
         const size_t i = size_t(y) * m_w + x;
-        Vec3 sum = m_xyz[i];
+        Vec3 sum = value(m_sum[i]);
         if (const double c = clamped_y(x, y); c > 0) sum -= m_max_xyz[i] * (c / m_max_y[i]);
         Vec3 v = m_n[i] ? sum / double(m_n[i]) : Vec3();
         if (!m_spread.empty()) v += m_spread[i];
-        if (!m_splats.empty() && !m_splats[0].empty()) v += m_splats[0][i] * m_splat_scale;
+        if (!m_splats.empty() && !m_splats[0].empty()) v += value(m_splats[0][i]) * m_splat_scale;
         return v;
     }
     /// Scaled splats of debug layer `layer` (>= 1).
     Vec3 layer_xyz(int layer, int x, int y) const {
         if (size_t(layer) >= m_splats.size() || m_splats[size_t(layer)].empty()) return Vec3();
-        return m_splats[size_t(layer)][size_t(y) * m_w + x] * m_splat_scale;
+        return value(m_splats[size_t(layer)][size_t(y) * m_w + x]) * m_splat_scale;
     }
     /// Linear sRGB image, row-major, 3 floats per pixel (layer 0: the image). A value beyond
     /// float's range (a finite double pixel can be: radiance 1e300) becomes the largest float of
@@ -139,7 +196,8 @@ public:
 
 private:
     int m_w, m_h;
-    std::vector<Vec3> m_xyz;
+    static Vec3 value(const ExactSum3& s) { return {s.x.value(), s.y.value(), s.z.value()}; }
+    std::vector<ExactSum3> m_sum;
     std::vector<uint64_t> m_n;
     std::vector<double> m_max_y;          // largest single-sample luminance per pixel
     std::vector<Vec3> m_max_xyz;          // that sample's XYZ
@@ -155,7 +213,7 @@ private:
     uint64_t m_spread_capped = 0;                       // pixels where spread light was cut
     double m_spread_taken_y = 0, m_spread_given_y = 0;  // light spread (means), and delivered
     void spread_clamped_light();
-    std::vector<std::vector<Vec3>> m_splats;  // per layer; empty until first splat
+    std::vector<std::vector<ExactSum3>> m_splats;  // per layer; empty until first splat
     double m_splat_scale = 0;
 };
 

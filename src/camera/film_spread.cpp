@@ -48,7 +48,7 @@ void Film::spread_clamped_light() {
     m_spread_taken_y = m_spread_given_y = 0;
     if (!(m_max_share > 0) || m_spread_radius <= 0) return;
     const int radius_cap = std::min(m_spread_radius, 255);
-    const size_t n = m_xyz.size();
+    const size_t n = m_sum.size();
 
     // The sources: pixels whose largest sample the clamp scaled down, with the light it took
     // (as a mean over the pixel's samples: the pixel's value falls by as much).
@@ -66,7 +66,7 @@ void Film::spread_clamped_light() {
             const size_t i = size_t(y) * m_w + x;
             if (!m_n[i]) continue;
             const double c = clamped_y(x, y);
-            own_y[i] = (m_xyz[i].y - c) / double(m_n[i]);
+            own_y[i] = (m_sum[i].y.value() - c) / double(m_n[i]);
             if (c > 0) sources.push_back({x, y, m_max_xyz[i] * (c / m_max_y[i] / double(m_n[i]))});
         }
     if (sources.empty()) return;

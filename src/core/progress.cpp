@@ -10,6 +10,7 @@ namespace snell {
 
 namespace {
 constexpr int64_t kRedrawIntervalNs = 100'000'000;  // ~10 redraws per second
+constexpr int64_t kLineIntervalNs = 1'000'000'000;  // lines mode: one a second
 }
 
 std::string format_duration(double s) {
@@ -38,6 +39,18 @@ std::string format_progress_line(const std::string& label, double fraction, doub
     line += "  elapsed " + format_duration(elapsed);
     line += "  ETA " + format_duration(eta);
     return line;
+}
+
+std::string format_progress_json(double fraction, double elapsed_seconds, double eta_seconds, bool done) {
+    char buf[160];
+    const double f = std::clamp(fraction == fraction ? fraction : 0.0, 0.0, 1.0);
+    if (eta_seconds >= 0)
+        std::snprintf(buf, sizeof(buf), "{\"progress\": %.4f, \"elapsed_s\": %.3f, \"eta_s\": %.3f, \"done\": %s}", f,
+                      elapsed_seconds, eta_seconds, done ? "true" : "false");
+    else
+        std::snprintf(buf, sizeof(buf), "{\"progress\": %.4f, \"elapsed_s\": %.3f, \"eta_s\": null, \"done\": %s}", f,
+                      elapsed_seconds, done ? "true" : "false");
+    return buf;
 }
 
 ProgressBar::ProgressBar(std::string label, uint64_t total) : ProgressBar(std::move(label), total, 0.0) {}
@@ -71,7 +84,7 @@ void ProgressBar::add(uint64_t n) {
     if (!m_enabled || m_finished.load(std::memory_order_relaxed)) return;
     const int64_t now = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - m_start).count();
     int64_t last = m_last_draw_ns.load(std::memory_order_relaxed);
-    if (now - last < kRedrawIntervalNs) return;
+    if (now - last < (m_lines ? kLineIntervalNs : kRedrawIntervalNs)) return;
     // One thread wins the right to draw this frame; the others carry on rendering.
     if (!m_last_draw_ns.compare_exchange_strong(last, now, std::memory_order_relaxed)) return;
     std::unique_lock<std::mutex> lock(m_draw_mutex, std::try_to_lock);
@@ -97,6 +110,12 @@ void ProgressBar::draw(bool final_line) {
         eta = t * (1.0 - f) / f;  // constant-rate extrapolation
     else
         eta = -1.0;  // unknown until some work is done
+    if (m_lines) {
+        std::fputs(format_progress_json(f, t, eta, final_line).c_str(), stdout);
+        std::fputc('\n', stdout);
+        std::fflush(stdout);
+        return;
+    }
     std::string line = format_progress_line(m_label, f, t, eta);
     // Pad with spaces so a shorter line fully overwrites the previous one.
     const size_t len = line.size();

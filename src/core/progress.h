@@ -48,6 +48,14 @@ public:
     /// Whether anything is printed (stderr is a TTY). Tests may force it.
     bool enabled() const { return m_enabled; }
     void set_enabled(bool on) { m_enabled = on; }
+    /// Lines mode (render farms, issue 27): instead of the bar, one line of JSON per update on
+    /// stdout, at most one a second, and a last one when finished:
+    ///   {"progress": 0.4213, "elapsed_s": 12.3, "eta_s": 16.9, "done": false}
+    /// ("eta_s" is null while unknown). Enabled whether or not stderr is a terminal.
+    void set_lines(bool on) {
+        m_lines = on;
+        if (on) m_enabled = true;
+    }
 
 private:
     using Clock = std::chrono::steady_clock;
@@ -64,6 +72,10 @@ private:
     std::mutex m_draw_mutex;
     size_t m_last_len = 0;  // guarded by m_draw_mutex
     bool m_enabled;
+    bool m_lines = false;
 };
+
+/// The JSON line of lines mode.
+std::string format_progress_json(double fraction, double elapsed_seconds, double eta_seconds, bool done);
 
 }  // namespace snell

@@ -20,6 +20,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace snell {
@@ -186,6 +187,12 @@ public:
 
     /// Raw slots, indexed by StatInfo::offset.
     const std::vector<uint64_t>& slots() const { return m_slots; }
+    /// A snapshot from raw slots (another process's, issue 27).
+    static StatTotals from_slots(std::vector<uint64_t> slots) {
+        StatTotals t;
+        t.m_slots = std::move(slots);
+        return t;
+    }
 
 private:
     friend StatTotals stat_totals();

@@ -51,6 +51,7 @@ void to_json(nlohmann::json& j, const RenderReport& r) {
         {"time_limit", r.time_limit},
         {"interrupted", r.interrupted},
         {"threads", r.threads},
+        {"ranks", r.ranks},
         {"seed", r.seed},
         {"paths", r.paths},
         {"rays", r.rays},
@@ -61,7 +62,8 @@ void to_json(nlohmann::json& j, const RenderReport& r) {
          {{"nan", r.discarded_nan},
           {"inf", r.discarded_inf},
           {"negative", r.discarded_negative},
-          {"beyond_float32", r.beyond_float}}},
+          {"beyond_float32", r.beyond_float},
+          {"saturated", r.saturated}}},
         {"dominance",
          {{"pixels", r.pixels},
           {"dominated", r.pixels_dominated},
@@ -93,6 +95,7 @@ void from_json(const nlohmann::json& j, RenderReport& r) {
     get("time_limit", r.time_limit);
     get("interrupted", r.interrupted);
     get("threads", r.threads);
+    get("ranks", r.ranks);
     get("seed", r.seed);
     get("paths", r.paths);
     get("rays", r.rays);
@@ -102,6 +105,7 @@ void from_json(const nlohmann::json& j, RenderReport& r) {
         if (auto it = d->find("inf"); it != d->end()) it->get_to(r.discarded_inf);
         if (auto it = d->find("negative"); it != d->end()) it->get_to(r.discarded_negative);
         if (auto it = d->find("beyond_float32"); it != d->end()) it->get_to(r.beyond_float);
+        if (auto it = d->find("saturated"); it != d->end()) it->get_to(r.saturated);
     }
     if (auto d = j.find("dominance"); d != j.end()) {
         if (auto it = d->find("pixels"); it != d->end()) it->get_to(r.pixels);

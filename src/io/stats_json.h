@@ -31,6 +31,8 @@ struct RenderReport {
     uint64_t discarded_inf = 0;       ///< samples dropped as infinite
     uint64_t discarded_negative = 0;  ///< samples dropped as negative
     uint64_t beyond_float = 0;        ///< image values beyond float32's range, written as its largest
+    uint64_t saturated = 0;           ///< sample values beyond the film's exact range (2^80), saturated
+    int ranks = 1;                    ///< MPI ranks that rendered the frame (1: one process)
     /// Pixel dominance (render/renderer.h PixelDominance), written under "dominance": pixels
     /// with a positive sum, those where one sample carries more than half of it, and the
     /// largest such share; with an outlier clamp (max_sample_share), the pixels it scaled

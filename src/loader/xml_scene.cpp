@@ -123,7 +123,9 @@ public:
             throw;
         }
         for (const auto& [name, value] : m_defines)
-            if (!m_declared.count(name) && !m_used.count(name))
+            // -D frame=N also numbers the output (-o frame_%04d.exr, issue 27): a scene that
+            // is not animated need not declare it.
+            if (!m_declared.count(name) && !m_used.count(name) && name != "frame")
                 throw SceneError("-D " + name + "=" + value + ": the scene has no parameter '" + name +
                                  "' (no <default name=\"" + name + "\"> and no $" + name + ")");
         return scene;

@@ -14,40 +14,74 @@
 #include "core/progress.h"
 #include "core/sampler.h"
 #include "render/camera_sample.h"
+#include "render/render_team.h"
 #include "scene/scene.h"
 
 namespace snell {
 
+namespace render_stats {
+StatCounter saturated{"render.saturated", "sample values beyond the film's exact range (2^80), saturated"};
+}  // namespace render_stats
+
 namespace {
 
-struct Tile {
-    int x0, y0, x1, y1;  // output (crop) coordinates, half-open
-};
+using Tile = PixelRect;
 
-std::vector<Tile> make_tiles(int w, int h, int size) {
+// The tiles of `r`, on the grid of `size` x `size` squares anchored at the window's corner (so
+// that a crop's tiles are pieces of the full render's), clipped to r.
+std::vector<Tile> make_tiles(const PixelRect& r, int size) {
     std::vector<Tile> tiles;
-    for (int y = 0; y < h; y += size)
-        for (int x = 0; x < w; x += size) tiles.push_back({x, y, std::min(w, x + size), std::min(h, y + size)});
+    if (r.empty()) return tiles;
+    for (int ty = r.y0 / size * size; ty < r.y1; ty += size)
+        for (int tx = r.x0 / size * size; tx < r.x1; tx += size)
+            tiles.push_back({std::max(tx, r.x0), std::max(ty, r.y0), std::min(r.x1, tx + size), std::min(r.y1, ty + size)});
     return tiles;
 }
 
 // Pass sizes 1, 1, 2, 4, 8, 16, 16, ...: early passes give quick previews and a fine-grained
-// equal-time cut-off; later ones amortise scheduling. Fixed, so images are reproducible.
+// equal-time cut-off; later ones amortise scheduling. Fixed, and by absolute sample index, so
+// a sample range renders the same passes (and a learning tracer learns at the same sample).
 // (The shift is taken only below 5: a shift by 64 or more, reached past 976 spp, is undefined.)
 uint64_t pass_size(int pass) { return pass < 1 ? 1 : pass >= 5 ? 16 : uint64_t(1) << (pass - 1); }
 
 }  // namespace
+
+void finish_film(Film& film, double max_sample_share, int clamp_spread) {
+    const int w = film.width(), h = film.height();
+    uint64_t total = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) total += film.samples(x, y);
+    // Splat estimators divide by the camera samples each pixel received (total / pixels).
+    film.set_splat_scale(total > 0 ? double(w) * double(h) / double(total) : 0.0);
+    film.set_max_sample_share(max_sample_share, clamp_spread);
+}
 
 RenderResult render_tiles(const Scene& scene, SampleTracer& tracer, int spectral_samples, const FilmSpec& spec,
                           const RenderOptions& opt, const std::atomic<bool>* cancel) {
     using Clock = std::chrono::steady_clock;
     const Camera* camera = scene.camera();
     if (!camera) throw std::runtime_error("scene has no sensor");
+    RenderTeam& team = opt.team ? *opt.team : process_team();
     const auto start = Clock::now();
     const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
     const bool timed = opt.time_limit > 0;
     const int w = spec.out_width(), h = spec.out_height();
-    const std::vector<Tile> tiles = make_tiles(w, h, std::max(1, opt.tile_size));
+    const PixelRect window{0, 0, w, h};
+    const PixelRect crop = opt.crop.empty() ? window : opt.crop;
+    if (!(crop.x0 >= 0 && crop.y0 >= 0 && crop.x1 <= w && crop.y1 <= h) || crop.empty())
+        throw std::runtime_error("crop " + std::to_string(crop.x0) + "," + std::to_string(crop.y0) + "," +
+                                 std::to_string(crop.width()) + "," + std::to_string(crop.height()) +
+                                 " is not inside the " + std::to_string(w) + "x" + std::to_string(h) + " film");
+    // The samples of each pixel this render adds: [first, last).
+    const uint64_t first = opt.sample_begin;
+    const uint64_t last = timed ? UINT64_MAX : opt.sample_end > 0 ? opt.sample_end : uint64_t(std::max(0, opt.spp));
+    if (first >= last) throw std::runtime_error("empty sample range");
+    const int tile_size = std::max(1, opt.tile_size);
+    const std::vector<Tile> tiles = make_tiles(crop, tile_size);
+    // A learning tracer's pilot covers the pixels its choices for the crop depend on.
+    PixelRect pilot = crop;
+    tracer.pilot_window(pilot.x0, pilot.y0, pilot.x1, pilot.y1);
+    const std::vector<Tile> pilot_tiles = make_tiles(pilot, tile_size);
 
     RenderResult result;
     result.film = Film(w, h);
@@ -59,129 +93,180 @@ RenderResult render_tiles(const Scene& scene, SampleTracer& tracer, int spectral
     const Filter& filter = spec.pixel_filter();
 
     std::unique_ptr<ProgressBar> bar;
-    if (opt.progress)
+    if ((opt.progress || opt.progress_lines) && team.rank() == 0) {
+        const uint64_t work = uint64_t(std::min(last, uint64_t(std::max(0, opt.spp))) - std::min(first, last)) *
+                              uint64_t(crop.width()) * uint64_t(crop.height());
         bar.reset(timed ? new ProgressBar(ProgressBar::for_time("render", opt.time_limit))
-                        : new ProgressBar("render", uint64_t(opt.spp) * uint64_t(w) * uint64_t(h)));
+                        : new ProgressBar("render", std::max<uint64_t>(1, work)));
+        if (opt.progress_lines) bar->set_lines(true);
+    }
 
-    const auto stop_requested = [&] {
-        return (cancel && cancel->load(std::memory_order_relaxed)) || (timed && elapsed() >= opt.time_limit);
-    };
+    const auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
+    const auto stop_requested = [&] { return cancelled() || (timed && elapsed() >= opt.time_limit); };
 
     // Splats may land on any pixel: each tile collects its own, and they are added to the film
-    // in tile order after every group of tiles, so the image does not depend on scheduling.
-    // Groups bound the memory the buffers take; without splats one group holds every tile.
+    // after every group of tiles (exactly, so in any order). Groups bound the memory the buffers
+    // take; without splats one group holds every tile.
     const bool splatting = tracer.splats();
     // Techniques count only for a tracer that names them (an ERPT or PSSMLT sample may come from
     // an inner path tracer that noted one).
     const bool named_techniques = !tracer.technique_names().empty();
-    const size_t group = splatting ? std::max<size_t>(64, size_t(threads) * 8) : tiles.size();
-    std::vector<SplatList> tile_splats(splatting ? std::min(group, tiles.size()) : 0);
-    const auto merge_splats = [&](size_t n) {
-        for (size_t k = 0; k < n; ++k) {
-            for (const FilmSplat& sp : tile_splats[k]) {
-                // One count per invalid splat; XYZ of a non-negative radiance is non-negative.
-                const double c = sanitize(sp.xyz.x + sp.xyz.y + sp.xyz.z);
-                if (!(c > 0 && sp.xyz.x >= 0 && sp.xyz.y >= 0 && sp.xyz.z >= 0)) continue;
-                const Vec2 p(sp.raster.x - spec.crop_x, sp.raster.y - spec.crop_y);  // output window
-                if (sp.binned) {
-                    const int x = int(std::floor(p.x)), y = int(std::floor(p.y));
-                    if (x >= 0 && y >= 0 && x < w && y < h) result.film.add_splat(x, y, sp.xyz, sp.layer);
-                    continue;
-                }
-                // The pixels whose filter covers the splat estimate their filtered integral.
-                for_each_pixel_in_support(filter, p, w, h, [&](int x, int y, double wt) {
-                    result.film.add_splat(x, y, sp.xyz * wt, sp.layer);
-                });
+    const size_t group = splatting ? std::max<size_t>(64, size_t(threads) * 8) : SIZE_MAX;
+    const auto merge_splats = [&](SplatList& list) {
+        for (const FilmSplat& sp : list) {
+            // One count per invalid splat; XYZ of a non-negative radiance is non-negative.
+            const double c = sanitize(sp.xyz.x + sp.xyz.y + sp.xyz.z);
+            if (!(c > 0 && sp.xyz.x >= 0 && sp.xyz.y >= 0 && sp.xyz.z >= 0)) continue;
+            const Vec2 p(sp.raster.x - spec.crop_x, sp.raster.y - spec.crop_y);  // output window
+            if (sp.binned) {
+                const int x = int(std::floor(p.x)), y = int(std::floor(p.y));
+                if (x >= 0 && y >= 0 && x < w && y < h) result.film.add_splat(x, y, sp.xyz, sp.layer);
+                continue;
             }
-            tile_splats[k].clear();
+            // The pixels whose filter covers the splat estimate their filtered integral.
+            for_each_pixel_in_support(filter, p, w, h, [&](int x, int y, double wt) {
+                result.film.add_splat(x, y, sp.xyz * wt, sp.layer);
+            });
         }
+        list.clear();
     };
 
-    uint64_t done_spp = 0;
-    for (int pass = 0; !stop_requested(); ++pass) {
+    // One tile's samples [s0, s1) of every pixel; those of crop pixels in [first, last) go to
+    // the film. False when Ctrl-C cut it short.
+    const auto render_tile = [&](const Tile& t, uint64_t s0, uint64_t s1, SplatList& splats) {
+        auto sampler = prototype->clone();
+        for (int y = t.y0; y < t.y1; ++y) {
+            if (y > t.y0 && cancelled()) return false;
+            for (int x = t.x0; x < t.x1; ++x) {
+                const int fx = x + spec.crop_x, fy = y + spec.crop_y;  // full-film pixel
+                const bool keep = crop.contains(x, y);
+                PixelSamples px;
+                for (uint64_t s = s0; s < s1; ++s) {
+                    sampler->start_pixel_sample(fx, fy, s);
+                    // Filter importance sampling: the film position around the pixel centre,
+                    // with density proportional to the filter.
+                    const FilterSample fs = filter.sample(sampler->next_2d());
+                    const Vec2 centre(fx + 0.5, fy + 0.5);
+                    const Vec2 raster = centre + fs.offset;
+                    const Vec2 u_lambda = sampler->next_2d();
+                    const bool counted = keep && s >= first && s < last;
+                    SplatList unused;
+                    const TracedSample ts = trace_camera_sample(scene, *camera, tracer, spectral_samples, centre,
+                                                                raster, u_lambda, *sampler, counted ? splats : unused);
+                    if (!counted) continue;  // a pilot sample outside the range: learning only
+                    if (!px.add(ts.xyz * fs.weight, named_techniques ? ts.technique : -1)) ++render_stats::saturated;
+                }
+                if (px.count) result.film.add_samples(x, y, px);
+            }
+        }
+        if (bar) {
+            const uint64_t a = std::max(s0, first), b = std::min(s1, last);
+            const uint64_t n = b > a ? (b - a) * uint64_t(std::max(0, t.width())) * uint64_t(std::max(0, t.height())) : 0;
+            bar->add(timed ? 0 : n * uint64_t(team.size()));  // MPI: rank 0's share, scaled
+        }
+        return true;
+    };
+
+    uint64_t done = 0;  // every pixel holds its samples [0, done) (of those this render takes)
+    bool stop = false;
+    for (int pass = 0; !stop; ++pass) {
         // Splats need whole passes: a chain's deposits stay near its seed (ERPT), so a pass cut
         // short would brighten the tiles it reached against the film-wide normalisation. Such
         // a pass is dropped (unless it is the only one), and equal-time renders use passes of
         // one sample so that little time is lost.
-        uint64_t n = splatting && timed ? 1 : pass_size(pass);
+        const uint64_t s0 = done;
+        uint64_t s1 = s0 + (splatting && timed ? 1 : pass_size(pass));
+        if (s0 >= last) break;
+        s1 = std::min(s1, last);
+        const bool learning = tracer.learning();
+        if (!learning && s1 <= first) {  // before this render's samples: nothing to learn either
+            done = s1;
+            continue;
+        }
+        const uint64_t r0 = learning ? s0 : std::max(s0, first);
         std::optional<Film> before_pass;
-        if (splatting && done_spp > 0) before_pass = result.film;
-        if (!timed) {
-            if (done_spp >= uint64_t(opt.spp)) break;
-            n = std::min<uint64_t>(n, uint64_t(opt.spp) - done_spp);
-        }
-        const uint64_t s0 = done_spp, s1 = done_spp + n;
-        std::atomic<bool> pass_complete{true};
-        for (size_t g0 = 0; g0 < tiles.size() && pass_complete; g0 += group) {
-            const size_t g1 = std::min(tiles.size(), g0 + group);
-            arena.execute([&] {
-                tbb::parallel_for(g0, g1, [&](size_t ti) {
-                    if (stop_requested()) {
-                        pass_complete = false;
-                        return;
-                    }
-                    const Tile& t = tiles[ti];
-                    auto sampler = prototype->clone();
-                    SplatList dummy;
-                    SplatList& splats = splatting ? tile_splats[ti - g0] : dummy;
-                    for (int y = t.y0; y < t.y1; ++y) {
-                        if (y > t.y0 && cancel && cancel->load(std::memory_order_relaxed)) {
-                            pass_complete = false;
-                            return;
-                        }
-                        for (int x = t.x0; x < t.x1; ++x) {
-                            const int fx = x + spec.crop_x, fy = y + spec.crop_y;  // full-film pixel
-                            Vec3 sum, largest;
-                            int largest_technique = -1;
-                            for (uint64_t s = s0; s < s1; ++s) {
-                                sampler->start_pixel_sample(fx, fy, s);
-                                // Filter importance sampling: the film position around the
-                                // pixel centre, with density proportional to the filter.
-                                const FilterSample fs = filter.sample(sampler->next_2d());
-                                const Vec2 centre(fx + 0.5, fy + 0.5);
-                                const Vec2 raster = centre + fs.offset;
-                                const Vec2 u_lambda = sampler->next_2d();
-                                const TracedSample ts = trace_camera_sample(scene, *camera, tracer, spectral_samples,
-                                                                            centre, raster, u_lambda, *sampler, splats);
-                                const Vec3 xyz = ts.xyz * fs.weight;
-                                sum += xyz;
-                                if (xyz.y > largest.y) {
-                                    largest = xyz;
-                                    largest_technique = named_techniques ? ts.technique : -1;
-                                }
-                            }
-                            result.film.add_sum(x, y, sum, s1 - s0, largest, largest_technique);
-                        }
-                    }
-                    if (bar) bar->add(timed ? 0 : (s1 - s0) * uint64_t(t.x1 - t.x0) * uint64_t(t.y1 - t.y0));
+        if (splatting && done > first) before_pass = result.film;
+        std::atomic<bool> cut{false};
+        bool complete = true;
+        if (learning) {
+            // The pilot: tile t is rank t mod N's in every pass, so that each pixel's pilot record
+            // is written by one process, in sample order, as in a one-process render.
+            std::vector<size_t> mine;
+            for (size_t t = size_t(team.rank()); t < pilot_tiles.size(); t += size_t(team.size())) mine.push_back(t);
+            for (size_t g0 = 0; g0 < mine.size() && !cut; g0 += std::min(group, mine.size())) {
+                const size_t g1 = std::min(mine.size(), g0 + std::min(group, mine.size()));
+                std::vector<SplatList> lists(g1 - g0);
+                arena.execute([&] {
+                    tbb::parallel_for(g0, g1, [&](size_t k) {
+                        if (stop_requested() || !render_tile(pilot_tiles[mine[k]], r0, s1, lists[k - g0])) cut = true;
+                    });
                 });
-            });
-            // Splats of rows cut short by Ctrl-C are kept: the samples they came from were
-            // taken, and the scale below counts samples, not passes.
-            if (splatting) merge_splats(g1 - g0);
+                for (SplatList& l : lists) merge_splats(l);
+            }
+            complete = !team.any(cut);
+            stop = team.any(stop_requested());
+        } else {
+            team.begin_pass(int64_t(tiles.size()), stop_requested);
+            bool exhausted = false;
+            while (!exhausted && !cut) {
+                // A group of tiles at a time, each thread asking the team for its next tile.
+                std::vector<SplatList> lists(splatting ? size_t(threads) : 0);
+                std::atomic<size_t> taken{0};
+                std::atomic<bool> pass_over{false};
+                arena.execute([&] {
+                    tbb::parallel_for(0, threads, [&](int slot) {
+                        SplatList dummy;
+                        SplatList& splats = splatting ? lists[size_t(slot)] : dummy;
+                        while (taken.fetch_add(1) < group) {
+                            const WorkGrant g = team.next_tile();
+                            if (g.tile < 0) {
+                                pass_over = true;
+                                return;
+                            }
+                            if (!render_tile(tiles[size_t(g.tile)], r0, s1, splats)) {
+                                cut = true;
+                                return;
+                            }
+                        }
+                    });
+                });
+                for (SplatList& l : lists) merge_splats(l);
+                exhausted = pass_over;
+            }
+            bool handed_out_all = false;
+            stop = team.end_pass(&handed_out_all).stop;
+            complete = handed_out_all && !team.any(cut);
         }
-        if (!pass_complete) {
+        if (!complete) {
             if (before_pass) result.film = std::move(*before_pass);
             break;
         }
-        done_spp = s1;
-        tracer.end_pass(done_spp);
+        // MNEE's pilot: every rank's records, summed, before the tracer learns from them.
+        if (learning && team.size() > 1 && s1 >= tracer.pilot_samples()) {
+            std::vector<double> state = tracer.pilot_state();
+            team.sum_exactly(state);
+            tracer.set_pilot_state(state);
+        }
+        done = s1;
+        tracer.end_pass(done);
         if (bar && timed) bar->update();
     }
     if (bar) bar->finish();
 
-    result.seconds = elapsed();
-    result.spp_completed = done_spp;
-    uint64_t total = 0;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) total += result.film.samples(x, y);
-    result.spp_mean = double(total) / double(std::max(1, w * h));
-    // Splat estimators divide by the camera samples each pixel received (total / pixels).
-    result.film.set_splat_scale(total > 0 ? double(w) * double(h) / double(total) : 0.0);
-    result.interrupted = cancel && cancel->load() && (timed || done_spp < uint64_t(opt.spp));
-    result.film.set_max_sample_share(tracer.max_sample_share(), tracer.clamp_spread());
-    result.dominance = pixel_dominance(result.film);
     result.counters = stat_totals();
+    team.reduce(result.film, result.counters);
+    result.seconds = elapsed();
+    result.spp_completed = done > first ? done - first : 0;
+    uint64_t total = 0;
+    for (int y = crop.y0; y < crop.y1; ++y)
+        for (int x = crop.x0; x < crop.x1; ++x) total += result.film.samples(x, y);
+    result.spp_mean = double(total) / double(std::max(1, crop.width() * crop.height()));
+    result.interrupted = cancel && cancel->load() && (timed || done < last);
+    if (team.rank() == 0) {
+        finish_film(result.film, tracer.max_sample_share(), tracer.clamp_spread());
+        result.dominance = pixel_dominance(result.film);
+    }
+    result.saturated = result.counters[render_stats::saturated];
     result.layer_names = tracer.layer_names();
     result.technique_names = tracer.technique_names();
     return result;

@@ -5,6 +5,7 @@
 #include "camera/camera.h"
 #include "camera/film.h"
 #include "core/stats.h"
+#include "render/render_team.h"
 #include "render/sample_tracer.h"
 #include "sampler/factory.h"
 
@@ -21,13 +22,23 @@ struct RenderOptions {
     bool progress = true;  ///< progress bar on a terminal
     int tile_size = 16;
     bool debug_layers = false;  ///< integrators fill their debug layers (BDPT: per-strategy images)
+    bool progress_lines = false;  ///< progress as machine-readable lines on stdout (render farms)
+    /// The part of the frame to render (issue 27): a crop of the output window (empty: all of
+    /// it) and the sample indices [sample_begin, sample_end) of each of its pixels (sample_end
+    /// 0: spp). A full render is the exact sum of renders of any split of its pixels and samples.
+    PixelRect crop;
+    uint64_t sample_begin = 0, sample_end = 0;
+    /// The processes rendering the frame together (null: process_team(), an MPI job's or this
+    /// process alone). Only rank 0's result holds the whole film.
+    RenderTeam* team = nullptr;
 };
 
 struct RenderResult {
     Film film{1, 1};
     double seconds = 0;
     uint64_t spp_completed = 0;  ///< samples every pixel received (complete passes)
-    double spp_mean = 0;         ///< mean samples per pixel, partial passes included
+    double spp_mean = 0;         ///< mean samples per pixel, partial passes included (of the crop)
+    uint64_t saturated = 0;      ///< sample values beyond the film's exact range, saturated (ExactSum)
     bool interrupted = false;    ///< cancelled (Ctrl-C) before the requested spp
     /// Every registered statistic (core/stats.h), summed over the threads of the render.
     StatTotals counters;
@@ -37,12 +48,19 @@ struct RenderResult {
 };
 
 /// The shared render loop of per-pixel-sample estimators: progressive passes over tiles with
-/// TBB. Every pixel sample draws from its own random stream (seed, pixel, index) of the
-/// options' sampler, its film position from the pixel's reconstruction filter (importance
-/// sampled), then `spectral_samples` wavelengths; pixel sums are accumulated in a fixed order,
-/// so the result does not depend on the thread count. Samples that are NaN, infinite or
-/// negative are counted and replaced by zero so that nothing invalid reaches the film.
+/// TBB, the tiles of each pass handed out by the team (threads of one process, or MPI ranks).
+/// Every pixel sample draws from its own random stream (seed, pixel, index) of the options'
+/// sampler, its film position from the pixel's reconstruction filter (importance sampled), then
+/// `spectral_samples` wavelengths; pixel sums are exact (ExactSum), so the result depends on
+/// neither the thread count, nor the ranks, nor how the frame is split into crops and sample
+/// ranges. Samples that are NaN, infinite or negative are counted and replaced by zero so that
+/// nothing invalid reaches the film. The outlier clamp (the tracer's max_sample_share) is a
+/// post-process of the reduced film (finish_film).
 RenderResult render_tiles(const Scene& scene, SampleTracer& tracer, int spectral_samples, const FilmSpec& film,
                           const RenderOptions& options, const std::atomic<bool>* cancel = nullptr);
+
+/// The post-process of a finished film (after the reduction over ranks, or a merge of partial
+/// films): the splat scale from the camera samples the film holds and the outlier clamp.
+void finish_film(Film& film, double max_sample_share, int clamp_spread);
 
 }  // namespace snell

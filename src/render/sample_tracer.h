@@ -60,6 +60,21 @@ public:
     /// `samples_per_pixel` samples: a tracer that learns from its first samples (MNEE's
     /// ConnectionAllocation) changes its estimator here, never while a pass runs.
     virtual void end_pass(uint64_t /*samples_per_pixel*/) {}
+
+    // A tracer that learns from a pilot (its first samples of every pixel) needs the pilot's
+    // samples whatever part of the frame a process renders (issue 27): a crop, a sample range
+    // or an MPI rank's tiles. The render loop renders the pilot over pilot_window() even where
+    // it adds nothing to the film, and sums pilot_state() over MPI ranks before end_pass().
+    /// True while the tracer is still learning (its estimator changes in a later end_pass()).
+    virtual bool learning() const { return false; }
+    /// The samples per pixel its pilot takes (0: no pilot).
+    virtual uint64_t pilot_samples() const { return 0; }
+    /// The pixels (output window) whose pilot samples the estimator of `crop` depends on.
+    virtual void pilot_window(int& x0, int& y0, int& x1, int& y1) const { (void)x0, (void)y0, (void)x1, (void)y1; }
+    /// What the pilot recorded, as doubles that are zero for pixels this process did not render,
+    /// so that summing over processes is exact; set_pilot_state() puts the sum back.
+    virtual std::vector<double> pilot_state() const { return {}; }
+    virtual void set_pilot_state(const std::vector<double>& /*state*/) {}
 };
 
 /// Called by a tracer inside li_splat(): the technique (an index into technique_names()) that

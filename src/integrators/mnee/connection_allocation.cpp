@@ -86,6 +86,56 @@ void ConnectionAllocation::add(int x, int y, const PilotSample& s, double value,
     ++p.n;
 }
 
+void ConnectionAllocation::widen_to_regions(int& x0, int& y0, int& x1, int& y1) const {
+    const auto widen = [&](int& a, int& b, int offset, int size) {
+        a = std::max(0, floor_div(a + offset, m_block) * m_block - offset);
+        b = std::min(size, (floor_div(b - 1 + offset, m_block) + 1) * m_block - offset);
+    };
+    widen(x0, x1, m_crop_x, m_width);
+    widen(y0, y1, m_crop_y, m_height);
+}
+
+namespace {
+constexpr size_t kPilotValues = kCandidateCount + 8;  // PixelStats as doubles
+}  // namespace
+
+std::vector<double> ConnectionAllocation::pilot_state() const {
+    std::vector<double> v(m_pixels.size() * kPilotValues, 0.0);
+    for (size_t i = 0; i < m_pixels.size(); ++i) {
+        const PixelStats& p = m_pixels[i];
+        double* d = v.data() + i * kPilotValues;
+        for (int j = 0; j < kCandidateCount; ++j) d[j] = p.m2[size_t(j)];
+        d += kCandidateCount;
+        d[0] = p.m2_pilot;
+        d[1] = p.sum;
+        d[2] = p.sum2;
+        d[3] = p.work;
+        d[4] = p.work_connect;
+        d[5] = p.work_density;
+        d[6] = double(p.n);
+        d[7] = p.needs_mnee ? 1.0 : 0.0;
+    }
+    return v;
+}
+
+void ConnectionAllocation::set_pilot_state(const std::vector<double>& v) {
+    if (v.size() != m_pixels.size() * kPilotValues) return;
+    for (size_t i = 0; i < m_pixels.size(); ++i) {
+        PixelStats& p = m_pixels[i];
+        const double* d = v.data() + i * kPilotValues;
+        for (int j = 0; j < kCandidateCount; ++j) p.m2[size_t(j)] = d[j];
+        d += kCandidateCount;
+        p.m2_pilot = d[0];
+        p.sum = d[1];
+        p.sum2 = d[2];
+        p.work = d[3];
+        p.work_connect = d[4];
+        p.work_density = d[5];
+        p.n = uint32_t(d[6]);
+        p.needs_mnee = d[7] > 0;
+    }
+}
+
 void ConnectionAllocation::fit() {
     if (m_fitted) return;
     const size_t regions = m_choice.size();

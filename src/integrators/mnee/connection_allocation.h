@@ -73,6 +73,14 @@ public:
     /// Ends the pilot: every region takes the candidate of least variance x work.
     void fit();
 
+    /// Widens the window rectangle [x0, x1) x [y0, y1) (pixels of the film window) to the whole
+    /// regions it meets, clipped to the window: the pixels a crop's choices depend on.
+    void widen_to_regions(int& x0, int& y0, int& x1, int& y1) const;
+    /// The pilot's per-pixel records as doubles (zero for pixels without pilot samples, so that
+    /// the records of MPI ranks that rendered different pixels sum exactly), and back.
+    std::vector<double> pilot_state() const;
+    void set_pilot_state(const std::vector<double>& state);
+
     /// Regions by chosen candidate (kCandidateCount bins), for the statistics.
     std::array<uint64_t, kCandidateCount> histogram() const;
     /// The candidate index chosen by the region of full-film pixel (x, y) (-1 while learning).

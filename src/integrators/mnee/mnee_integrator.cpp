@@ -46,6 +46,17 @@ public:
         const auto h = m_allocation->histogram();
         for (size_t j = 0; j < h.size(); ++j) walk_counters::allocation_regions.add(int64_t(j), h[j]);
     }
+    bool learning() const override { return m_allocation && m_allocation->learning(); }
+    uint64_t pilot_samples() const override { return m_allocation ? m_pilot_spp : 0; }
+    void pilot_window(int& x0, int& y0, int& x1, int& y1) const override {
+        if (m_allocation) m_allocation->widen_to_regions(x0, y0, x1, y1);
+    }
+    std::vector<double> pilot_state() const override {
+        return m_allocation ? m_allocation->pilot_state() : std::vector<double>{};
+    }
+    void set_pilot_state(const std::vector<double>& state) override {
+        if (m_allocation) m_allocation->set_pilot_state(state);
+    }
     double max_sample_share() const override { return m_mnee.settings().max_sample_share; }
     int clamp_spread() const override { return m_mnee.settings().clamp_spread; }
     std::vector<std::string> technique_names() const override { return path_technique_names(); }
