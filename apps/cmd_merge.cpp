@@ -39,17 +39,17 @@ int cmd_merge(const std::vector<std::string>& parts, std::string out, double exp
         }
     r.spp_completed = least == UINT64_MAX ? 0 : least;
     r.spp_mean = double(total) / double(std::max(1, r.film.width() * r.film.height()));
-    RenderReport rep = make_report("merge of " + std::to_string(parts.size()) + " partial films",
-                                   merged.info.integrator, merged.info.width, merged.info.height, r, merged.info.spp, 0,
-                                   0, merged.info.seed);
+    RenderReport rep =
+        make_report("merge of " + std::to_string(parts.size()) + " partial films", merged.info.integrator,
+                    merged.info.width, merged.info.height, r, merged.info.spp, 0, 0, merged.info.seed);
     rep.beyond_float = r.film.values_beyond_float();
     rep.extra["merge"] = {{"parts", parts}, {"coverage", coverage}, {"scene_hash", merged.info.scene_hash}};
     write_stats_json(stats_path, rep);
     if (coverage < 1 - 1e-12)
         std::fprintf(stderr, "snell: warning: the parts hold %.4g %% of the frame's pixel samples\n", 100 * coverage);
     if (!quiet)
-        std::fprintf(stderr, "snell: merged %zu partial films (%s, %dx%d, %llu spp)\n  wrote %s, %s, %s\n", parts.size(),
-                     merged.info.integrator.c_str(), merged.info.width, merged.info.height,
+        std::fprintf(stderr, "snell: merged %zu partial films (%s, %dx%d, %llu spp)\n  wrote %s, %s, %s\n",
+                     parts.size(), merged.info.integrator.c_str(), merged.info.width, merged.info.height,
                      (unsigned long long)merged.info.spp, out_path.c_str(), png_path.c_str(), stats_path.c_str());
     return kExitOk;
 }

@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <cctype>
 #include <climits>
-#include <cstdint>
-#include <tuple>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <thread>
+#include <tuple>
 
 #include "app_common.h"
 #include "commands.h"
@@ -41,8 +41,8 @@ std::pair<uint64_t, uint64_t> parse_sample_range(const std::string& text) {
     unsigned long long a = 0, b = 0;
     char tail = 0;
     if (text.empty() || text[0] == '-' || std::sscanf(text.c_str(), "%llu:%llu%c", &a, &b, &tail) != 2 || !(a < b))
-        throw std::runtime_error("--sample-range must be a:b with 0 <= a < b (sample indices a ... b-1), got '" +
-                                 text + "'");
+        throw std::runtime_error("--sample-range must be a:b with 0 <= a < b (sample indices a ... b-1), got '" + text +
+                                 "'");
     return {a, b};
 }
 
@@ -59,8 +59,8 @@ std::string scene_hash(const std::string& scene_arg, const Defines& defines, con
         bytes = scene_arg;
     }
     for (const auto& [k, v] : defines) bytes += "\n-D " + k + "=" + v;
-    bytes += "\nsampler " + ls.sampler.type + " film " + std::to_string(ls.film.out_width()) +
-             "x" + std::to_string(ls.film.out_height()) + "+" + std::to_string(ls.film.crop_x) + "," +
+    bytes += "\nsampler " + ls.sampler.type + " film " + std::to_string(ls.film.out_width()) + "x" +
+             std::to_string(ls.film.out_height()) + "+" + std::to_string(ls.film.crop_x) + "," +
              std::to_string(ls.film.crop_y);
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)fnv1a(bytes));
@@ -112,8 +112,9 @@ int cmd_render(const RenderCommandOptions& o) {
     std::string out = output_name(o.out, frame);
     const bool partial = !o.crop.empty() || !o.sample_range.empty();
     if (partial && team.size() > 1)
-        throw std::runtime_error("--crop and --sample-range are farm tasks of one process each; under MPI the ranks "
-                                 "split the frame themselves");
+        throw std::runtime_error(
+            "--crop and --sample-range are farm tasks of one process each; under MPI the ranks "
+            "split the frame themselves");
     LoadedScene ls = load_scene_arg(scene_arg, defines, search_paths);
     const Integrator* integ = ls.integrator.get();
     if (!integ) throw std::runtime_error(scene_arg + ": the scene declares no <integrator>");
@@ -189,11 +190,12 @@ int cmd_render(const RenderCommandOptions& o) {
         info.sample_end = opt.sample_end > 0 ? opt.sample_end : info.spp;
         if (r.interrupted) info.sample_end = info.sample_begin + r.spp_completed;  // what every pixel holds
         if (info.sample_end > info.sample_begin) write_partial_film(out_path.string(), r.film, info);
-        RenderReport rep = make_report(ls.path, integ->name(), info.width, info.height, r, uint64_t(opt.spp), 0,
-                                       nthreads, seed);
+        RenderReport rep =
+            make_report(ls.path, integ->name(), info.width, info.height, r, uint64_t(opt.spp), 0, nthreads, seed);
         write_stats_json(stats_path, rep);
         if (!quiet || r.interrupted)
-            std::fprintf(stderr, "snell: %s%.2f s; partial film of pixels %d,%d,%d,%d, samples %llu:%llu\n  wrote %s, %s\n",
+            std::fprintf(stderr,
+                         "snell: %s%.2f s; partial film of pixels %d,%d,%d,%d, samples %llu:%llu\n  wrote %s, %s\n",
                          r.interrupted ? "INTERRUPTED after " : "", r.seconds, info.crop.x0, info.crop.y0,
                          info.crop.width(), info.crop.height(), (unsigned long long)info.sample_begin,
                          (unsigned long long)info.sample_end, out_path.c_str(), stats_path.c_str());

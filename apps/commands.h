@@ -10,8 +10,8 @@ namespace snell {
 
 /// Exit statuses of every sub-command (docs/rendering.md, "Exit codes").
 inline constexpr int kExitOk = 0;
-inline constexpr int kExitError = 1;        ///< a bad scene, a missing file, an I/O error, a failed rank
-inline constexpr int kExitUsage = 2;        ///< a malformed command line
+inline constexpr int kExitError = 1;          ///< a bad scene, a missing file, an I/O error, a failed rank
+inline constexpr int kExitUsage = 2;          ///< a malformed command line
 inline constexpr int kExitInterrupted = 130;  ///< Ctrl-C (or SIGTERM): the image so far was written
 
 /// Options of `snell render` (docs/rendering.md).
@@ -28,8 +28,8 @@ struct RenderCommandOptions {
     std::vector<std::string> defines;
     bool strategies = false;
     std::vector<std::string> search_paths;
-    std::string crop;          ///< --crop x,y,w,h: a partial film of those pixels
-    std::string sample_range;  ///< --sample-range a:b: a partial film of those samples
+    std::string crop;              ///< --crop x,y,w,h: a partial film of those pixels
+    std::string sample_range;      ///< --sample-range a:b: a partial film of those samples
     std::string progress = "bar";  ///< --progress bar | lines | none
 };
 

@@ -29,6 +29,19 @@ if(SNELL_BUILD_TESTS AND NOT SNELL_SANITIZE)
   set_tests_properties(cli.end_to_end PROPERTIES TIMEOUT 300)
 endif()
 
+# Issue 27 end to end: MPI ranks and farm tasks give the one-process frame bit for bit.
+if(SNELL_BUILD_TESTS AND NOT SNELL_SANITIZE)
+  find_program(SNELL_MPIRUN mpirun)
+  if(SNELL_MPIRUN AND TARGET MPI::MPI_CXX)
+    set(SNELL_DISTRIBUTED_MODE mpi)
+  else()
+    set(SNELL_DISTRIBUTED_MODE local)
+  endif()
+  add_test(NAME cli.distributed COMMAND bash ${PROJECT_SOURCE_DIR}/tests/cli/test_distributed.sh $<TARGET_FILE:snell>
+                                        ${SNELL_DISTRIBUTED_MODE})
+  set_tests_properties(cli.distributed PROPERTIES TIMEOUT 600)
+endif()
+
 # `snell compare` end to end: cli.compare writes a report (and checks report.json and the error
 # messages); cli.compare_html opens that report in headless Chromium.
 if(SNELL_BUILD_TESTS AND NOT SNELL_SANITIZE)

@@ -20,7 +20,7 @@ if(SNELL_BUILD_TESTS)
 endif()
 
 snell_test(test_core
-  SOURCES tests/unit/test_transform.cpp tests/unit/test_stats.cpp
+  SOURCES tests/unit/test_transform.cpp tests/unit/test_stats.cpp tests/unit/test_exact_sum.cpp
   LIBS snell_core snell_test_stats_lib)
 
 snell_test(test_spectrum

@@ -15,8 +15,8 @@ namespace snell {
 struct PixelSamples {
     ExactSum3 sum;
     uint64_t count = 0;
-    Vec3 largest;          ///< the sample of largest luminance (Y) so far (zero: none positive)
-    int technique = -1;    ///< the technique that delivered it
+    Vec3 largest;        ///< the sample of largest luminance (Y) so far (zero: none positive)
+    int technique = -1;  ///< the technique that delivered it
     /// Adds one sample (its XYZ, already filter-weighted) delivered by `technique`. Returns false
     /// when a component was beyond ExactSum's range and was saturated.
     bool add(const Vec3& xyz, int technique);
@@ -26,8 +26,8 @@ struct PixelSamples {
 };
 
 /// Accumulates XYZ per pixel, exactly (ExactSum), so that the film does not depend on the order
-/// in which threads, ranks or merged partial films add their samples (issue 27) (box filter: each sample lands in the pixel it was taken in).
-/// Sample weights are counted per pixel so a partially rendered (interrupted or time-limited)
+/// in which threads, ranks or merged partial films add their samples (issue 27) (box filter: each sample lands in the
+/// pixel it was taken in). Sample weights are counted per pixel so a partially rendered (interrupted or time-limited)
 /// film still resolves to an unbiased average for the pixels it reached.
 /// A second, unnormalised layer holds splats (contributions of light paths that reach the
 /// film anywhere: BDPT's light tracing, ERPT's deposits); it is scaled by `splat_scale`

@@ -32,9 +32,9 @@ public:
         if (saturated) v = v < 0 ? -kMaxTerm : kMaxTerm;
         if (v == 0) return !saturated;
         int e = 0;
-        const double f = std::frexp(std::abs(v), &e);              // |v| = f 2^e, f in [0.5, 1)
-        const uint64_t m = uint64_t(std::ldexp(f, 53));             // exact: a 53-bit integer
-        const int shift = e - 53 + kFractionBits;                   // |v| 2^80 = m 2^shift
+        const double f = std::frexp(std::abs(v), &e);    // |v| = f 2^e, f in [0.5, 1)
+        const uint64_t m = uint64_t(std::ldexp(f, 53));  // exact: a 53-bit integer
+        const int shift = e - 53 + kFractionBits;        // |v| 2^80 = m 2^shift
         std::array<uint64_t, 3> t{0, 0, 0};
         if (shift < 0) {
             if (shift > -64) t[0] = m >> -shift;  // truncated: the bits below 2^-80 go

@@ -11,7 +11,7 @@ namespace snell {
 namespace {
 constexpr int64_t kRedrawIntervalNs = 100'000'000;  // ~10 redraws per second
 constexpr int64_t kLineIntervalNs = 1'000'000'000;  // lines mode: one a second
-}
+}  // namespace
 
 std::string format_duration(double s) {
     if (!(s >= 0) || std::isinf(s)) return "--";

@@ -185,8 +185,7 @@ public:
         std::vector<PixelRecord> buf(n), out(m_rank == 0 ? n : 0);
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) buf[size_t(y) * w + x] = pack(film, x, y);
-        reduce_chunks(buf.data(), m_rank == 0 ? out.data() : nullptr, n, sizeof(PixelRecord), m_pixel_type,
-                      m_pixel_op);
+        reduce_chunks(buf.data(), m_rank == 0 ? out.data() : nullptr, n, sizeof(PixelRecord), m_pixel_type, m_pixel_op);
         if (m_rank == 0)
             for (int y = 0; y < h; ++y)
                 for (int x = 0; x < w; ++x) {

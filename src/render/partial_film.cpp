@@ -140,7 +140,8 @@ std::string mismatch(const PartialFilmInfo& a, const PartialFilmInfo& b) {
 }
 
 bool overlaps(const PartialFilmInfo& a, const PartialFilmInfo& b) {
-    const bool pixels = a.crop.x0 < b.crop.x1 && b.crop.x0 < a.crop.x1 && a.crop.y0 < b.crop.y1 && b.crop.y0 < a.crop.y1;
+    const bool pixels =
+        a.crop.x0 < b.crop.x1 && b.crop.x0 < a.crop.x1 && a.crop.y0 < b.crop.y1 && b.crop.y0 < a.crop.y1;
     return pixels && a.sample_begin < b.sample_end && b.sample_begin < a.sample_end;
 }
 
@@ -204,7 +205,8 @@ void write_partial_film(const std::string& path, const Film& film, const Partial
             }
         };
         insert(pixel_channel_names(), words, kWordsPerPixel);
-        for (size_t k = 0; k < layers.size(); ++k) insert(splat_channel_names(layers[k]), splat_words[k], kWordsPerSplat);
+        for (size_t k = 0; k < layers.size(); ++k)
+            insert(splat_channel_names(layers[k]), splat_words[k], kWordsPerSplat);
         Imf::StdOSStream stream;
         {
             Imf::OutputFile file(stream, header);
@@ -251,7 +253,8 @@ PartialFilm read_partial_film(const std::string& path) {
         for (int l = 0; l < 1 + int(p.info.layer_names.size()); ++l)
             if (file.header().channels().findChannel(splat_channel_names(l)[0])) layers.push_back(l);
         std::vector<std::vector<uint32_t>> splat_words(layers.size(), std::vector<uint32_t>(n * kWordsPerSplat));
-        for (size_t k = 0; k < layers.size(); ++k) insert(splat_channel_names(layers[k]), splat_words[k], kWordsPerSplat);
+        for (size_t k = 0; k < layers.size(); ++k)
+            insert(splat_channel_names(layers[k]), splat_words[k], kWordsPerSplat);
         file.setFrameBuffer(fb);
         file.readPixels(0, h - 1);
         p.film = Film(w, h);

@@ -28,8 +28,8 @@ struct PixelRect {
 
 /// What the team says about the next tile of a pass.
 struct WorkGrant {
-    int64_t tile = -1;    ///< the tile to render; -1: the pass has no more work for this process
-    bool stop = false;    ///< with tile -1: the render stops after this pass (time, Ctrl-C)
+    int64_t tile = -1;  ///< the tile to render; -1: the pass has no more work for this process
+    bool stop = false;  ///< with tile -1: the render stops after this pass (time, Ctrl-C)
 };
 
 class RenderTeam {

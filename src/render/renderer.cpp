@@ -34,7 +34,8 @@ std::vector<Tile> make_tiles(const PixelRect& r, int size) {
     if (r.empty()) return tiles;
     for (int ty = r.y0 / size * size; ty < r.y1; ty += size)
         for (int tx = r.x0 / size * size; tx < r.x1; tx += size)
-            tiles.push_back({std::max(tx, r.x0), std::max(ty, r.y0), std::min(r.x1, tx + size), std::min(r.y1, ty + size)});
+            tiles.push_back(
+                {std::max(tx, r.x0), std::max(ty, r.y0), std::min(r.x1, tx + size), std::min(r.y1, ty + size)});
     return tiles;
 }
 
@@ -124,9 +125,8 @@ RenderResult render_tiles(const Scene& scene, SampleTracer& tracer, int spectral
                 continue;
             }
             // The pixels whose filter covers the splat estimate their filtered integral.
-            for_each_pixel_in_support(filter, p, w, h, [&](int x, int y, double wt) {
-                result.film.add_splat(x, y, sp.xyz * wt, sp.layer);
-            });
+            for_each_pixel_in_support(
+                filter, p, w, h, [&](int x, int y, double wt) { result.film.add_splat(x, y, sp.xyz * wt, sp.layer); });
         }
         list.clear();
     };
@@ -161,7 +161,8 @@ RenderResult render_tiles(const Scene& scene, SampleTracer& tracer, int spectral
         }
         if (bar) {
             const uint64_t a = std::max(s0, first), b = std::min(s1, last);
-            const uint64_t n = b > a ? (b - a) * uint64_t(std::max(0, t.width())) * uint64_t(std::max(0, t.height())) : 0;
+            const uint64_t n =
+                b > a ? (b - a) * uint64_t(std::max(0, t.width())) * uint64_t(std::max(0, t.height())) : 0;
             bar->add(timed ? 0 : n * uint64_t(team.size()));  // MPI: rank 0's share, scaled
         }
         return true;

@@ -21,7 +21,7 @@ struct RenderOptions {
     SamplerSpec sampler;  ///< pixel sampler (the scene's <sampler> type); built with create_sampler(sampler, spp, seed)
     bool progress = true;  ///< progress bar on a terminal
     int tile_size = 16;
-    bool debug_layers = false;  ///< integrators fill their debug layers (BDPT: per-strategy images)
+    bool debug_layers = false;    ///< integrators fill their debug layers (BDPT: per-strategy images)
     bool progress_lines = false;  ///< progress as machine-readable lines on stdout (render farms)
     /// The part of the frame to render (issue 27): a crop of the output window (empty: all of
     /// it) and the sample indices [sample_begin, sample_end) of each of its pixels (sample_end

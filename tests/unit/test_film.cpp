@@ -319,3 +319,32 @@ TEST(Film, ClampSpreadCutsAnUnhiddenFireflyToTheLevelThatDoesNotDominate) {
     EXPECT_EQ(d.spread_dropped, 9u);
     EXPECT_NEAR(d.spread_share / d.clamped_share, (8 * 0.01 + 0.015) / ((40 - 0.03) / 4), 1e-9);
 }
+
+TEST(Film, MergedFilmsAreTheFilmOfAllTheirSamples) {
+    // Issue 27: samples split over films (threads, ranks, farm tasks) and merged in any order
+    // give the film that took them all, bit for bit; splats too.
+    PCG32 rng(7, 3);
+    Film all(3, 2), a(3, 2), b(3, 2), c(3, 2);
+    Film* parts[3] = {&a, &b, &c};
+    for (int k = 0; k < 300; ++k) {
+        const int x = k % 3, y = (k / 3) % 2;
+        const Vec3 xyz(rng.next_double() * 1e3, std::ldexp(rng.next_double(), -int(rng.next_double() * 40)),
+                       rng.next_double());
+        PixelSamples one;
+        one.add(xyz, k % 4);
+        all.add_samples(x, y, one);
+        parts[k % 3]->add_samples(x, y, one);
+        const Vec3 splat(rng.next_double(), rng.next_double() * 1e-9, rng.next_double() * 1e6);
+        all.add_splat(x, y, splat, k % 2);
+        parts[(k + 1) % 3]->add_splat(x, y, splat, k % 2);
+    }
+    Film merged = c;
+    merged.merge(a);
+    merged.merge(b);
+    EXPECT_TRUE(merged.same_samples(all));
+    EXPECT_EQ(merged.largest_sample_technique(1, 1), all.largest_sample_technique(1, 1));
+    // One sample fewer is not the same film.
+    Film fewer = c;
+    fewer.merge(a);
+    EXPECT_FALSE(fewer.same_samples(all));
+}
