@@ -97,6 +97,14 @@ RenderReport make_report(const std::string& scene, const std::string& integrator
                 r.dominance.dominated_by_technique[t];
     rep.set_counters(r.counters);
     if (has_mnee_stats(r.counters)) rep.extra["mnee"] = mnee_stats_json(r.counters);
+    if (r.team.ranks > 1)  // the scaling model's inputs (docs/distributed.md, "Scaling")
+        rep.extra["mpi"] = {{"ranks", r.team.ranks},
+                            {"tile_requests", r.team.requests},
+                            {"dispatcher_service_s", r.team.service_seconds},
+                            {"rank0_pass_end_wait_s", r.team.pass_end_seconds},
+                            {"idle_s_all_ranks", r.team.idle_seconds},
+                            {"reduce_s", r.team.reduce_seconds},
+                            {"reduce_bytes_per_rank", r.team.reduce_bytes}};
     return rep;
 }
 

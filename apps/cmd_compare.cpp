@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <set>
@@ -19,6 +20,7 @@
 #include "integrators/integrator.h"
 #include "loader/mitsuba_integrators.h"
 #include "manifold/walk_statistics.h"
+#include "render/render_team.h"
 #include "render/renderer.h"
 #include "report/compare_report.h"
 #include "report/false_colour.h"
@@ -154,7 +156,27 @@ std::vector<std::string> write_crops(const fs::path& dir, const std::string& pre
 
 }  // namespace
 
-int cmd_compare(const CompareOptions& opt) {
+int cmd_compare(const CompareOptions& options) {
+    // Under mpirun (SNELL_LAUNCH="mpirun -n 4", docs/distributed.md) every rank renders each image
+    // with the others and rank 0 alone reports: the other ranks stay quiet and write their
+    // copies to a scratch folder that is removed at the end.
+    const RenderTeam& team = process_team();
+    const bool lead = team.rank() == 0;
+    CompareOptions opt = options;
+    if (!lead) {
+        opt.quiet = true;
+        opt.out_dir =
+            (fs::temp_directory_path() / ("snell-compare-rank" + std::to_string(team.rank()) + "-" +
+                                          std::to_string(uint64_t(std::hash<std::string>()(options.out_dir)))))
+                .string();
+    }
+    struct Scratch {
+        std::string dir;
+        ~Scratch() {
+            std::error_code ec;
+            if (!dir.empty()) fs::remove_all(dir, ec);
+        }
+    } scratch{lead ? "" : opt.out_dir};
     // Validate everything cheap before the first render.
     if (opt.integrators.empty()) throw std::runtime_error("--integrators: name at least one integrator");
     std::vector<Technique> techniques;
@@ -315,6 +337,7 @@ int cmd_compare(const CompareOptions& opt) {
     }
     write_html_report(html_path.string(), rep);
 
+    if (!lead) return g_cancel.load() ? 130 : 0;
     // Summary, best first.
     std::printf("%-4s %-12s %12s %10s %10s %10s %8s %12s\n", "rank", "integrator", "relMSE", "RMSE", "PSNR", "SMAPE",
                 "spp", "paths/s");

@@ -6,7 +6,7 @@ snell_library(snell_camera
   src/camera/orthographic.cpp
   src/camera/filter.cpp
   src/camera/film.cpp
-  src/camera/film_spread.cpp
+  src/camera/outlier_clamp.cpp
   src/camera/factory.cpp
 )
 target_link_libraries(snell_camera PUBLIC snell_core)

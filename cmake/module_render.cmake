@@ -4,6 +4,7 @@ snell_library(snell_render
   src/render/renderer.cpp
   src/render/camera_sample.cpp
   src/render/render_team.cpp
+  src/render/team_pass.cpp
   src/render/mpi_team.cpp
   src/render/partial_film.cpp
 )
@@ -17,3 +18,5 @@ if(MPI_CXX_FOUND AND NOT SNELL_SANITIZE)
   target_compile_definitions(snell_render PRIVATE SNELL_HAVE_MPI)
   set(SNELL_HAVE_MPI ON)
 endif()
+
+snell_test(test_team_pass SOURCES tests/unit/test_team_pass.cpp LIBS snell_render)

@@ -9,7 +9,7 @@ option(SNELL_BUILD_FUZZ "Build fuzz_loader, the scene-loader fuzz target (libFuz
 set(SNELL_SANITIZE_TESTS
     test_core test_spectrum test_props test_film test_samplers test_image test_mesh_io test_bsdf_unit
     test_light test_geometry test_scatter test_bdpt_vertices test_scene_parser test_scene_loader_full
-    test_manifold test_report
+    test_manifold test_report test_team_pass
     CACHE STRING "Test executables built and run by the sanitizer build")
 
 if(SNELL_SANITIZE OR SNELL_BUILD_FUZZ)

@@ -73,7 +73,7 @@ reference)
     [ -f "$OUT/ref_$c.exr" ] && continue
     with_crop "$(scene_of "$c")" "$OUT/ref_$c.xml" "$(ref_crop_of "$c")"
     # shellcheck disable=SC2046
-    "$SNELL" render "$OUT/ref_$c.xml" $(defines_of "$c") -D integrator=bdpt --time "$T" -t "$THREADS" -q --seed 77 \
+    "${LAUNCH[@]}" "$SNELL" render "$OUT/ref_$c.xml" $(defines_of "$c") -D integrator=bdpt --time "$T" -t "$THREADS" -q --seed 77 \
       -o "$OUT/ref_$c.exr"
   done
   ;;
@@ -84,7 +84,7 @@ refcheck)
     IFS=, read -r rx ry _ _ <<<"$(ref_crop_of "$c")"
     with_crop "$(scene_of "$c")" "$OUT/ref2_$c.xml" "$(ref_crop_of "$c")"
     # shellcheck disable=SC2046
-    "$SNELL" render "$OUT/ref2_$c.xml" $(defines_of "$c") -D integrator=bdpt --time "$T" -t "$THREADS" -q --seed 78 \
+    "${LAUNCH[@]}" "$SNELL" render "$OUT/ref2_$c.xml" $(defines_of "$c") -D integrator=bdpt --time "$T" -t "$THREADS" -q --seed 78 \
       -o "$OUT/ref2_$c.exr"
     for crop in $(crops_of "$c"); do
       IFS=, read -r x y w h <<<"${crop#*:}"
@@ -105,7 +105,7 @@ render)
         scene="$OUT/$LABEL/${c}_$integ.xml"
       fi
       # shellcheck disable=SC2046
-      "$SNELL" render "$scene" $(defines_of "$c") -D integrator=$name --time "$T" -t "$THREADS" -q --seed "$SEED" \
+      "${LAUNCH[@]}" "$SNELL" render "$scene" $(defines_of "$c") -D integrator=$name --time "$T" -t "$THREADS" -q --seed "$SEED" \
         -o "$OUT/$LABEL/${c}_$integ.exr"
     done
   done
@@ -118,7 +118,7 @@ compare)
     crop_args=()
     for crop in $(crops_of "$c"); do crop_args+=(--crop "${crop#*:}"); done
     # shellcheck disable=SC2046
-    "$SNELL" compare "$(scene_of "$c")" $(defines_of "$c") --integrators nee,mnee,mnee-biased --time "$T" \
+    "${LAUNCH[@]}" "$SNELL" compare "$(scene_of "$c")" $(defines_of "$c") --integrators nee,mnee,mnee-biased --time "$T" \
       -t "$THREADS" --seed "$SEED" --reference "$OUT/ref_$c.exr" --reference-offset "$rx,$ry" "${crop_args[@]}" \
       --convergence-steps 0 -q -o "$OUT/$LABEL/compare_$c"
   done

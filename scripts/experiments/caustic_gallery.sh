@@ -31,8 +31,6 @@ TECHNIQUES=${TECHNIQUES:-nee,mnee-paper,mnee,mnee-biased}
 GALLERY=scenes/caustics
 OUT=results/gallery
 mkdir -p "$OUT/ref"
-# shellcheck disable=SC2206
-LAUNCH=(${SNELL_LAUNCH:-})
 
 # The manifest: case, scene, defines (comma-separated or -), crop.
 declare -A SCENE DEFS CROP REF

@@ -1,12 +1,16 @@
 # Shared by the experiment scripts (sourced, not run). Sets SNELL (the Release binary, built
 # with `make release` when missing; override with SNELL=path), DEFINES (an array of -D options
 # from SNELL_DEFINES="name=value ...", e.g. SNELL_DEFINES="res_x=160 res_y=120" for a smoke
-# test), and has_compare (whether this snell has the `compare` command).
+# test), LAUNCH (an array: the launcher every render and compare runs under, from SNELL_LAUNCH,
+# e.g. SNELL_LAUNCH="mpirun -n 4"; docs/distributed.md) and has_compare (whether this snell has
+# the `compare` command).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/../.."
 SNELL=${SNELL:-build-release/snell}
 if [ ! -x "$SNELL" ]; then make release >/dev/null; fi
 DEFINES=()
+# shellcheck disable=SC2206  # the launcher is a command line, split on spaces on purpose
+LAUNCH=(${SNELL_LAUNCH:-})
 for d in ${SNELL_DEFINES:-}; do DEFINES+=(-D "$d"); done
 
 has_compare() { "$SNELL" --help 2>/dev/null | grep -qE "^ +compare "; }

@@ -16,7 +16,7 @@ REFLECTED=$(scale_crop 150,200,90,120)
 INTEGRATORS=${INTEGRATORS:-"pt,nee,bdpt,pssmlt(nee),pssmlt(mnee),erpt,mnee,mnee(biased)"}
 rm -rf "$OUT"; mkdir -p "$OUT"
 
-"$SNELL" compare "$SCENE" --integrators "$INTEGRATORS" --time "$T" \
+"${LAUNCH[@]}" "$SNELL" compare "$SCENE" --integrators "$INTEGRATORS" --time "$T" \
   --reference-integrator mnee --reference-time "$REF_T" --crop "$TRANSMITTED" --crop "$REFLECTED" \
   --seed 1 --convergence-steps 3 -o "$OUT/report" "${DEFINES[@]}"
 python3 scripts/experiments/summarize.py equal_time "$OUT" "Fig. 5: droplet, equal time ${T} s (reference: mnee ${REF_T} s)" \

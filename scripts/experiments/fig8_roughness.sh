@@ -16,13 +16,13 @@ for a in "${ALPHAS[@]}"; do
   dir=$OUT/alpha_$a/report
   echo "== alpha $a"
   if has_compare; then
-    "$SNELL" compare "$SCENE" --integrators nee,mnee --time "$T" --reference-integrator mnee \
+    "${LAUNCH[@]}" "$SNELL" compare "$SCENE" --integrators nee,mnee --time "$T" --reference-integrator mnee \
       --reference-time "$REF_T" --seed 1 -o "$dir" -q -D alpha=$a "${DEFINES[@]}"
   else
     mkdir -p "$dir"
-    "$SNELL" render "$SCENE" -D alpha=$a -D integrator=mnee --time "$REF_T" --seed 999 -o "$dir/reference.exr" -q "${DEFINES[@]}"
+    "${LAUNCH[@]}" "$SNELL" render "$SCENE" -D alpha=$a -D integrator=mnee --time "$REF_T" --seed 999 -o "$dir/reference.exr" -q "${DEFINES[@]}"
     for integ in nee mnee; do
-      "$SNELL" render "$SCENE" -D alpha=$a -D integrator=$integ --time "$T" --seed 1 -o "$dir/$integ.exr" -q "${DEFINES[@]}"
+      "${LAUNCH[@]}" "$SNELL" render "$SCENE" -D alpha=$a -D integrator=$integ --time "$T" --seed 1 -o "$dir/$integ.exr" -q "${DEFINES[@]}"
       "$SNELL" diff --json "$dir/$integ.exr" "$dir/reference.exr" > "$dir/$integ.diff.json"
     done
   fi

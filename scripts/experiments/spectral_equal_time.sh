@@ -33,22 +33,22 @@ crop_scene "$SCENE" "$OUT/floor.xml"
 BOX=(-D rfilter=box)
 
 if [ ! -f "$OUT/ref_floor.exr" ]; then
-  "$SNELL" render "$OUT/floor.xml" -D integrator=bdpt "${BOX[@]}" --spp "$REF_SPP" -t "$THREADS" -q --seed 7 \
+  "${LAUNCH[@]}" "$SNELL" render "$OUT/floor.xml" -D integrator=bdpt "${BOX[@]}" --spp "$REF_SPP" -t "$THREADS" -q --seed 7 \
     -o "$OUT/ref_floor.exr"
 fi
 if [ ! -f "$OUT/ref_full.exr" ]; then
-  "$SNELL" render "$SCENE" -D integrator=mnee "${BOX[@]}" --time "$REF_T" -t "$THREADS" -q --seed 7 -o "$OUT/ref_full.exr"
+  "${LAUNCH[@]}" "$SNELL" render "$SCENE" -D integrator=mnee "${BOX[@]}" --time "$REF_T" -t "$THREADS" -q --seed 7 -o "$OUT/ref_full.exr"
 fi
 
 # run NAME BINARY SCENE [defines...]: equal-time full frame, then its floor crop at the same spp.
 run() {
   local name=$1 bin=$2 scene=$3
   shift 3
-  "$bin" render "$scene" -D integrator=nee "$@" --time "$T" -t "$THREADS" -q --seed 1 -o "$OUT/$name.exr"
+  "${LAUNCH[@]}" "$bin" render "$scene" -D integrator=nee "$@" --time "$T" -t "$THREADS" -q --seed 1 -o "$OUT/$name.exr"
   local spp
   spp=$(spp_of "$OUT/$name.json")
   crop_scene "$scene" "$OUT/${name}_floor.xml"
-  "$bin" render "$OUT/${name}_floor.xml" -D integrator=nee "$@" --spp "$spp" -t "$THREADS" -q --seed 1 \
+  "${LAUNCH[@]}" "$bin" render "$OUT/${name}_floor.xml" -D integrator=nee "$@" --spp "$spp" -t "$THREADS" -q --seed 1 \
     -o "$OUT/${name}_floor.exr"
   echo "== $name: $spp spp in $T s"
   "$SNELL" diff "$OUT/${name}_floor.exr" "$OUT/ref_floor.exr" | sed 's/^image /floor /'

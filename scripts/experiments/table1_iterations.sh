@@ -16,7 +16,7 @@ for it in 5 10 20 35 50; do
   for var in A B; do
     inc=false; [ $var = B ] && inc=true
     echo "== max_iterations $it, variant $var"
-    "$SNELL" render "$SCENE" -D max_iterations=$it -D allow_error_increase=$inc --spp "$SPP" --seed 3 \
+    "${LAUNCH[@]}" "$SNELL" render "$SCENE" -D max_iterations=$it -D allow_error_increase=$inc --spp "$SPP" --seed 3 \
       -o "$OUT/t1_${it}_$var.exr" -q "${DEFINES[@]}"
   done
 done

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/exact_sum.h"
@@ -23,6 +24,19 @@ struct PixelSamples {
     /// True when sample (xyz, technique) ranks above the current largest: by luminance, then by
     /// X, Z and technique, a total order, so that the largest does not depend on the order.
     bool ranks_above_largest(const Vec3& xyz, int technique) const;
+};
+
+/// The outlier clamp a film is shown with (apply_outlier_clamp, camera/outlier_clamp.h, fills it
+/// in after the last sample): the share a pixel's largest sample may carry (0: off) and, with a
+/// spread radius, the light it took spread over neighbours.
+struct OutlierClamp {
+    double max_share = 0;
+    int spread_radius = 0;
+    std::vector<Vec3> spread;         ///< light added per pixel (a mean; empty without spread)
+    std::vector<double> piece_y;      ///< the largest piece of one spread sample among it (Y, a mean)
+    std::vector<uint8_t> radius;      ///< per clamped pixel, the radius its light was spread over
+    uint64_t cut_pixels = 0;          ///< pixels where spread light was cut
+    double taken_y = 0, given_y = 0;  ///< light spread (means), and delivered
 };
 
 /// Accumulates XYZ per pixel, exactly (ExactSum), so that the film does not depend on the order
@@ -92,30 +106,18 @@ public:
     void set_pixel(int x, int y, const ExactSum3& sum, uint64_t count, const Vec3& largest, int technique);
     void set_splat(int layer, int x, int y, const ExactSum3& sum);
 
-    /// Outlier clamp (issue 10, mnee `biased`): a pixel's largest sample is scaled down so that
-    /// it carries at most the share `s` of the pixel's luminance, i.e. to s / (1 - s) times the
-    /// sum of the others. Biased, and consistent: with a finite mean the largest of n samples
-    /// grows slower than their sum, so the clamp stops acting as n grows. 0: off.
-    /// With `spread_radius` > 0 the light the clamp takes is not dropped but spread evenly over
-    /// a disc around its pixel (radius at most spread_radius pixels; the smallest that holds
-    /// twice that light from elsewhere, widened until its share of every pixel is at most `s`
-    /// too): the image keeps its light and the bias is a local blur of the fireflies
-    /// (film_spread.cpp). Only light that no such disc hides, not even over the lit pixels alone
-    /// (a lone firefly on black), is dropped, and only at the pixels it would dominate. Call it
-    /// after the last sample: the spread is computed here.
-    void set_max_sample_share(double s, int spread_radius = 0) {
-        m_max_share = s;
-        m_spread_radius = spread_radius;
-        spread_clamped_light();
-    }
-    double max_sample_share() const { return m_max_share; }
-    int spread_radius() const { return m_spread_radius; }
+    /// The outlier clamp the film's value is shown with (camera/outlier_clamp.h computes it, as
+    /// a post-process of the finished film; the samples are not changed).
+    void set_outlier_clamp(OutlierClamp clamp) { m_clamp = std::move(clamp); }
+    double max_sample_share() const { return m_clamp.max_share; }
+    int spread_radius() const { return m_clamp.spread_radius; }
     /// The luminance (Y) the clamp removes from the pixel's sample sum (0 when it is off).
     double clamped_y(int x, int y) const {
         const size_t i = size_t(y) * m_w + x;
         const double sum_y = m_sum[i].y.value();
-        if (!(m_max_share > 0) || m_n[i] < 2 || !(sum_y > 0)) return 0;
-        const double cap = m_max_share / (1 - m_max_share) * std::max(0.0, sum_y - m_max_y[i]);
+        const double s = m_clamp.max_share;
+        if (!(s > 0) || m_n[i] < 2 || !(sum_y > 0)) return 0;
+        const double cap = s / (1 - s) * std::max(0.0, sum_y - m_max_y[i]);
         return std::max(0.0, m_max_y[i] - cap);
     }
     uint64_t samples(int x, int y) const { return m_n[size_t(y) * m_w + x]; }
@@ -129,9 +131,9 @@ public:
         const size_t i = size_t(y) * m_w + x;
         if (!m_n[i]) return 0;
         const double n = double(m_n[i]), c = clamped_y(x, y);
-        const double total = (m_sum[i].y.value() - c) / n + (m_spread.empty() ? 0.0 : m_spread[i].y);
+        const double total = (m_sum[i].y.value() - c) / n + (m_clamp.spread.empty() ? 0.0 : m_clamp.spread[i].y);
         // As means (a piece is one), so that a piece at exactly the share does not round above it.
-        const double largest = std::max((m_max_y[i] - c) / n, m_piece_y.empty() ? 0.0 : m_piece_y[i]);
+        const double largest = std::max((m_max_y[i] - c) / n, m_clamp.piece_y.empty() ? 0.0 : m_clamp.piece_y[i]);
         return total > 0 ? std::min(1.0, largest / total) : 0.0;
     }
     /// The summed luminance (Y) of the pixel's own samples (before any clamp; no splats).
@@ -146,20 +148,24 @@ public:
     double largest_contribution_y(int x, int y) const {
         const size_t i = size_t(y) * m_w + x;
         const double own = m_max_y[i] - clamped_y(x, y);
-        return m_piece_y.empty() ? own : std::max(own, m_piece_y[i] * double(m_n[i]));
+        return m_clamp.piece_y.empty() ? own : std::max(own, m_clamp.piece_y[i] * double(m_n[i]));
     }
     /// The technique that delivered the pixel's largest sample (-1: not known). (With a share
     /// of at most 0.5, the biased mode's, a spread piece never dominates a pixel:
-    /// set_max_sample_share widens its disc or drops it.)
+    /// apply_outlier_clamp widens its disc or drops it.)
     int largest_sample_technique(int x, int y) const { return m_max_technique[size_t(y) * m_w + x]; }
     /// The light the clamp's spread added to the pixel (XYZ, a mean; 0 without spread).
-    Vec3 spread_xyz(int x, int y) const { return m_spread.empty() ? Vec3() : m_spread[size_t(y) * m_w + x]; }
+    Vec3 spread_xyz(int x, int y) const {
+        return m_clamp.spread.empty() ? Vec3() : m_clamp.spread[size_t(y) * m_w + x];
+    }
     /// Of the light the clamp took (as pixel means), the share the spread delivered (1 when no
     /// pixel's pieces had to be cut), and the pixels where pieces were cut.
-    double spread_delivered() const { return m_spread_taken_y > 0 ? m_spread_given_y / m_spread_taken_y : 1.0; }
-    uint64_t spread_cut_pixels() const { return m_spread_capped; }
+    double spread_delivered() const { return m_clamp.taken_y > 0 ? m_clamp.given_y / m_clamp.taken_y : 1.0; }
+    uint64_t spread_cut_pixels() const { return m_clamp.cut_pixels; }
     /// The radius the clamped light of this pixel was spread over (0: not spread).
-    int spread_radius_at(int x, int y) const { return m_spread_r.empty() ? 0 : m_spread_r[size_t(y) * m_w + x]; }
+    int spread_radius_at(int x, int y) const {
+        return m_clamp.radius.empty() ? 0 : m_clamp.radius[size_t(y) * m_w + x];
+    }
     /// Adds a splat to `layer` (0: the image, k > 0: debug layer k).
     void add_splat(int x, int y, const Vec3& xyz, int layer = 0) {
         if (size_t(layer) >= m_splats.size()) m_splats.resize(size_t(layer) + 1);
@@ -178,7 +184,7 @@ public:
         Vec3 sum = value(m_sum[i]);
         if (const double c = clamped_y(x, y); c > 0) sum -= m_max_xyz[i] * (c / m_max_y[i]);
         Vec3 v = m_n[i] ? sum / double(m_n[i]) : Vec3();
-        if (!m_spread.empty()) v += m_spread[i];
+        if (!m_clamp.spread.empty()) v += m_clamp.spread[i];
         if (!m_splats.empty() && !m_splats[0].empty()) v += value(m_splats[0][i]) * m_splat_scale;
         return v;
     }
@@ -199,20 +205,10 @@ private:
     static Vec3 value(const ExactSum3& s) { return {s.x.value(), s.y.value(), s.z.value()}; }
     std::vector<ExactSum3> m_sum;
     std::vector<uint64_t> m_n;
-    std::vector<double> m_max_y;          // largest single-sample luminance per pixel
-    std::vector<Vec3> m_max_xyz;          // that sample's XYZ
-    std::vector<int8_t> m_max_technique;  // and its technique (-1: unknown)
-    double m_max_share = 0;               // set_max_sample_share
-    int m_spread_radius = 0;              // and its spread_radius
-    // The clamp's spread (empty without): light added per pixel (a mean), the largest piece
-    // of one sample among it (luminance, a mean), and per clamped pixel the radius its light
-    // was spread over.
-    std::vector<Vec3> m_spread;
-    std::vector<double> m_piece_y;
-    std::vector<uint8_t> m_spread_r;
-    uint64_t m_spread_capped = 0;                       // pixels where spread light was cut
-    double m_spread_taken_y = 0, m_spread_given_y = 0;  // light spread (means), and delivered
-    void spread_clamped_light();
+    std::vector<double> m_max_y;                   // largest single-sample luminance per pixel
+    std::vector<Vec3> m_max_xyz;                   // that sample's XYZ
+    std::vector<int8_t> m_max_technique;           // and its technique (-1: unknown)
+    OutlierClamp m_clamp;                          // set_outlier_clamp (apply_outlier_clamp)
     std::vector<std::vector<ExactSum3>> m_splats;  // per layer; empty until first splat
     double m_splat_scale = 0;
 };
@@ -239,7 +235,7 @@ struct PixelDominance {
     double clamped_share = 0;
     /// With spread_radius: the share of the image's luminance spread back over neighbours (the
     /// light lost is clamped_share - spread_share), the widest disc used, and the pixels where
-    /// spread light was cut because no disc hid its source (film_spread.cpp).
+    /// spread light was cut because no disc hid its source (outlier_clamp.cpp).
     double spread_share = 0;
     int spread_radius = 0;
     uint64_t spread_dropped = 0;

@@ -11,14 +11,6 @@ StatCounter discarded_inf{"render.discarded_inf", "samples dropped because they 
 StatCounter discarded_negative{"render.discarded_negative", "samples dropped because they were negative"};
 }  // namespace render_stats
 
-namespace {
-// The channel of note_sample_technique: one camera sample at a time per thread, written inside
-// li_splat and read right after it by trace_camera_sample.
-thread_local int t_sample_technique = -1;
-}  // namespace
-
-void note_sample_technique(int technique) { t_sample_technique = technique; }
-
 double sanitize(double v) {
     if (std::isnan(v)) {
         ++render_stats::discarded_nan;
@@ -56,10 +48,10 @@ TracedSample trace_camera_sample(const Scene& scene, const Camera& camera, const
     t.cs.u_lambda = u_lambda;
     t.cs.wl = SampledWavelengths::sample_visible(u_lambda, spectral_samples);
     const Ray ray = camera.generate_ray(raster, camera.has_lens() ? sampler.next_2d() : Vec2(0.5, 0.5));
-    t_sample_technique = -1;
-    t.L = sanitize(tracer.li_splat(t.cs, ray, scene, sampler, splats));
+    const SampleEstimate e = tracer.li_splat(t.cs, ray, scene, sampler, splats);
+    t.L = sanitize(e.L);
     t.xyz = t.cs.wl.to_xyz(t.L);
-    t.technique = t_sample_technique;
+    t.technique = e.technique;
     return t;
 }
 

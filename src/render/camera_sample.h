@@ -28,7 +28,7 @@ struct TracedSample {
     CameraSample cs;
     SampledSpectrum L;   ///< sanitised radiance at cs.wl
     Vec3 xyz;            ///< its CIE XYZ estimate (cs.wl.to_xyz(L))
-    int technique = -1;  ///< what the tracer noted with note_sample_technique (-1: nothing)
+    int technique = -1;  ///< the estimate's technique (SampleEstimate; -1: none)
 };
 
 /// Draws the path's `spectral_samples` wavelengths from the pair `u_lambda`, traces the

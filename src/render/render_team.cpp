@@ -8,7 +8,7 @@
 
 namespace snell {
 
-void LocalTeam::begin_pass(int64_t tiles, std::function<bool()> stop_requested) {
+void LocalTeam::begin_pass(int64_t tiles, int /*threads*/, std::function<bool()> stop_requested) {
     m_tiles = tiles;
     m_stop = std::move(stop_requested);
     m_next = 0;

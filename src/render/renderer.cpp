@@ -3,18 +3,19 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include <chrono>
 #include <cmath>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
-#include <thread>
 #include <vector>
 
+#include "camera/outlier_clamp.h"
 #include "core/progress.h"
 #include "core/sampler.h"
 #include "render/camera_sample.h"
 #include "render/render_team.h"
+#include "render/team_pass.h"
 #include "scene/scene.h"
 
 namespace snell {
@@ -54,17 +55,15 @@ void finish_film(Film& film, double max_sample_share, int clamp_spread) {
         for (int x = 0; x < w; ++x) total += film.samples(x, y);
     // Splat estimators divide by the camera samples each pixel received (total / pixels).
     film.set_splat_scale(total > 0 ? double(w) * double(h) / double(total) : 0.0);
-    film.set_max_sample_share(max_sample_share, clamp_spread);
+    apply_outlier_clamp(film, max_sample_share, clamp_spread);
 }
 
 RenderResult render_tiles(const Scene& scene, SampleTracer& tracer, int spectral_samples, const FilmSpec& spec,
                           const RenderOptions& opt, const std::atomic<bool>* cancel) {
-    using Clock = std::chrono::steady_clock;
     const Camera* camera = scene.camera();
     if (!camera) throw std::runtime_error("scene has no sensor");
-    RenderTeam& team = opt.team ? *opt.team : process_team();
-    const auto start = Clock::now();
-    const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+    RenderTeam& team = render_team(opt);
+    const RenderStop stopping(opt, cancel);
     const bool timed = opt.time_limit > 0;
     const int w = spec.out_width(), h = spec.out_height();
     const PixelRect window{0, 0, w, h};
@@ -88,22 +87,17 @@ RenderResult render_tiles(const Scene& scene, SampleTracer& tracer, int spectral
     result.film = Film(w, h);
     reset_stats();
 
-    const int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    const int threads = render_threads(opt);
     tbb::task_arena arena(threads);
     const std::unique_ptr<Sampler> prototype = create_sampler(opt.sampler, std::max(1, opt.spp), opt.seed);
     const Filter& filter = spec.pixel_filter();
 
-    std::unique_ptr<ProgressBar> bar;
-    if ((opt.progress || opt.progress_lines) && team.rank() == 0) {
-        const uint64_t work = uint64_t(std::min(last, uint64_t(std::max(0, opt.spp))) - std::min(first, last)) *
-                              uint64_t(crop.width()) * uint64_t(crop.height());
-        bar.reset(timed ? new ProgressBar(ProgressBar::for_time("render", opt.time_limit))
-                        : new ProgressBar("render", std::max<uint64_t>(1, work)));
-        if (opt.progress_lines) bar->set_lines(true);
-    }
+    const std::unique_ptr<ProgressBar> bar =
+        render_progress(opt, team, "render",
+                        uint64_t(std::min(last, uint64_t(std::max(0, opt.spp))) - std::min(first, last)) *
+                            uint64_t(crop.width()) * uint64_t(crop.height()));
 
-    const auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
-    const auto stop_requested = [&] { return cancelled() || (timed && elapsed() >= opt.time_limit); };
+    const auto stop_requested = [&] { return stopping.requested(); };
 
     // Splats may land on any pixel: each tile collects its own, and they are added to the film
     // after every group of tiles (exactly, so in any order). Groups bound the memory the buffers
@@ -136,7 +130,7 @@ RenderResult render_tiles(const Scene& scene, SampleTracer& tracer, int spectral
     const auto render_tile = [&](const Tile& t, uint64_t s0, uint64_t s1, SplatList& splats) {
         auto sampler = prototype->clone();
         for (int y = t.y0; y < t.y1; ++y) {
-            if (y > t.y0 && cancelled()) return false;
+            if (y > t.y0 && stopping.cancelled()) return false;
             for (int x = t.x0; x < t.x1; ++x) {
                 const int fx = x + spec.crop_x, fy = y + spec.crop_y;  // full-film pixel
                 const bool keep = crop.contains(x, y);
@@ -184,12 +178,21 @@ RenderResult render_tiles(const Scene& scene, SampleTracer& tracer, int spectral
             done = s1;
             continue;
         }
+        // An MPI job of a fixed sample count needs no barrier between the passes after the
+        // learning ones: the film adds exactly, in any order. Its remaining passes run as one,
+        // items of 16 samples of one tile handed out chunk by chunk, so the ranks wait for one
+        // another once, at the end, instead of at every pass (docs/distributed.md, "Scaling": that
+        // wait is the model's load imbalance, half the dearest tile-pass per thread and pass).
+        // Not for splatting tracers (a cut pass of theirs is dropped whole) nor in one process,
+        // where a cut render keeps exactly the passes it finished (partial films rely on that).
+        const bool one_run = team.size() > 1 && !timed && !splatting && !learning && first == 0;
+        if (one_run) s1 = last;
         const uint64_t r0 = learning ? s0 : std::max(s0, first);
         std::optional<Film> before_pass;
         if (splatting && done > first) before_pass = result.film;
-        std::atomic<bool> cut{false};
         bool complete = true;
         if (learning) {
+            std::atomic<bool> cut{false};
             // The pilot: tile t is rank t mod N's in every pass, so that each pixel's pilot record
             // is written by one process, in sample order, as in a one-process render.
             std::vector<size_t> mine;
@@ -206,37 +209,32 @@ RenderResult render_tiles(const Scene& scene, SampleTracer& tracer, int spectral
             }
             complete = !team.any(cut);
             stop = team.any(stop_requested());
+        } else if (one_run) {
+            const uint64_t chunk = 16, chunks = (s1 - s0 + chunk - 1) / chunk;
+            std::vector<std::mutex> tile_locks(tiles.size());  // a tile's chunks on one thread at a time
+            const PassOutcome o = run_team_pass(team, arena, threads, int64_t(tiles.size() * chunks), stop_requested,
+                                                group, [&](int64_t item, int) {
+                                                    const size_t t = size_t(item) % tiles.size();
+                                                    const uint64_t a = s0 + uint64_t(item) / tiles.size() * chunk;
+                                                    const std::lock_guard<std::mutex> lock(tile_locks[t]);
+                                                    SplatList none;
+                                                    return render_tile(tiles[t], a, std::min(s1, a + chunk), none);
+                                                });
+            stop = o.stop;
+            complete = o.complete;
         } else {
-            team.begin_pass(int64_t(tiles.size()), stop_requested);
-            bool exhausted = false;
-            while (!exhausted && !cut) {
-                // A group of tiles at a time, each thread asking the team for its next tile.
-                std::vector<SplatList> lists(splatting ? size_t(threads) : 0);
-                std::atomic<size_t> taken{0};
-                std::atomic<bool> pass_over{false};
-                arena.execute([&] {
-                    tbb::parallel_for(0, threads, [&](int slot) {
-                        SplatList dummy;
-                        SplatList& splats = splatting ? lists[size_t(slot)] : dummy;
-                        while (taken.fetch_add(1) < group) {
-                            const WorkGrant g = team.next_tile();
-                            if (g.tile < 0) {
-                                pass_over = true;
-                                return;
-                            }
-                            if (!render_tile(tiles[size_t(g.tile)], r0, s1, splats)) {
-                                cut = true;
-                                return;
-                            }
-                        }
-                    });
+            std::vector<SplatList> lists(splatting ? size_t(threads) : 0);
+            const PassOutcome o = run_team_pass(
+                team, arena, threads, int64_t(tiles.size()), stop_requested, group,
+                [&](int64_t t, int slot) {
+                    SplatList dummy;
+                    return render_tile(tiles[size_t(t)], r0, s1, splatting ? lists[size_t(slot)] : dummy);
+                },
+                [&] {
+                    for (SplatList& l : lists) merge_splats(l);
                 });
-                for (SplatList& l : lists) merge_splats(l);
-                exhausted = pass_over;
-            }
-            bool handed_out_all = false;
-            stop = team.end_pass(&handed_out_all).stop;
-            complete = handed_out_all && !team.any(cut);
+            stop = o.stop;
+            complete = o.complete;
         }
         if (!complete) {
             if (before_pass) result.film = std::move(*before_pass);
@@ -256,7 +254,8 @@ RenderResult render_tiles(const Scene& scene, SampleTracer& tracer, int spectral
 
     result.counters = stat_totals();
     team.reduce(result.film, result.counters);
-    result.seconds = elapsed();
+    result.team = team.times();
+    result.seconds = stopping.elapsed();
     result.spp_completed = done > first ? done - first : 0;
     uint64_t total = 0;
     for (int y = crop.y0; y < crop.y1; ++y)

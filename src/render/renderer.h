@@ -45,6 +45,7 @@ struct RenderResult {
     std::vector<std::string> layer_names;      ///< names of the film's debug layers 1, 2, ...
     PixelDominance dominance;                  ///< camera samples only (splats are not a pixel's samples)
     std::vector<std::string> technique_names;  ///< of dominance.dominated_by_technique's indices
+    TeamTimes team;                            ///< where an MPI job's time went (rank 0)
 };
 
 /// The shared render loop of per-pixel-sample estimators: progressive passes over tiles with

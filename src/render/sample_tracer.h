@@ -37,24 +37,35 @@ struct FilmSplat {
 };
 using SplatList = std::vector<FilmSplat>;
 
+/// One camera sample's estimate: its radiance and the technique (an index into the tracer's
+/// technique_names(), -1: none) that delivered the largest part of its luminance. The render
+/// loop keeps the technique of each pixel's largest sample, so that dominated pixels are counted
+/// by the technique behind them (issue 10) in every render, not only in an instrumented build.
+struct SampleEstimate {
+    SampleEstimate() = default;
+    SampleEstimate(const SampledSpectrum& radiance, int by = -1) : L(radiance), technique(by) {}  // NOLINT: implicit
+    SampledSpectrum L;
+    int technique = -1;
+};
+
 /// The estimator of one pixel sample for one render. Thread-safe (const) while rendering; all
 /// randomness comes from `sampler`.
 class SampleTracer {
 public:
     virtual ~SampleTracer() = default;
     /// Radiance along the camera sample's `ray` at cs.wl, plus any splats appended to `splats`.
-    virtual SampledSpectrum li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
-                                     SplatList& splats) const = 0;
+    virtual SampleEstimate li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+                                    SplatList& splats) const = 0;
     /// True when li_splat() may produce splats; the render loop then merges them per tile group.
     virtual bool splats() const { return false; }
     /// Names of the debug layers 1, 2, ... that splats may target (empty: none).
     virtual std::vector<std::string> layer_names() const { return {}; }
-    /// The film's outlier clamp (Film::set_max_sample_share) for this estimator; 0: none.
+    /// The film's outlier clamp (apply_outlier_clamp, camera/outlier_clamp.h) for this estimator; 0: none.
     virtual double max_sample_share() const { return 0; }
-    /// The clamp's spread radius in pixels (Film::set_max_sample_share); 0: the clamped light
+    /// The clamp's spread radius in pixels (apply_outlier_clamp, camera/outlier_clamp.h); 0: the clamped light
     /// is dropped.
     virtual int clamp_spread() const { return 0; }
-    /// Names of the techniques li_splat() reports with note_sample_technique() (empty: none).
+    /// Names of the techniques li_splat() reports in SampleEstimate::technique (empty: none).
     virtual std::vector<std::string> technique_names() const { return {}; }
     /// Called by the render loop on one thread between passes, once every pixel holds
     /// `samples_per_pixel` samples: a tracer that learns from its first samples (MNEE's
@@ -76,11 +87,5 @@ public:
     virtual std::vector<double> pilot_state() const { return {}; }
     virtual void set_pilot_state(const std::vector<double>& /*state*/) {}
 };
-
-/// Called by a tracer inside li_splat(): the technique (an index into technique_names()) that
-/// delivered the largest part of this camera sample's luminance. The render loop keeps the
-/// technique of each pixel's largest sample, so that dominated pixels are counted by the
-/// technique behind them (issue 10) in every render, not only in an instrumented build.
-void note_sample_technique(int technique);
 
 }  // namespace snell

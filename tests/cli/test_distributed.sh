@@ -31,7 +31,9 @@ droplet path > "$TMP/path.xml"
 droplet mnee > "$TMP/mnee.xml"
 droplet mnee '<boolean name="biased" value="true"/>' > "$TMP/biased.xml"
 droplet bdpt > "$TMP/bdpt.xml"
-for s in path mnee biased bdpt; do
+droplet pssmlt > "$TMP/pssmlt.xml"
+droplet erpt > "$TMP/erpt.xml"
+for s in path mnee biased bdpt pssmlt erpt; do
   check "$s scene renders" "'$SNELL' render '$TMP/$s.xml' --spp 8 -t 2 -q -o '$TMP/$s.exr'"
 done
 
@@ -74,6 +76,9 @@ check "a sample range past the spp is an error" "[ $rc -eq 1 ] && echo \"\$out\"
 out=$("$SNELL" render "$TMP/path.xml" --spp 8 -q --crop 40,0,24,18 -o "$TMP/x.exr" 2>&1); rc=$?
 check "a crop outside the film is an error" "[ $rc -eq 1 ] && echo \"\$out\" | grep -q 'not inside'"
 
+out=$("$SNELL" render "$TMP/pssmlt.xml" --spp 8 -q --crop 0,0,24,18 -o "$TMP/x.exr" 2>&1); rc=$?
+check "pssmlt refuses a crop (its chains roam the film)" "[ $rc -eq 1 ] && echo \"\$out\" | grep -q 'pssmlt renders the whole film'"
+
 # 3. Frame numbers in the output name.
 "$SNELL" render "$TMP/path.xml" --spp 1 -q -D frame=7 -o "$TMP/anim/frame_%04d.exr"; rc=$?
 check "-o frame_%04d.exr -D frame=7 writes frame_0007.exr" "[ $rc -eq 0 ] && [ -s '$TMP/anim/frame_0007.exr' ]"
@@ -94,14 +99,34 @@ if [ "$MPI" != "mpi" ]; then
   exit $fail
 fi
 
-# 5. mpirun -n 1, 2, 3: bit-identical to one process (1 and 2 threads per rank).
-for s in path mnee biased bdpt; do
+# 5. mpirun -n 1, 2, 3: bit-identical to one process (the chains of pssmlt and erpt split over
+#    the ranks, their bootstraps computed once over them).
+for s in path mnee biased bdpt pssmlt erpt; do
   for n in 1 2 3; do
     $MPIRUN -n $n "$SNELL" render "$TMP/$s.xml" --spp 8 -t 1 -q -o "$TMP/${s}_np$n.exr"; rc=$?
     check "$s: mpirun -n $n is bit-identical to one process" "[ $rc -eq 0 ] && same '$TMP/${s}_np$n.exr' '$TMP/$s.exr'"
   done
 done
+# Past the learning passes a fixed-spp MPI job runs its passes as one (chunks of 16 samples of a
+# tile, in any order on any rank): 40 spp are three chunks per tile.
+"$SNELL" render "$TMP/path.xml" --spp 40 -t 2 -q -o "$TMP/path40.exr"
+"$SNELL" render "$TMP/mnee.xml" --spp 40 -t 2 -q -o "$TMP/mnee40.exr"
+for n in 2 3; do
+  for s in path mnee; do
+    $MPIRUN -n $n "$SNELL" render "$TMP/$s.xml" --spp 40 -t 2 -q -o "$TMP/${s}40_np$n.exr"; rc=$?
+    check "$s, 40 spp (passes run as one): mpirun -n $n is bit-identical" "[ $rc -eq 0 ] && same '$TMP/${s}40_np$n.exr' '$TMP/${s}40.exr'"
+  done
+done
 check "the stats say how many ranks" "grep -q '\"ranks\": 3' '$TMP/bdpt_np3.json'"
+
+# snell compare under a launcher: rank 0 reports, the others leave nothing behind.
+SCRATCH_BEFORE=$(ls -d "${TMPDIR:-/tmp}"/snell-compare-rank* 2>/dev/null | wc -l)
+$MPIRUN -n 2 "$SNELL" compare "$TMP/path.xml" --integrators path,nee --time 0.3 -t 1 --reference-spp 4 -q \
+  --out "$TMP/cmp" > "$TMP/cmp.txt" 2>&1; rc=$?
+check "snell compare under mpirun -n 2 writes one report" \
+  "[ $rc -eq 0 ] && [ -s '$TMP/cmp/report.json' ] && [ \$(grep -c '^wrote' '$TMP/cmp.txt') -eq 1 ]"
+check "snell compare under mpirun leaves no scratch folder" \
+  "[ \$(ls -d \"\${TMPDIR:-/tmp}\"/snell-compare-rank* 2>/dev/null | wc -l) -eq $SCRATCH_BEFORE ]"
 
 # 6. A global time budget: one stopping point, within a pass of the budget, in the stats.
 $MPIRUN -n 2 "$SNELL" render "$TMP/mnee.xml" --time 2 -t 1 -q -o "$TMP/timed.exr"; rc=$?

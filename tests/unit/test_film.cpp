@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "camera/film.h"
+#include "camera/outlier_clamp.h"
 #include "core/rng.h"
 #include "core/spectrum.h"
 
@@ -136,7 +137,7 @@ TEST(Film, MaxSampleShareClampsTheLargestSampleOnly) {
     for (Film* f : {&a, &b}) {
         for (int i = 0; i < 4; ++i) f->add(1, 0, plain * (1.0 + 0.1 * i));  // largest share 0.28
         f->add(2, 0, firefly);                                              // one sample: nothing to compare
-        f->set_max_sample_share(0.5);
+        apply_outlier_clamp(*f, 0.5);
     }
     // Pixel 0: Y = 3 + 9; the firefly is scaled to 3 (the sum of the others): factor 1/3.
     const Vec3 expect = (plain * 3.0 + firefly * (3.0 / 9.0)) / 4.0;
@@ -157,10 +158,10 @@ TEST(Film, MaxSampleShareClampsTheLargestSampleOnly) {
         EXPECT_NEAR(d.clamped_share, 6.0 / (12.0 + 4.6 + 9.0), 1e-12);
     }
     // A tighter share: the firefly carries at most 0.25, i.e. a third of the others (1).
-    a.set_max_sample_share(0.25);
+    apply_outlier_clamp(a, 0.25);
     EXPECT_DOUBLE_EQ(a.largest_sample_share(0, 0), 0.25);
     EXPECT_NEAR(a.xyz(0, 0).y, 4.0 / 4.0, 1e-12);
-    a.set_max_sample_share(0);
+    apply_outlier_clamp(a, 0);
     EXPECT_NEAR(a.xyz(0, 0).y, 12.0 / 4.0, 1e-12) << "0 turns the clamp off";
 }
 
@@ -172,7 +173,7 @@ TEST(Film, MaxSampleShareBiasVanishesWithMoreSamples) {
         Film f(256, 1);
         for (int x = 0; x < 256; ++x)
             for (int i = 0; i < n; ++i) f.add(x, 0, Vec3(0, std::pow(1.0 - rng.next_double(), -1.0 / 1.5), 0));
-        f.set_max_sample_share(0.5);
+        apply_outlier_clamp(f, 0.5);
         return pixel_dominance(f).clamped_share;
     };
     const double b4 = bias(4), b64 = bias(64), b1024 = bias(1024);
@@ -207,8 +208,8 @@ TEST(Film, ClampSpreadKeepsTheLightOnTheSmallestUndominatedDisc) {
         return f;
     };
     Film raw = make(), dropped = make(), spread = make();
-    dropped.set_max_sample_share(0.5);
-    spread.set_max_sample_share(0.5, 8);
+    apply_outlier_clamp(dropped, 0.5);
+    apply_outlier_clamp(spread, 0.5, 8);
     EXPECT_NEAR(image_y(raw) - image_y(dropped), 37.0 / 4.0, 1e-9);
     EXPECT_NEAR(image_y(spread), image_y(raw), 1e-9) << "the spread keeps the light the clamp takes";
     EXPECT_EQ(spread.spread_radius_at(7, 8), 2);
@@ -242,8 +243,8 @@ TEST(Film, ClampSpreadTurnsARareSampleHaloIntoItsMean) {
         return f;
     };
     Film dropped = halo(), spread = halo();
-    dropped.set_max_sample_share(0.5);
-    spread.set_max_sample_share(0.5, 8);
+    apply_outlier_clamp(dropped, 0.5);
+    apply_outlier_clamp(spread, 0.5, 8);
     const double pixels = 64.0 * 64.0;
     std::cout << "[spread] halo mean " << image_y(spread) / pixels << " (clamp alone " << image_y(dropped) / pixels
               << "), widest disc " << pixel_dominance(spread).spread_radius << "\n";
@@ -261,7 +262,7 @@ TEST(Film, ClampSpreadTurnsARareSampleHaloIntoItsMean) {
                 lone.add_sum(x, y, Vec3(0, 50, 0), 4, Vec3(0, 50, 0), 3);  // one sample of 50, three of 0
             else
                 lone.add_sum(x, y, Vec3(), 4, Vec3(), 0);
-    lone.set_max_sample_share(0.5, 3);
+    apply_outlier_clamp(lone, 0.5, 3);
     EXPECT_NEAR(image_y(lone), 0.0, 1e-12);
     const PixelDominance l = pixel_dominance(lone);
     EXPECT_EQ(l.dominated, 0u);
@@ -289,7 +290,7 @@ TEST(Film, ClampSpreadBesideAShadowKeepsTheShadowBlack) {
         return f;
     };
     Film raw = make(), spread = make();
-    spread.set_max_sample_share(0.5, 8);
+    apply_outlier_clamp(spread, 0.5, 8);
     EXPECT_NEAR(image_y(spread), image_y(raw), 1e-9);
     EXPECT_EQ(spread.spread_radius_at(15, 8), 2);
     for (int y = 0; y < 16; ++y)
@@ -310,7 +311,7 @@ TEST(Film, ClampSpreadCutsAnUnhiddenFireflyToTheLevelThatDoesNotDominate) {
     for (int y = 0; y < 3; ++y)
         for (int x = 0; x < 3; ++x)
             for (int i = 0; i < 4; ++i) f.add(x, y, Vec3(1, 1, 1) * (x == 1 && y == 1 && i == 3 ? 40.0 : 0.01));
-    f.set_max_sample_share(0.5, 1);
+    apply_outlier_clamp(f, 0.5, 1);
     EXPECT_NEAR(f.xyz(0, 0).y, 0.02, 1e-9);
     EXPECT_NEAR(f.xyz(2, 1).y, 0.02, 1e-9);
     EXPECT_NEAR(f.xyz(1, 1).y, 0.03, 1e-9);

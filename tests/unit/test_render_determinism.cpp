@@ -69,3 +69,34 @@ TEST(Render, IndependentOfThreadCount) {
     const RenderResult c = render(*ls.scene, *ls.integrator, ls.film, opt);
     EXPECT_NE(c.film.to_linear_srgb(), ia);
 }
+
+// A sample's technique comes back in its estimate (SampleEstimate), not through a side channel:
+// every pixel whose largest sample carries light knows the technique behind it, whatever
+// thread rendered it.
+TEST(Render, EachPixelsLargestSampleNamesItsTechnique) {
+    const char* xml = R"(<scene version="3.0.0">
+      <integrator type="nee"/>
+      <sensor type="perspective"><transform name="to_world"><lookat origin="0,0,4" target="0,0,0" up="0,1,0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="24"/><integer name="height" value="18"/></film></sensor>
+      <shape type="rectangle"><transform name="to_world"><scale value="3"/></transform></shape>
+      <emitter type="point"><point name="position" x="1" y="2" z="3"/><rgb name="intensity" value="10,10,10"/></emitter>
+    </scene>)";
+    LoadedScene ls = test::load_xml(xml);
+    RenderOptions opt;
+    opt.spp = 4;
+    opt.progress = false;
+    opt.threads = 2;
+    const RenderResult r = render(*ls.scene, *ls.integrator, ls.film, opt);
+    ASSERT_FALSE(r.technique_names.empty());
+    size_t lit = 0;
+    for (int y = 0; y < r.film.height(); ++y)
+        for (int x = 0; x < r.film.width(); ++x) {
+            if (!(r.film.largest_sample_y(x, y) > 0)) continue;
+            ++lit;
+            const int t = r.film.largest_sample_technique(x, y);
+            ASSERT_GE(t, 0) << "pixel " << x << "," << y;
+            // Only a shadow ray lights a diffuse plane under a point light.
+            EXPECT_EQ(r.technique_names[size_t(t)], "nee") << "pixel " << x << "," << y;
+        }
+    EXPECT_GT(lit, size_t(24 * 18 / 2));
+}

@@ -24,8 +24,8 @@ class BdptTracer final : public SampleTracer {
 public:
     BdptTracer(const PathSettings& settings, const FilmSpec& window, bool layers)
         : m_settings(settings), m_window(window), m_layers(layers) {}
-    SampledSpectrum li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
-                             SplatList& splats) const override;
+    SampleEstimate li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+                            SplatList& splats) const override;
     bool splats() const override { return true; }
     std::vector<std::string> layer_names() const override;
 
@@ -76,8 +76,8 @@ std::vector<std::string> BdptTracer::layer_names() const {
     return names;
 }
 
-SampledSpectrum BdptTracer::li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
-                                     SplatList& splats) const {
+SampleEstimate BdptTracer::li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+                                    SplatList& splats) const {
     ++render_stats::paths;
     const SampledWavelengths& wl = cs.wl;
     const int md = m_settings.max_depth;

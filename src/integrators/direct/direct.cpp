@@ -42,8 +42,8 @@ PathSettings one_bounce(const DirectSettings& s) {
 
 DirectIntegrator::DirectIntegrator(const DirectSettings& s) : PathTracer(one_bounce(s), true, "direct"), m_direct(s) {}
 
-SampledSpectrum DirectIntegrator::radiance(const Ray& ray, const Scene& scene, Sampler& sampler,
-                                           const SampledWavelengths& wl, PathObserver* /*observer*/) const {
+SampleEstimate DirectIntegrator::radiance(const Ray& ray, const Scene& scene, Sampler& sampler,
+                                          const SampledWavelengths& wl, PathObserver* /*observer*/) const {
     ++render_stats::paths;
     const BSDFContext ctx{wl, TransportMode::Radiance};
     SampleRadiance out;

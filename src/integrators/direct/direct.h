@@ -18,8 +18,8 @@ class DirectIntegrator : public PathTracer {
 public:
     explicit DirectIntegrator(const DirectSettings& s);
     /// (`observer` is not told: `direct` is nobody's inner estimator.)
-    SampledSpectrum radiance(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl,
-                             PathObserver* observer) const override;
+    SampleEstimate radiance(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl,
+                            PathObserver* observer) const override;
 
 private:
     DirectSettings m_direct;

@@ -1,13 +1,10 @@
 #include "integrators/erpt/erpt.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <thread>
 #include <unordered_map>
 
 #include "core/rng.h"
@@ -20,6 +17,7 @@
 #include "integrators/pssmlt/primary_sample_sampler.h"
 #include "render/camera_sample.h"
 #include "render/renderer.h"
+#include "render/team_pass.h"
 #include "sampler/independent.h"
 #include "scene/scene.h"
 
@@ -65,22 +63,17 @@ std::unique_ptr<ErptTracer> ErptIntegrator::prepare_erpt(const Scene& scene, con
 
     // Bootstrap: the mean luminance per pixel sample of the seeds that will start chains,
     // from independent paths over the output window. Each path owns a stream that depends on
-    // (seed, index) only, and the sum runs in index order: E_d is a pure function of the seed.
+    // (seed, index) only, and the sum runs in index order: E_d is a pure function of the seed,
+    // computed once over the processes of the team (team_pass.h).
     const size_t n = size_t(m_settings.bootstrap_samples);
     const bool restricted = !m_settings.shapes.empty();
-    std::vector<double> energy(n, 0.0);
     const IndependentSampler prototype(mix_bits(opt.seed ^ 0x45525054626f6f74ULL));  // "ERPTboot"
-    const int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    tbb::task_arena arena(threads);
-    arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& r) {
-            auto sampler = prototype.clone();
-            for (size_t i = r.begin(); i < r.end(); ++i) {
-                sampler->start_pixel_sample(-1, -1, i);  // no pixel of the film uses (-1, -1)
-                const PathSample s = evaluate(scene, *camera, *inner, n_lambda, film, *sampler);
-                if (!restricted || camera_path_touched()) energy[i] = s.target();
-            }
-        });
+    tbb::task_arena arena(render_threads(opt));
+    const std::vector<double> energy = team_bootstrap(render_team(opt), arena, n, [&](size_t i) {
+        auto sampler = prototype.clone();
+        sampler->start_pixel_sample(-1, -1, i);  // no pixel of the film uses (-1, -1)
+        const PathSample s = evaluate(scene, *camera, *inner, n_lambda, film, *sampler);
+        return !restricted || camera_path_touched() ? s.target() : 0.0;
     });
     double sum = 0;
     for (double e : energy) sum += e;
@@ -137,8 +130,8 @@ private:
 
 }  // namespace
 
-SampledSpectrum ErptTracer::li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
-                                     SplatList& splats) const {
+SampleEstimate ErptTracer::li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+                                    SplatList& splats) const {
     const FilmSpec& film = m_film;
     const int w = film.out_width(), h = film.out_height();
     const bool restricted = !m_settings.shapes.empty();

@@ -61,8 +61,8 @@ public:
           m_spectral_samples(spectral_samples),
           m_deposit(deposit),
           m_mean_energy(mean_energy) {}
-    SampledSpectrum li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
-                             SplatList& splats) const override;
+    SampleEstimate li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+                            SplatList& splats) const override;
     bool splats() const override { return true; }
     /// E_d in use (0: no chains, plain path tracing).
     double deposition_energy() const { return m_deposit; }

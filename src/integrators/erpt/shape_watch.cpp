@@ -36,8 +36,8 @@ public:
     ShapeWatching(std::vector<const Shape*> watched, std::shared_ptr<const RadianceEstimator> inner)
         : m_watched(std::move(watched)), m_inner(std::move(inner)) {}
 
-    SampledSpectrum radiance(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl,
-                             PathObserver* /*observer*/) const override {
+    SampleEstimate radiance(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl,
+                            PathObserver* /*observer*/) const override {
         t_touched = false;
         ShapeObserver watch(m_watched);
         return m_inner->radiance(ray, scene, sampler, wl, &watch);

@@ -27,8 +27,8 @@ public:
                                                               film.crop_y, st.allocation_block, st.connect_probability);
     }
 
-    SampledSpectrum li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
-                             SplatList& /*splats*/) const override {
+    SampleEstimate li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+                            SplatList& /*splats*/) const override {
         if (!m_allocation) return path(scene, cs, ray, -1, nullptr).trace(sampler);
         const int x = int(std::floor(cs.pixel_centre.x)), y = int(std::floor(cs.pixel_centre.y));
         const double q = m_allocation->q(x, y);
@@ -36,9 +36,9 @@ public:
         // A pilot sample: its pixel's statistics are written by the one thread rendering it.
         PilotSample record;
         const double w0 = work_so_far();
-        const SampledSpectrum L = path(scene, cs, ray, q, &record).trace(sampler);
-        m_allocation->add(x, y, record, L.average(), work_so_far() - w0);
-        return L;
+        const SampleEstimate e = path(scene, cs, ray, q, &record).trace(sampler);
+        m_allocation->add(x, y, record, e.L.average(), work_so_far() - w0);
+        return e;
     }
     void end_pass(uint64_t samples_per_pixel) override {
         if (!m_allocation || !m_allocation->learning() || samples_per_pixel < m_pilot_spp) return;
@@ -73,8 +73,8 @@ private:
 
 }  // namespace
 
-SampledSpectrum MneeIntegrator::radiance(const Ray& ray, const Scene& scene, Sampler& sampler,
-                                         const SampledWavelengths& wl, PathObserver* observer) const {
+SampleEstimate MneeIntegrator::radiance(const Ray& ray, const Scene& scene, Sampler& sampler,
+                                        const SampledWavelengths& wl, PathObserver* observer) const {
     return MneePath(scene, m_settings, m_mnee, wl, ray, observer, -1, nullptr).trace(sampler);
 }
 

@@ -7,13 +7,13 @@
 
 namespace snell {
 
-/// The biased mode's outlier clamp (Film::set_max_sample_share): the largest sample of a pixel
+/// The biased mode's outlier clamp (apply_outlier_clamp, camera/outlier_clamp.h): the largest sample of a pixel
 /// carries at most half of it. The fireflies that remain after Sec. 3.5's rule are MNEE's own
 /// (a fold's penumbra, rare solutions in a lens's aberration halo; docs/mnee.md), which no rule
 /// on the paths can tell from the caustic; the clamp is relative to the pixel, so scale-free.
 inline constexpr double kBiasedMaxSampleShare = 0.5;
 /// ... and the light the clamp takes is spread over discs of up to this many pixels rather than
-/// dropped (Film::set_max_sample_share): a caustic's dim halo, which at a few samples per pixel
+/// dropped (apply_outlier_clamp, camera/outlier_clamp.h): a caustic's dim halo, which at a few samples per pixel
 /// is all rare bright samples, keeps its light (docs/mnee.md, "Biased mode").
 inline constexpr int kBiasedClampSpread = 8;
 
@@ -24,8 +24,8 @@ public:
     MneeIntegrator(const PathSettings& path, const MneeSettings& mnee) : m_settings(path), m_mnee(mnee) {}
     /// One camera sample at MneeSettings::connect_probability (PSSMLT's and ERPT's inner
     /// estimator; the tile loop goes through prepare()'s tracer).
-    SampledSpectrum radiance(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl,
-                             PathObserver* observer) const override;
+    SampleEstimate radiance(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl,
+                            PathObserver* observer) const override;
     /// The per-render tracer: with a learned allocation it learns q per region from its pilot
     /// samples; otherwise every sample runs at connect_probability.
     std::unique_ptr<SampleTracer> prepare(const Scene& scene, const FilmSpec& film,

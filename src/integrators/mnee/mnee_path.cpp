@@ -27,7 +27,7 @@ MneePath::MneePath(const Scene& scene, const PathSettings& path, const MneeSetti
     m_prev.at = {camera_ray.o, Vec3()};
 }
 
-SampledSpectrum MneePath::trace(Sampler& sampler) {
+SampleEstimate MneePath::trace(Sampler& sampler) {
     ++render_stats::paths;
     const Scene& scene = *m_scene;
     const SampledWavelengths& wl = m_ctx.wl;

@@ -21,7 +21,7 @@ public:
              const Ray& camera_ray, PathObserver* observer, double q, PilotSample* pilot);
 
     /// The sample's radiance (all randomness from `sampler`).
-    SampledSpectrum trace(Sampler& sampler);
+    SampleEstimate trace(Sampler& sampler);
 
 private:
     /// At a non-specular vertex that is no interface: Alg. 1 from x_b = si. At a rough

@@ -26,10 +26,11 @@ public:
         m_L += v;
         m_log.add(t, v);
     }
-    /// Records the sample's techniques (TechniqueLog::record) and returns its radiance.
-    SampledSpectrum finish(const SampledWavelengths& wl) const {
-        m_log.record(wl);
-        return m_L;
+    /// Records the sample's techniques (TechniqueLog::record) and returns its radiance with the
+    /// technique of its largest part.
+    SampleEstimate finish(const SampledWavelengths& wl) const {
+        const int largest = m_log.record(wl);
+        return {m_L, largest};
     }
 
 private:
@@ -58,7 +59,7 @@ class CameraWalk {
 public:
     CameraWalk(const Scene& scene, const PathSettings& settings, const SampledWavelengths& wl, const Ray& camera_ray,
                PathObserver* observer)
-        : m_scene(&scene), m_settings(&settings), m_wl(wl), m_observer(observer), ray(camera_ray) {}
+        : ray(camera_ray), m_scene(&scene), m_settings(&settings), m_wl(wl), m_observer(observer) {}
 
     /// Traces `ray` to its next vertex `si`, attenuated by the medium it crossed (Beer-Lambert),
     /// and tells the observer. False when the ray escapes.

@@ -9,12 +9,12 @@ struct PathSettings {
     int max_depth = -1;          ///< longest path in segments; -1: unbounded; 1: visible emitters only
     int rr_depth = 5;            ///< Russian roulette starts at this depth
     bool hide_emitters = false;  ///< directly visible emitters are black
-    /// (max_sample_share) the film's outlier clamp (Film::set_max_sample_share): a pixel's
+    /// (max_sample_share) the film's outlier clamp (apply_outlier_clamp, camera/outlier_clamp.h): a pixel's
     /// largest sample carries at most this share of it. Biased; 0 (default): off. mnee's
     /// `biased` mode defaults it to 0.5 (MneeIntegrator::path_settings_from_props).
     double max_sample_share = 0;
     /// (clamp_spread) with the clamp, the widest disc (pixels) its light is spread over instead
-    /// of being dropped (Film::set_max_sample_share); 0 (default): dropped. mnee's `biased` mode
+    /// of being dropped (apply_outlier_clamp, camera/outlier_clamp.h); 0 (default): dropped. mnee's `biased` mode
     /// defaults it to kBiasedClampSpread.
     int clamp_spread = 0;
     /// The settings every integrator built on paths reads (bdpt, pssmlt and erpt too).

@@ -14,8 +14,8 @@ std::unique_ptr<SampleTracer> PathTracer::prepare(const Scene&, const FilmSpec&,
     return std::make_unique<RadianceTracer>(*this);
 }
 
-SampledSpectrum PathTracer::radiance(const Ray& camera_ray, const Scene& scene, Sampler& sampler,
-                                     const SampledWavelengths& wl, PathObserver* observer) const {
+SampleEstimate PathTracer::radiance(const Ray& camera_ray, const Scene& scene, Sampler& sampler,
+                                    const SampledWavelengths& wl, PathObserver* observer) const {
     ++render_stats::paths;
     const BSDFContext ctx{wl, TransportMode::Radiance};
     SampleRadiance out;

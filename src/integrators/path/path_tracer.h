@@ -15,8 +15,8 @@ class PathTracer : public RadianceEstimator {
 public:
     PathTracer(const PathSettings& settings, bool nee, std::string name = "")
         : m_settings(settings), m_nee(nee), m_name(name.empty() ? (nee ? "nee" : "pt") : std::move(name)) {}
-    SampledSpectrum radiance(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl,
-                             PathObserver* observer) const override;
+    SampleEstimate radiance(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl,
+                            PathObserver* observer) const override;
     /// Stateless: the tracer calls li() for each camera sample.
     std::unique_ptr<SampleTracer> prepare(const Scene& scene, const FilmSpec& film,
                                           const RenderOptions& options) const override;

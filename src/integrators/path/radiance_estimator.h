@@ -26,11 +26,12 @@ public:
     /// Radiance arriving at the camera along `ray` at the wavelengths `wl` (nm). Thread-safe;
     /// all randomness from `sampler`.
     SampledSpectrum li(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl) const {
-        return radiance(ray, scene, sampler, wl, nullptr);
+        return radiance(ray, scene, sampler, wl, nullptr).L;
     }
-    /// li() telling `observer` (when not null) of every camera-subpath vertex.
-    virtual SampledSpectrum radiance(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl,
-                                     PathObserver* observer) const = 0;
+    /// li() telling `observer` (when not null) of every camera-subpath vertex, with the technique
+    /// that delivered the largest part of the sample (technique_stats.h).
+    virtual SampleEstimate radiance(const Ray& ray, const Scene& scene, Sampler& sampler, const SampledWavelengths& wl,
+                                    PathObserver* observer) const = 0;
     virtual const PathSettings& settings() const = 0;
 };
 
@@ -39,9 +40,9 @@ public:
 class RadianceTracer final : public SampleTracer {
 public:
     explicit RadianceTracer(const RadianceEstimator& estimator) : m_estimator(estimator) {}
-    SampledSpectrum li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
-                             SplatList& /*splats*/) const override {
-        return m_estimator.li(ray, scene, sampler, cs.wl);
+    SampleEstimate li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
+                            SplatList& /*splats*/) const override {
+        return m_estimator.radiance(ray, scene, sampler, cs.wl, nullptr);
     }
     double max_sample_share() const override { return m_estimator.settings().max_sample_share; }
     int clamp_spread() const override { return m_estimator.settings().clamp_spread; }

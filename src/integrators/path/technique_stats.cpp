@@ -38,7 +38,7 @@ std::vector<std::string> path_technique_names() {
     return names;
 }
 
-void TechniqueLog::record(const SampledWavelengths& wl) const {
+int TechniqueLog::record(const SampledWavelengths& wl) const {
     double sum = 0, largest = 0;
     int largest_technique = -1;
     for (int i = 0; i < kTechniqueCount; ++i) {
@@ -56,7 +56,7 @@ void TechniqueLog::record(const SampledWavelengths& wl) const {
         }
     }
     total.add(sum);
-    note_sample_technique(largest_technique);
+    return largest_technique;
 }
 
 }  // namespace snell

@@ -36,8 +36,8 @@ public:
     /// Adds this sample's luminance (CIE Y, divided by the wavelengths' density) of every
     /// technique (zeros included) to the render's statistics ("path.technique.<name>",
     /// StatMoments), and their sum to "path.sample"; notes the technique with the largest
-    /// part (note_sample_technique) for the film's dominance statistics.
-    void record(const SampledWavelengths& wl) const;
+    /// part for the film's dominance statistics (SampleEstimate::technique).
+    int record(const SampledWavelengths& wl) const;
 
 private:
     std::array<SampledSpectrum, kTechniqueCount> m_by{};

@@ -1,12 +1,10 @@
 #include "integrators/pssmlt/pssmlt.h"
 
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include <chrono>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
-#include <thread>
 #include <vector>
 
 #include "core/distribution.h"
@@ -16,6 +14,7 @@
 #include "integrators/mnee/mnee_integrator.h"
 #include "integrators/pssmlt/path_sample.h"
 #include "integrators/pssmlt/primary_sample_sampler.h"
+#include "render/team_pass.h"
 #include "scene/scene.h"
 
 namespace snell {
@@ -63,21 +62,26 @@ constexpr int kDefaultChains = 64;
 
 RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, int spectral_samples,
                            const FilmSpec& spec, const RenderOptions& opt, const std::atomic<bool>* cancel) {
-    using Clock = std::chrono::steady_clock;
     const Camera* camera = scene.camera();
     if (!camera) throw std::runtime_error("scene has no sensor");
-    const auto start = Clock::now();
-    const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+    // A chain roams the whole film and its samples have no index: a crop or a sample range of
+    // it is not a part of the frame. Split PSSMLT over MPI ranks (chains) or seeds instead.
+    if (!opt.crop.empty() || opt.sample_begin > 0 || opt.sample_end > 0)
+        throw std::runtime_error(
+            "pssmlt renders the whole film with Markov chains: --crop and --sample-range do not apply "
+            "(run it under mpirun, which splits the chains, or merge renders of other seeds)");
+    RenderTeam& team = render_team(opt);
+    const RenderStop stopping(opt, cancel);
     const bool timed = opt.time_limit > 0;
     const int w = spec.out_width(), h = spec.out_height();
     const size_t pixels = size_t(w) * size_t(h);
     const auto inner = make_pssmlt_inner(settings);
-    const int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    // The chain count decides the image, so it must not come from the machine: without a
-    // `chains` setting a fixed-length render runs kDefaultChains chains, `threads` at a time
-    // (batches). An equal-time render cannot run chains in turn, so it runs one per thread.
-    const int n_chains = settings.chains > 0 ? settings.chains : (timed ? threads : kDefaultChains);
-    const int batch = timed ? n_chains : std::min(n_chains, threads);
+    const int threads = render_threads(opt);
+    // The chain count decides the image, so it must come from neither the machine nor the team:
+    // without a `chains` setting a fixed-length render runs kDefaultChains chains, handed out
+    // to the threads of the team's processes. An equal-time render cannot run chains in turn,
+    // so it runs one per thread of every process.
+    const int n_chains = settings.chains > 0 ? settings.chains : (timed ? threads * team.size() : kDefaultChains);
     const double p_large = settings.large_step_probability;
     // A state's weight goes to every pixel whose reconstruction filter covers its position.
     const Filter& filter = spec.pixel_filter();
@@ -88,21 +92,15 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, i
     tbb::task_arena arena(threads);
     reset_stats();
 
-    const auto stop_requested = [&] {
-        return (cancel && cancel->load(std::memory_order_relaxed)) || (timed && elapsed() >= opt.time_limit);
-    };
+    const auto stop_requested = [&] { return stopping.requested(); };
 
     // Bootstrap: b = E[Y] over independent primary samples (an unbiased estimate of the
-    // normalisation), and the Y of each as the weight of its path as a chain seed.
+    // normalisation), and the Y of each as the weight of its path as a chain seed. Computed
+    // once over the team, so that every process holds the same values.
     const size_t n_boot = size_t(settings.bootstrap_samples);
-    std::vector<double> boot_y(n_boot, 0.0);
-    arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, n_boot, 256), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i < r.end(); ++i) {
-                PrimarySampleSampler sampler(bootstrap_seed(opt.seed, i), i, p_large, settings.s1, settings.s2);
-                boot_y[i] = evaluate(scene, *camera, *inner, spectral_samples, spec, sampler).target();
-            }
-        });
+    const std::vector<double> boot_y = team_bootstrap(team, arena, n_boot, [&](size_t i) {
+        PrimarySampleSampler sampler(bootstrap_seed(opt.seed, i), i, p_large, settings.s1, settings.s2);
+        return evaluate(scene, *camera, *inner, spectral_samples, spec, sampler).target();
     });
     double b = 0;
     for (double y : boot_y) b += y;  // fixed order: deterministic
@@ -110,30 +108,37 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, i
 
     RenderResult result;
     result.film = Film(w, h);
-    if (b <= 0) {  // no bootstrap path carried light: an (estimated) black image
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) result.film.add_sum(x, y, Vec3(), 1);
-        result.seconds = elapsed();
+    const auto finish = [&](double splat_scale, uint64_t mutations) {
         result.counters = stat_totals();
+        team.reduce(result.film, result.counters);
+        result.team = team.times();
+        // Every pixel counts one sample of value zero plus its splats (the chains' deposits).
+        if (team.rank() == 0)
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) result.film.add_sum(x, y, Vec3(), 1);
+        result.film.set_splat_scale(splat_scale);
+        result.seconds = stopping.elapsed();
+        result.spp_mean = double(mutations) / double(pixels);
+        result.spp_completed = mutations / pixels;
+    };
+    if (b <= 0) {
+        finish(0.0, 0);
         return result;
-    }
+    }  // no bootstrap path carried light: an (estimated) black image
     const Distribution1D seeds(boot_y);
 
     // Mutations per chain: the total split as evenly as possible (equal-time: unbounded).
     const uint64_t mpp = uint64_t(settings.mutations_per_pixel > 0 ? settings.mutations_per_pixel : opt.spp);
     const uint64_t total = mpp * pixels;
-    // One film per running chain; after each batch the films are added to `sum` in chain
-    // order, so every pixel sees the same sequence of additions whatever the batch size.
-    std::vector<std::vector<Vec3>> films(static_cast<size_t>(batch));
-    std::vector<Vec3> sum(pixels, Vec3());
-    uint64_t mutations = 0;
+    // One film per thread for the chain it runs; a finished chain's film is added to the film's
+    // splats exactly (ExactSum), so the image depends on neither the order the chains finish
+    // in nor the process that ran them.
+    std::vector<std::vector<Vec3>> films(static_cast<size_t>(threads));
+    std::mutex film_mutex;
+    std::atomic<uint64_t> mutations{0};
+    const std::unique_ptr<ProgressBar> bar = render_progress(opt, team, "pssmlt", total);
 
-    std::unique_ptr<ProgressBar> bar;
-    if (opt.progress)
-        bar.reset(timed ? new ProgressBar(ProgressBar::for_time("pssmlt", opt.time_limit))
-                        : new ProgressBar("pssmlt", total));
-
-    const auto run_chain = [&](int c, std::vector<Vec3>& film) -> uint64_t {
+    const auto run_chain = [&](int c, std::vector<Vec3>& film) -> bool {
         const uint64_t quota = total / uint64_t(n_chains) + (uint64_t(c) < total % uint64_t(n_chains) ? 1 : 0);
         film.assign(pixels, Vec3());
         // Resample a bootstrap path proportionally to Y and reproduce it exactly (same
@@ -149,7 +154,7 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, i
         const uint64_t kCheck = 1024;
         for (; timed || m < quota; ++m) {
             if (m % kCheck == 0 && m > 0) {
-                if (bar && !timed) bar->add(kCheck);
+                if (bar) bar->add(timed ? 0 : kCheck * uint64_t(team.size()));  // MPI: rank 0's share, scaled
                 if (stop_requested()) break;
             }
             sampler.start_iteration();
@@ -174,35 +179,28 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, i
                 sampler.reject();
             }
         }
-        return m;
-    };
-
-    for (int c0 = 0; c0 < n_chains; c0 += batch) {
-        const int nb = std::min(batch, n_chains - c0);
-        std::vector<uint64_t> done(size_t(nb), 0);
-        arena.execute(
-            [&] { tbb::parallel_for(0, nb, [&](int k) { done[size_t(k)] = run_chain(c0 + k, films[size_t(k)]); }); });
-        for (int k = 0; k < nb; ++k) {
-            mutations += done[size_t(k)];
-            const auto& f = films[size_t(k)];
-            for (size_t p = 0; p < pixels; ++p) sum[p] += f[p];  // fixed chain order
+        mutations += m;
+        {
+            const std::lock_guard<std::mutex> lock(film_mutex);
+            for (size_t p = 0; p < pixels; ++p)
+                if (film[p].x != 0 || film[p].y != 0 || film[p].z != 0)
+                    result.film.add_splat(int(p % size_t(w)), int(p / size_t(w)), film[p]);
         }
-        if (stop_requested()) break;
-    }
+        return !stopping.cancelled();
+    };
+    run_team_pass(team, arena, threads, n_chains, stop_requested, SIZE_MAX,
+                  [&](int64_t c, int slot) { return run_chain(int(c), films[size_t(slot)]); });
     if (bar) bar->finish();
 
     // Pixel value = b * (pixel count) / (mutations) * splat sum: the chains visit the film
     // with density Y / b over the unit square of film positions, each pixel covering 1/area.
     // Film positions cover the window grown by the filter margin: its area replaces the count.
+    std::vector<double> all{double(mutations.load())};
+    team.sum_exactly(all);  // integers below 2^53: exact in any order
+    const uint64_t done = uint64_t(all[0]);
     const Vec2 extent = spec.sample_extent();
-    const double scale = mutations > 0 ? extent.x * extent.y / double(mutations) : 0.0;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) result.film.add_sum(x, y, sum[size_t(y) * w + x] * scale, 1);
-    result.seconds = elapsed();
-    result.spp_mean = double(mutations) / double(pixels);
-    result.spp_completed = mutations / pixels;
-    result.interrupted = cancel && cancel->load() && (timed || mutations < total);
-    result.counters = stat_totals();
+    finish(done > 0 ? extent.x * extent.y / double(done) : 0.0, done);
+    result.interrupted = team.any(stopping.cancelled()) && (timed || done < total);
     return result;
 }
 

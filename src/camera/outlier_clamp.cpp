@@ -1,15 +1,21 @@
-// The outlier clamp's spread (Film::set_max_sample_share with spread_radius; issue 10, mnee's
-// biased mode). The clamp alone drops the light it takes. Where a pixel's light comes from rare
-// bright samples (a caustic's dim halo at a few samples per pixel: one sample in sixteen lands
-// there), it takes nearly all of it: no per-pixel rule can tell that sample from a firefly. The
-// neighbourhood can: spread over a disc, the pieces of many such samples add up to a smooth
-// image in which none dominates. Energy is kept exactly; the bias is a blur of the clamped
-// light over at most spread_radius pixels, and like the clamp it fades as samples grow.
+// The outlier clamp of mnee's biased mode (issue 10) as a post-process of a finished film
+// (issue 27): it runs once, after the last sample, after the reduction over MPI ranks or the
+// merge of partial films, and reads only what the film accumulated, so that a distributed image
+// equals the local one.
+//
+// The clamp alone drops the light it takes. Where a pixel's light comes from rare bright samples
+// (a caustic's dim halo at a few samples per pixel: one sample in sixteen lands there), it takes
+// nearly all of it: no per-pixel rule can tell that sample from a firefly. The neighbourhood can:
+// spread over a disc, the pieces of many such samples add up to a smooth image in which none
+// dominates. Energy is kept exactly; the bias is a blur of the clamped light over at most
+// spread_radius pixels, and like the clamp it fades as samples grow.
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <utility>
+#include <vector>
 
-#include "camera/film.h"
+#include "camera/outlier_clamp.h"
 
 namespace snell {
 
@@ -40,15 +46,20 @@ constexpr double kLightAround = 2.0;
 
 }  // namespace
 
-void Film::spread_clamped_light() {
-    m_spread.clear();
-    m_piece_y.clear();
-    m_spread_r.clear();
-    m_spread_capped = 0;
-    m_spread_taken_y = m_spread_given_y = 0;
-    if (!(m_max_share > 0) || m_spread_radius <= 0) return;
-    const int radius_cap = std::min(m_spread_radius, 255);
-    const size_t n = m_sum.size();
+namespace {
+
+// The spread of the light the clamp (out.max_share) takes from `film`'s pixels over discs of
+// at most out.spread_radius pixels, into out's spread fields.
+void spread_clamped_light(const Film& film, OutlierClamp& out) {
+    const double share = out.max_share;
+    const int w = film.width(), h = film.height();
+    const int radius_cap = std::min(out.spread_radius, 255);
+    const size_t n = size_t(w) * size_t(h);
+    std::vector<uint64_t> counts(n);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) counts[size_t(y) * w + x] = film.samples(x, y);
+    std::vector<Vec3>& added = out.spread;
+    std::vector<double>& largest_piece_y = out.piece_y;
 
     // The sources: pixels whose largest sample the clamp scaled down, with the light it took
     // (as a mean over the pixel's samples: the pixel's value falls by as much).
@@ -61,28 +72,30 @@ void Film::spread_clamped_light() {
     };
     std::vector<Source> sources;
     std::vector<double> own_y(n, 0.0);  // each pixel's mean luminance after the clamp
-    for (int y = 0; y < m_h; ++y)
-        for (int x = 0; x < m_w; ++x) {
-            const size_t i = size_t(y) * m_w + x;
-            if (!m_n[i]) continue;
-            const double c = clamped_y(x, y);
-            own_y[i] = (m_sum[i].y.value() - c) / double(m_n[i]);
-            if (c > 0) sources.push_back({x, y, m_max_xyz[i] * (c / m_max_y[i] / double(m_n[i]))});
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * w + x;
+            if (!counts[i]) continue;
+            const double c = film.clamped_y(x, y);
+            own_y[i] = (film.sample_sum_y(x, y) - c) / double(counts[i]);
+            if (c > 0)
+                sources.push_back(
+                    {x, y, film.largest_sample_xyz(x, y) * (c / film.largest_sample_y(x, y) / double(counts[i]))});
         }
     if (sources.empty()) return;
     std::vector<double> light_y(n, 0.0);  // each source pixel's clamped light
-    for (const Source& s : sources) light_y[size_t(s.y) * m_w + s.x] = s.light.y;
+    for (const Source& s : sources) light_y[size_t(s.y) * w + s.x] = s.light.y;
     const DiscOffsets disc(radius_cap);
     // Whether pixel i can take a piece of source s: pixels that received samples only (so the
     // image's edge and unrendered pixels lose nothing), and lit ones only once s is lit_only.
     const auto receives = [&](const Source& s, size_t i) {
-        return m_n[i] > 0 && (!s.lit_only || own_y[i] > 0 || light_y[i] > 0);
+        return counts[i] > 0 && (!s.lit_only || own_y[i] > 0 || light_y[i] > 0);
     };
     const auto for_disc = [&](const Source& s, auto&& f) {
         for (size_t k = 0; k < disc.end[size_t(s.r)]; ++k) {
             const int x = s.x + disc.d[k].first, y = s.y + disc.d[k].second;
-            if (x < 0 || y < 0 || x >= m_w || y >= m_h) continue;
-            if (const size_t i = size_t(y) * m_w + x; receives(s, i)) f(i);
+            if (x < 0 || y < 0 || x >= w || y >= h) continue;
+            if (const size_t i = size_t(y) * w + x; receives(s, i)) f(i);
         }
     };
 
@@ -93,8 +106,8 @@ void Film::spread_clamped_light() {
         for (s.r = 1; s.r < radius_cap; ++s.r) {
             for (; k < disc.end[size_t(s.r)]; ++k) {
                 const int x = s.x + disc.d[k].first, y = s.y + disc.d[k].second;
-                if (x < 0 || y < 0 || x >= m_w || y >= m_h) continue;
-                const size_t i = size_t(y) * m_w + x;
+                if (x < 0 || y < 0 || x >= w || y >= h) continue;
+                const size_t i = size_t(y) * w + x;
                 around += own_y[i] + light_y[i];
             }
             if (around >= kLightAround * s.light.y) break;
@@ -116,7 +129,7 @@ void Film::spread_clamped_light() {
     // on from source to source.)
     std::vector<double> piece_y(sources.size());  // each source's piece (luminance)
     std::vector<int64_t> source_at(n, -1);
-    for (size_t k = 0; k < sources.size(); ++k) source_at[size_t(sources[k].y) * m_w + sources[k].x] = int64_t(k);
+    for (size_t k = 0; k < sources.size(); ++k) source_at[size_t(sources[k].y) * w + sources[k].x] = int64_t(k);
     // Adds (sign 1) or removes (-1) source k's pieces; `touched` collects its support.
     const auto spread = [&](size_t k, double sign, std::vector<size_t>* touched) {
         const Source& s = sources[k];
@@ -125,16 +138,16 @@ void Film::spread_clamped_light() {
         const Vec3 piece = s.light / double(count);  // count >= 1: the source itself
         piece_y[k] = piece.y;
         for_disc(s, [&](size_t i) {
-            m_spread[i] += piece * sign;
+            added[i] += piece * sign;
             if (touched) touched->push_back(i);
         });
     };
     // Calls f(k) for every source k whose support holds pixel i (sources within radius_cap).
     const auto for_sources_at = [&](size_t i, auto&& f) {
-        const int x = int(i % size_t(m_w)), y = int(i / size_t(m_w));
-        for (int v = std::max(0, y - radius_cap); v <= std::min(m_h - 1, y + radius_cap); ++v)
-            for (int u = std::max(0, x - radius_cap); u <= std::min(m_w - 1, x + radius_cap); ++u) {
-                const int64_t k = source_at[size_t(v) * m_w + u];
+        const int x = int(i % size_t(w)), y = int(i / size_t(w));
+        for (int v = std::max(0, y - radius_cap); v <= std::min(h - 1, y + radius_cap); ++v)
+            for (int u = std::max(0, x - radius_cap); u <= std::min(w - 1, x + radius_cap); ++u) {
+                const int64_t k = source_at[size_t(v) * w + u];
                 if (k < 0) continue;
                 const Source& s = sources[size_t(k)];
                 if ((x - s.x) * (x - s.x) + (y - s.y) * (y - s.y) <= s.r * s.r + s.r && receives(s, i)) f(size_t(k));
@@ -149,8 +162,8 @@ void Film::spread_clamped_light() {
         return best;
     };
 
-    m_spread.assign(n, Vec3());
-    m_piece_y.assign(n, 0.0);
+    added.assign(n, Vec3());
+    largest_piece_y.assign(n, 0.0);
     std::vector<int64_t> best(n, -1);  // the source of each pixel's largest piece
     std::vector<uint8_t> acting(sources.size()), fresh(n);
     std::vector<size_t> round, next, touched;
@@ -165,7 +178,7 @@ void Film::spread_clamped_light() {
     const auto check = [&](size_t i) {
         const int64_t k = best[i];
         if (k >= 0 && !acting[size_t(k)] && !sources[size_t(k)].stuck &&
-            piece_y[size_t(k)] > m_max_share * (own_y[i] + m_spread[i].y)) {
+            piece_y[size_t(k)] > share * (own_y[i] + added[i].y)) {
             acting[size_t(k)] = 1;
             next.push_back(size_t(k));
         }
@@ -174,7 +187,7 @@ void Film::spread_clamped_light() {
         // A full pass, exact (each pixel's light summed afresh), finds the sources whose pieces
         // dominate a pixel; the rounds then update the sums in place, each at the cost of the
         // sources it moves.
-        std::fill(m_spread.begin(), m_spread.end(), Vec3());
+        std::fill(added.begin(), added.end(), Vec3());
         std::fill(best.begin(), best.end(), -1);
         for (size_t k = 0; k < sources.size(); ++k) spread(k, 1.0, nullptr);
         for (size_t k = 0; k < sources.size(); ++k)
@@ -228,8 +241,8 @@ void Film::spread_clamped_light() {
     // first); the rest of those pieces is dropped.
     std::vector<std::pair<double, int64_t>> pieces;
     for (size_t i = 0; i < n; ++i) {
-        m_piece_y[i] = best[i] >= 0 ? piece_y[size_t(best[i])] : 0.0;
-        if (!(m_piece_y[i] > m_max_share * (own_y[i] + m_spread[i].y))) continue;
+        largest_piece_y[i] = best[i] >= 0 ? piece_y[size_t(best[i])] : 0.0;
+        if (!(largest_piece_y[i] > share * (own_y[i] + added[i].y))) continue;
         pieces.clear();
         for_sources_at(i, [&](size_t k) { pieces.emplace_back(piece_y[k], int64_t(k)); });
         std::sort(pieces.begin(), pieces.end(), std::greater<>());
@@ -240,13 +253,13 @@ void Film::spread_clamped_light() {
         for (size_t k = 0; k < pieces.size(); ++k) {
             below -= pieces[k].first;  // now own + the pieces after the k + 1 largest
             const double top = pieces[k].first, floor = k + 1 < pieces.size() ? pieces[k + 1].first : 0.0;
-            const double g_top = m_max_share * (below + double(k + 1) * top) - top;
+            const double g_top = share * (below + double(k + 1) * top) - top;
             if (g_top >= 0) {
                 c = top;
                 break;
             }
-            if (m_max_share * double(k + 1) < 1) {
-                const double at = m_max_share * below / (1 - m_max_share * double(k + 1));
+            if (share * double(k + 1) < 1) {
+                const double at = share * below / (1 - share * double(k + 1));
                 if (at >= floor) {
                     c = at * (1 - 1e-12);  // just below the equality, which rounding could tip over
                     break;
@@ -255,18 +268,29 @@ void Film::spread_clamped_light() {
         }
         for (const auto& [py, k] : pieces) {
             if (!(py > c)) break;
-            m_spread[i] -= sources[size_t(k)].light * ((py - c) / sources[size_t(k)].light.y);
+            added[i] -= sources[size_t(k)].light * ((py - c) / sources[size_t(k)].light.y);
         }
-        m_piece_y[i] = std::min(m_piece_y[i], c);
-        ++m_spread_capped;
+        largest_piece_y[i] = std::min(largest_piece_y[i], c);
+        ++out.cut_pixels;
     }
-    m_spread_r.assign(n, 0);
-    m_spread_taken_y = m_spread_given_y = 0;
+    out.radius.assign(n, 0);
     for (const Source& s : sources) {
-        m_spread_r[size_t(s.y) * m_w + s.x] = uint8_t(s.r);
-        m_spread_taken_y += s.light.y;
+        out.radius[size_t(s.y) * w + s.x] = uint8_t(s.r);
+        out.taken_y += s.light.y;
     }
-    for (size_t i = 0; i < n; ++i) m_spread_given_y += m_spread[i].y;
+    for (size_t i = 0; i < n; ++i) out.given_y += added[i].y;
+}
+
+}  // namespace
+
+void apply_outlier_clamp(Film& film, double max_share, int spread_radius) {
+    OutlierClamp clamp;
+    clamp.max_share = max_share;
+    clamp.spread_radius = spread_radius;
+    film.set_outlier_clamp(clamp);  // the per-pixel clamp first: the spread moves what it took
+    if (!(max_share > 0) || spread_radius <= 0) return;
+    spread_clamped_light(film, clamp);
+    film.set_outlier_clamp(std::move(clamp));
 }
 
 }  // namespace snell
