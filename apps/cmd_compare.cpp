@@ -12,7 +12,6 @@
 #include <optional>
 #include <set>
 #include <stdexcept>
-#include <thread>
 
 #include "app_common.h"
 #include "commands.h"
@@ -22,6 +21,7 @@
 #include "manifold/walk_statistics.h"
 #include "render/render_team.h"
 #include "render/renderer.h"
+#include "render/team_pass.h"
 #include "report/compare_report.h"
 #include "report/false_colour.h"
 #include "report/html_report.h"
@@ -201,7 +201,7 @@ int cmd_compare(const CompareOptions& options) {
             throw std::runtime_error(std::string("--crop: ") + e.what());
         }
     }
-    rep.threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    rep.threads = opt.threads > 0 ? opt.threads : render_threads(RenderOptions{});
     if (!opt.reference_offset.empty() && opt.reference_file.empty())
         throw std::runtime_error("--reference-offset places a --reference file: give one");
     // The offset's form is checked before any scene loads; its window needs the reference's size.

@@ -8,7 +8,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <thread>
 #include <tuple>
 
 #include "app_common.h"
@@ -18,6 +17,7 @@
 #include "manifold/walk_statistics.h"
 #include "render/partial_film.h"
 #include "render/renderer.h"
+#include "render/team_pass.h"
 #include "scene/scene.h"
 
 namespace fs = std::filesystem;
@@ -156,7 +156,7 @@ int cmd_render(const RenderCommandOptions& o) {
 
     std::signal(SIGINT, on_sigint);
     std::signal(SIGTERM, on_sigint);  // mpirun and farm managers stop a job with SIGTERM
-    const int nthreads = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    const int nthreads = render_threads(opt);
     char budget_buf[64];
     if (time_limit > 0)
         std::snprintf(budget_buf, sizeof(budget_buf), "%g s", time_limit);

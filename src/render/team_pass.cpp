@@ -1,11 +1,11 @@
 #include "render/team_pass.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
-#include <thread>
 #include <utility>
 
 #include "render/renderer.h"
@@ -13,7 +13,9 @@
 namespace snell {
 
 int render_threads(const RenderOptions& opt) {
-    return opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    // TBB's default honours the process's affinity mask: a rank that mpirun bound to one core
+    // (Open MPI's default for small jobs) runs one thread, not one per core of the node.
+    return opt.threads > 0 ? opt.threads : std::max(1, tbb::info::default_concurrency());
 }
 
 RenderTeam& render_team(const RenderOptions& opt) { return opt.team ? *opt.team : process_team(); }

@@ -22,7 +22,7 @@ namespace snell {
 
 struct RenderOptions;
 
-/// The worker threads of this process: the options' count, or every hardware thread.
+/// The worker threads of this process: the options' count, or one per core it may run on.
 int render_threads(const RenderOptions& opt);
 /// The processes rendering together: the options' team, or process_team().
 RenderTeam& render_team(const RenderOptions& opt);

@@ -94,6 +94,11 @@ assert lines and all(0 <= l[\"progress\"] <= 1 and \"eta_s\" in l for l in lines
 assert lines[-1][\"done\"] and lines[-1][\"progress\"] == 1, lines[-1]
 '"
 
+# The scaling model (docs/distributed.md) runs and prints a row per node count.
+MODEL="$(dirname "$0")/../../scripts/experiments/scaling_model.py"
+check "the scaling model prints its table" \
+  "[ \$(python3 '$MODEL' --nodes 2 64 | grep -cE '^ +(2|64) ') -eq 2 ]"
+
 if [ "$MPI" != "mpi" ]; then
   echo "(no MPI in this build: the mpirun checks are skipped)"
   exit $fail
