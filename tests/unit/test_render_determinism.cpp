@@ -1,26 +1,42 @@
 // The image is a pure function of (scene, seed, spp): thread count must not change a bit.
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "io/stats_json.h"
 #include "stat/render_stats.h"
 
 using namespace snell;
 
-TEST(Render, IndependentOfThreadCount) {
-    const char* xml = R"(<scene version="3.0.0">
+namespace {
+
+// A nee scene seen from (0, 0, 4) on a width x height film, with `body` (shapes, emitters).
+std::string nee_scene(int width, int height, const std::string& body) {
+    return R"(<scene version="3.0.0">
       <integrator type="nee"/>
       <sensor type="perspective"><transform name="to_world"><lookat origin="0,0,4" target="0,0,0" up="0,1,0"/></transform>
-        <film type="hdrfilm"><integer name="width" value="40"/><integer name="height" value="30"/></film></sensor>
+        <film type="hdrfilm"><integer name="width" value=")" +
+           std::to_string(width) + R"("/><integer name="height" value=")" + std::to_string(height) +
+           R"("/></film></sensor>)" + body + "</scene>";
+}
+
+RenderOptions quiet(int spp, int threads) {
+    RenderOptions opt;
+    opt.spp = spp;
+    opt.progress = false;
+    opt.threads = threads;
+    return opt;
+}
+
+}  // namespace
+
+TEST(Render, IndependentOfThreadCount) {
+    LoadedScene ls = test::load_xml(nee_scene(40, 30, R"(
       <shape type="sphere"><bsdf type="dielectric"/></shape>
       <shape type="rectangle"><transform name="to_world"><scale value="3"/><translate z="-1.5"/></transform></shape>
       <emitter type="point"><point name="position" x="1" y="2" z="3"/><rgb name="intensity" value="10,10,10"/></emitter>
-      <emitter type="constant"><rgb name="radiance" value="0.2,0.2,0.2"/></emitter>
-    </scene>)";
-    LoadedScene ls = test::load_xml(xml);
-    RenderOptions opt;
-    opt.spp = 5;
-    opt.progress = false;
-    opt.threads = 1;
+      <emitter type="constant"><rgb name="radiance" value="0.2,0.2,0.2"/></emitter>)"));
+    RenderOptions opt = quiet(5, 1);
     const RenderResult a = render(*ls.scene, *ls.integrator, ls.film, opt);
     opt.threads = 2;
     opt.tile_size = 7;
@@ -74,19 +90,10 @@ TEST(Render, IndependentOfThreadCount) {
 // every pixel whose largest sample carries light knows the technique behind it, whatever
 // thread rendered it.
 TEST(Render, EachPixelsLargestSampleNamesItsTechnique) {
-    const char* xml = R"(<scene version="3.0.0">
-      <integrator type="nee"/>
-      <sensor type="perspective"><transform name="to_world"><lookat origin="0,0,4" target="0,0,0" up="0,1,0"/></transform>
-        <film type="hdrfilm"><integer name="width" value="24"/><integer name="height" value="18"/></film></sensor>
+    LoadedScene ls = test::load_xml(nee_scene(24, 18, R"(
       <shape type="rectangle"><transform name="to_world"><scale value="3"/></transform></shape>
-      <emitter type="point"><point name="position" x="1" y="2" z="3"/><rgb name="intensity" value="10,10,10"/></emitter>
-    </scene>)";
-    LoadedScene ls = test::load_xml(xml);
-    RenderOptions opt;
-    opt.spp = 4;
-    opt.progress = false;
-    opt.threads = 2;
-    const RenderResult r = render(*ls.scene, *ls.integrator, ls.film, opt);
+      <emitter type="point"><point name="position" x="1" y="2" z="3"/><rgb name="intensity" value="10,10,10"/></emitter>)"));
+    const RenderResult r = render(*ls.scene, *ls.integrator, ls.film, quiet(4, 2));
     ASSERT_FALSE(r.technique_names.empty());
     size_t lit = 0;
     for (int y = 0; y < r.film.height(); ++y)
