@@ -39,11 +39,12 @@ const std::string* builtin_xml(const std::string& scene_arg) {
 }  // namespace
 
 LoadedScene load_scene_arg(const std::string& scene_arg, const Defines& defines,
-                           const std::vector<std::string>& search_paths) {
+                           const std::vector<std::string>& search_paths, bool print_notices) {
     LoadedScene ls = builtin_xml(scene_arg)
                          ? load_scene_string(*builtin_xml(scene_arg), scene_arg, fs::current_path().string(), defines)
                          : load_scene_file(scene_arg, defines, search_paths);
-    for (const std::string& n : ls.notices) std::fprintf(stderr, "snell: notice: %s\n", n.c_str());
+    if (print_notices)
+        for (const std::string& n : ls.notices) std::fprintf(stderr, "snell: notice: %s\n", n.c_str());
     return ls;
 }
 

@@ -20,9 +20,11 @@ extern std::atomic<bool> g_cancel;
 /// SIGINT handler: the first Ctrl-C sets g_cancel, the second exits at once (status 130).
 extern "C" void on_sigint(int);
 
-/// Loads a scene file or a built-in ("builtin:NAME") with -D overrides.
+/// Loads a scene file or a built-in ("builtin:NAME") with -D overrides. The loader's notices
+/// (LoadedScene::notices) go to stderr unless `print_notices` is false (the Python module turns
+/// them into warnings).
 LoadedScene load_scene_arg(const std::string& scene_arg, const Defines& defines,
-                           const std::vector<std::string>& search_paths = {});
+                           const std::vector<std::string>& search_paths = {}, bool print_notices = true);
 /// Parses a scene file or built-in into the intermediate XML tree (no plugin is instantiated).
 std::shared_ptr<XmlObject> parse_scene_arg(const std::string& scene_arg, const Defines& defines);
 /// Parses -D items "name=value"; throws CLI::ValidationError on a malformed item.

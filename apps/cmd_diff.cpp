@@ -82,15 +82,9 @@ int cmd_diff(const std::string& a_path, const std::string& b_path, const std::ve
     for (const auto& [name, crop] : regions) {
         const ImageMetrics m = compare_images(a, b, crop, norm ? &*norm : nullptr);
         if (json) {
-            out.push_back({{"region", name},
-                           {"rel_mse", m.rel_mse},
-                           {"rmse", m.rmse},
-                           {"psnr", m.psnr},
-                           {"smape", m.smape},
-                           {"mean", m.mean},
-                           {"mean_reference", m.mean_reference},
-                           {"median_rel_error", m.median_rel_error},
-                           {"median_rel_error_rgb", m.median_rel_error_rgb}});
+            nlohmann::json j = m;
+            j["region"] = name;
+            out.push_back(std::move(j));
         } else {
             std::printf(
                 "%-24s relMSE %.6g  RMSE %.6g  PSNR %.3f dB  SMAPE %.6g  median error %.4g (RGB %.4g)  mean %.6g "

@@ -3,16 +3,21 @@ file(READ ${PROJECT_SOURCE_DIR}/scenes/droplet/droplet.xml DROPLET_XML)
 configure_file(${PROJECT_SOURCE_DIR}/apps/builtin_scenes.cpp.in ${PROJECT_BINARY_DIR}/generated/builtin_scenes.cpp @ONLY)
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/scenes/droplet/droplet.xml)
 
-add_executable(snell
-  apps/snell.cpp
+# The sub-commands and their helpers are one library, so that the two front ends, the command
+# line (apps/snell.cpp) and the Python module (python/), run the same code.
+add_library(snell_commands STATIC
   apps/app_common.cpp
   apps/cmd_render.cpp
   apps/cmd_diff.cpp
   apps/cmd_compare.cpp
   apps/cmd_merge.cpp
   ${PROJECT_BINARY_DIR}/generated/builtin_scenes.cpp)
-target_include_directories(snell PRIVATE ${PROJECT_SOURCE_DIR}/apps)
-target_link_libraries(snell PRIVATE snell_loader snell_integrators snell_report CLI11::CLI11)
+target_include_directories(snell_commands PUBLIC ${PROJECT_SOURCE_DIR}/apps)
+target_link_libraries(snell_commands PUBLIC snell_loader snell_integrators snell_report CLI11::CLI11)
+target_compile_options(snell_commands PRIVATE ${SNELL_WARNINGS})
+
+add_executable(snell apps/snell.cpp)
+target_link_libraries(snell PRIVATE snell_commands)
 target_compile_options(snell PRIVATE ${SNELL_WARNINGS})
 
 # `make bench` (Google Benchmark); built only with -DSNELL_BUILD_BENCH=ON.

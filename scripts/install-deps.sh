@@ -19,6 +19,9 @@ PACKAGES=(
   libstb-dev           # PNG output
   nlohmann-json3-dev   # stats JSON
   openmpi-bin libopenmpi-dev # one frame over the ranks of an MPI job (issue 27)
+  pybind11-dev python3-dev python3-numpy # the `snell` Python module (issue 28)
+  python3-pytest       # tests: the Python module's tests
+  python3-matplotlib   # docs/python.md's worked example (its plot)
   libgtest-dev         # tests
   libbenchmark-dev     # make bench
   chromium             # tests: opens the `snell compare` report page headless

@@ -81,6 +81,7 @@ double ProgressBar::fraction() const {
 
 void ProgressBar::add(uint64_t n) {
     if (n) m_done.fetch_add(n, std::memory_order_relaxed);
+    if (m_sink) m_sink->store(fraction(), std::memory_order_relaxed);
     if (!m_enabled || m_finished.load(std::memory_order_relaxed)) return;
     const int64_t now = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - m_start).count();
     int64_t last = m_last_draw_ns.load(std::memory_order_relaxed);
@@ -93,6 +94,7 @@ void ProgressBar::add(uint64_t n) {
 
 void ProgressBar::finish() {
     if (m_finished.exchange(true)) return;
+    if (m_sink) m_sink->store(fraction(), std::memory_order_relaxed);
     if (!m_enabled) return;
     std::lock_guard<std::mutex> lock(m_draw_mutex);
     draw(true);

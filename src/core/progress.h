@@ -57,6 +57,10 @@ public:
         if (on) m_enabled = true;
     }
 
+    /// Also keeps the fraction done in `sink` (may be null) at every add() and at finish(), for a
+    /// caller that draws progress its own way.
+    void set_fraction_sink(std::atomic<double>* sink) { m_sink = sink; }
+
 private:
     using Clock = std::chrono::steady_clock;
     ProgressBar(std::string label, uint64_t total, double budget_seconds);
@@ -73,6 +77,7 @@ private:
     size_t m_last_len = 0;  // guarded by m_draw_mutex
     bool m_enabled;
     bool m_lines = false;
+    std::atomic<double>* m_sink = nullptr;
 };
 
 /// The JSON line of lines mode.

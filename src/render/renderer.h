@@ -23,6 +23,9 @@ struct RenderOptions {
     int tile_size = 16;
     bool debug_layers = false;    ///< integrators fill their debug layers (BDPT: per-strategy images)
     bool progress_lines = false;  ///< progress as machine-readable lines on stdout (render farms)
+    /// Where the render keeps its fraction done (null: nowhere), for a caller that shows progress
+    /// its own way (the Python module's callback, python/src/render_call.cpp).
+    std::atomic<double>* progress_fraction = nullptr;
     /// The part of the frame to render (issue 27): a crop of the output window (empty: all of
     /// it) and the sample indices [sample_begin, sample_end) of each of its pixels (sample_end
     /// 0: spp). A full render is the exact sum of renders of any split of its pixels and samples.

@@ -22,10 +22,12 @@ RenderTeam& render_team(const RenderOptions& opt) { return opt.team ? *opt.team 
 
 std::unique_ptr<ProgressBar> render_progress(const RenderOptions& opt, const RenderTeam& team, const std::string& label,
                                              uint64_t work) {
-    if (!(opt.progress || opt.progress_lines) || team.rank() != 0) return nullptr;
+    if (!(opt.progress || opt.progress_lines || opt.progress_fraction) || team.rank() != 0) return nullptr;
     std::unique_ptr<ProgressBar> bar(opt.time_limit > 0 ? new ProgressBar(ProgressBar::for_time(label, opt.time_limit))
                                                         : new ProgressBar(label, std::max<uint64_t>(1, work)));
+    if (!opt.progress) bar->set_enabled(false);  // asked for lines or for the fraction alone
     if (opt.progress_lines) bar->set_lines(true);
+    bar->set_fraction_sink(opt.progress_fraction);
     return bar;
 }
 

@@ -1,5 +1,7 @@
 #include "report/image_metrics.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -84,6 +86,17 @@ Crop parse_crop(const std::string& text) {
         c.x < 0 || c.y < 0 || c.w <= 0 || c.h <= 0)
         throw std::invalid_argument("crop must be x,y,w,h (pixels; x, y >= 0, w, h >= 1), got '" + text + "'");
     return c;
+}
+
+void to_json(nlohmann::json& j, const ImageMetrics& m) {
+    j = {{"rel_mse", m.rel_mse},
+         {"rmse", m.rmse},
+         {"psnr", m.psnr},
+         {"smape", m.smape},
+         {"mean", m.mean},
+         {"mean_reference", m.mean_reference},
+         {"median_rel_error", m.median_rel_error},
+         {"median_rel_error_rgb", m.median_rel_error_rgb}};
 }
 
 }  // namespace snell

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "io/image.h"
 
 namespace snell {
@@ -42,6 +44,10 @@ struct ImageMetrics {
 /// mismatch or a crop outside the image.
 ImageMetrics compare_images(const Image& img, const Image& ref, const Crop& crop = {},
                             const Image* normaliser = nullptr);
+
+/// The metrics as `snell diff --json` writes them (rel_mse, rmse, psnr, smape, mean,
+/// mean_reference, median_rel_error, median_rel_error_rgb); found by nlohmann via ADL.
+void to_json(nlohmann::json& j, const ImageMetrics& m);
 
 /// Parses "x,y,w,h"; throws std::invalid_argument with the offending text.
 Crop parse_crop(const std::string& text);

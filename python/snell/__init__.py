@@ -1,0 +1,33 @@
+"""snell: a spectral renderer for caustics through refractive interfaces (MNEE).
+
+The Python face of the command line (docs/python.md)::
+
+    import snell
+    scene = snell.load_file('scenes/droplet/droplet.xml')
+    img = scene.render(spp=16)                     # numpy float32, H x W x 3, linear sRGB
+    img.stats['seconds']                           # what `snell render --stats` writes
+    ref = snell.read('reference.exr')
+    snell.diff(img, ref)['rel_mse']                # `snell diff`'s metrics
+    snell.write('out.png', img)
+
+A loaded scene is kept: a sweep renders it again and again with other integrators, sample
+counts or seeds without loading it again.
+"""
+
+from ._image import Film, Image, RenderInterrupted, StopHandle, diff, read, write
+from ._scene import Scene, SceneError, compare, load_file, load_string
+
+__all__ = [
+    "Film",
+    "Image",
+    "RenderInterrupted",
+    "Scene",
+    "SceneError",
+    "StopHandle",
+    "compare",
+    "diff",
+    "load_file",
+    "load_string",
+    "read",
+    "write",
+]
