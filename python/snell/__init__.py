@@ -17,6 +17,11 @@ counts or seeds without loading it again.
 from ._image import Film, Image, RenderInterrupted, StopHandle, diff, read, write
 from ._scene import Scene, SceneError, compare, load_file, load_string
 
+# The native types print as snell.X, where users find them.
+for _t in (Film, StopHandle, SceneError):
+    _t.__module__ = "snell"
+del _t
+
 __all__ = [
     "Film",
     "Image",
