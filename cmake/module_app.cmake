@@ -73,3 +73,6 @@ endif()
 if(SNELL_BUILD_TESTS AND NOT SNELL_SANITIZE)
   add_test(NAME style.layers COMMAND bash ${PROJECT_SOURCE_DIR}/scripts/check-layers.sh)
 endif()
+
+# `cmake --install`: the command (the Python package installs beside it, cmake/module_python.cmake).
+install(TARGETS snell RUNTIME DESTINATION bin COMPONENT cli)

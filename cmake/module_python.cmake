@@ -55,4 +55,7 @@ if(SNELL_BUILD_TESTS)
   set_tests_properties(python.api PROPERTIES TIMEOUT 600
     ENVIRONMENT "PYTHONPATH=${SNELL_PYTHON_DIR};SNELL_BIN=$<TARGET_FILE:snell>;SNELL_SOURCE_DIR=${PROJECT_SOURCE_DIR};PYTHONDONTWRITEBYTECODE=1")
   add_dependencies(snell_test_suite snell_python)
+  add_test(NAME python.install COMMAND bash ${PROJECT_SOURCE_DIR}/tests/python/test_install.sh ${PROJECT_BINARY_DIR}
+                                       ${Python_EXECUTABLE} ${PROJECT_SOURCE_DIR})
+  set_tests_properties(python.install PROPERTIES TIMEOUT 120)
 endif()

@@ -14,6 +14,17 @@ A loaded scene is kept: a sweep renders it again and again with other integrator
 counts or seeds without loading it again.
 """
 
+import sys as _sys
+
+try:
+    import numpy as _numpy  # noqa: F401
+except ImportError as _e:  # a python3 of its own (pyenv, conda) before Debian's on the PATH
+    raise ImportError(
+        f"snell needs numpy, which {_sys.executable} does not have: use the interpreter the module "
+        "was built for (Debian's /usr/bin/python3 with python3-numpy unless CMake was told "
+        "-DPython_EXECUTABLE=...), or install numpy into this one"
+    ) from _e
+
 from ._image import Film, Image, RenderInterrupted, StopHandle, diff, read, write
 from ._scene import Scene, SceneError, compare, load_file, load_string
 

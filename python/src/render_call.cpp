@@ -115,6 +115,14 @@ pyb::tuple render_scene(const PyScene& scene, const pyb::object& integrator, con
     std::atomic<double> fraction{0};
     if (report_progress) opt.progress_fraction = &fraction;
 
+    // A progress callback that renders would wait for its own render (one at a time).
+    static thread_local bool rendering = false;
+    if (rendering) throw std::runtime_error("render: called from the progress callback of a render on this thread");
+    struct Mark {
+        Mark() { rendering = true; }
+        ~Mark() { rendering = false; }
+    } mark;
+
     std::atomic<bool> cancel{false};
     std::optional<RenderResult> result;
     std::exception_ptr failure;

@@ -117,3 +117,11 @@ def test_stop_handle_returns_the_partial_image(droplet):
     img = droplet.render(spp=1 << 20, stop=stop)
     assert stop.stopped and img.interrupted and img.stats["interrupted"]
     assert img.stats["seconds"] < 20 and float(img.sum()) > 0
+
+
+def test_a_progress_callback_may_not_render(droplet):
+    def cb(f, eta):
+        droplet.render(spp=1)
+
+    with pytest.raises(RuntimeError, match="progress callback"):
+        droplet.render(spp=64, progress=cb)
