@@ -82,13 +82,15 @@ class Image(np.ndarray):
 
         ``technique``: int8 H x W, an index into ``techniques`` (-1: none, or an integrator
         that does not name its techniques); ``share``: float32 H x W, that sample's share of the
-        pixel; the rest is the stats' ``dominance`` (pixels dominated by one sample, by
-        technique name)."""
+        pixel; ``largest_y``: float32 H x W, that sample's luminance (Y, filter-weighted, before
+        any clamp); ``samples``: uint64 H x W, the pixel's sample count; the rest is the stats'
+        ``dominance`` (pixels dominated by one sample, by technique name)."""
         f = self.film
         if f is None:
             return {}
         d = dict(self.stats.get("dominance", {}))
-        d.update(technique=f.technique_map(), share=f.sample_share_map(), techniques=list(f.technique_names))
+        d.update(technique=f.technique_map(), share=f.sample_share_map(), largest_y=f.largest_sample_map(),
+                 samples=f.samples_map(), techniques=list(f.technique_names))
         return d
 
 

@@ -50,6 +50,24 @@ void bind_film(pyb::module_& m) {
                      for (int x = 0; x < f.width; ++x) v(y, x) = int8_t(f.result.film.largest_sample_technique(x, y));
                  return t;
              })
+        // Per pixel: the luminance (Y) of its largest sample and its sample count, before the
+        // clamp (the pixel's mean is its samples' sum over the count).
+        .def("largest_sample_map",
+             [](const PyFilm& f) {
+                 pyb::array_t<float> s({f.height, f.width});
+                 auto v = s.mutable_unchecked<2>();
+                 for (int y = 0; y < f.height; ++y)
+                     for (int x = 0; x < f.width; ++x) v(y, x) = float(f.result.film.largest_sample_y(x, y));
+                 return s;
+             })
+        .def("samples_map",
+             [](const PyFilm& f) {
+                 pyb::array_t<uint64_t> s({f.height, f.width});
+                 auto v = s.mutable_unchecked<2>();
+                 for (int y = 0; y < f.height; ++y)
+                     for (int x = 0; x < f.width; ++x) v(y, x) = f.result.film.samples(x, y);
+                 return s;
+             })
         .def("sample_share_map", [](const PyFilm& f) {
             pyb::array_t<float> s({f.height, f.width});
             auto v = s.mutable_unchecked<2>();

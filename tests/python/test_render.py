@@ -88,6 +88,11 @@ def test_bdpt_strategies_and_dominance(droplet):
     assert "pixels_dominated" in d or "pixels" in d
     assert d["techniques"] and int(d["technique"].max()) < len(d["techniques"])
     assert set(np.unique(d["technique"])) <= set(range(-1, len(d["techniques"])))
+    assert np.all(d["samples"] == 4) and np.all(d["largest_y"] >= 0)
+    lit = d["share"] > 0
+    # The largest sample's share is its Y over the pixel's sample sum (no clamp in this scene).
+    y_sum = d["largest_y"][lit] / d["share"][lit]
+    assert np.all(y_sum >= d["largest_y"][lit] * (1 - 1e-5))
 
 
 def test_progress_is_called_throttled_and_ends_at_one(droplet):
