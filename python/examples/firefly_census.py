@@ -56,6 +56,19 @@ def main():
                 parts.append(f"{name} {sel.sum()} ({np.sum(sel & inside)}/{np.sum(sel & ~inside)})")
         print(f"{depth:9d} {dom.sum():9d} {float((np.asarray(img) @ LUMINANCE).mean()):8.5f}  "
               + ", ".join(parts))
+    # MNEE's light by the vertex it connects from (x_b's index on the camera path): the solutions'
+    # counts, and their shares of MNEE's mean and second moment (per camera path).
+    c, paths = img.stats["counters"], img.stats["paths"]
+    rows = []
+    for k in sorted(k for k in c if k.startswith("mnee.contribution.")):
+        m = c[k]
+        n = m["count"]
+        rows.append((k.split(".")[-1], n, n * m["mean"] / paths,
+                     n * m["mean"] ** 2 * (1 + m["relative_variance"]) / paths, m["max"]))
+    m1, m2 = sum(r[2] for r in rows), sum(r[3] for r in rows)
+    print(f"max_depth {depth}: MNEE's solutions by x_b's vertex   count   mean share   2nd-moment share   largest")
+    for name, n, a, b, mx in rows:
+        print(f"  {name:10s} {n:>36d} {a / m1:12.3f} {b / m2:18.3f} {mx:9.3g}")
     # `img` is the last (deepest) render: where its fireflies sit, over its log luminance.
     y = np.asarray(img) @ LUMINANCE
     fig, ax = plt.subplots(figsize=(7, 5.4), constrained_layout=True)

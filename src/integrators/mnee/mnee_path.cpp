@@ -1,8 +1,11 @@
 #include "integrators/mnee/mnee_path.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "core/sampler.h"
+#include "core/stats.h"
 #include "integrators/light_connection.h"
 #include "integrators/mis.h"
 #include "manifold/light_point.h"
@@ -13,6 +16,20 @@
 #include "scene/scene.h"
 
 namespace snell {
+
+namespace {
+// Where MNEE's light comes from along the camera path (issue 26, the demo's fireflies): the
+// luminance of each solution's weighted contribution, by the index of x_b on the path (1: the
+// camera ray's hit). Their moments split the estimator's second moment by path length.
+StatMoments by_vertex[] = {
+    {"mnee.contribution.vertex_1", "luminance of MNEE solutions connected from the path's vertex 1"},
+    {"mnee.contribution.vertex_2", "luminance of MNEE solutions connected from the path's vertex 2"},
+    {"mnee.contribution.vertex_3", "luminance of MNEE solutions connected from the path's vertex 3"},
+    {"mnee.contribution.vertex_4", "luminance of MNEE solutions connected from the path's vertex 4"},
+    {"mnee.contribution.vertex_5", "luminance of MNEE solutions connected from the path's vertex 5"},
+    {"mnee.contribution.vertex_6", "luminance of MNEE solutions connected from the path's vertex 6"},
+    {"mnee.contribution.vertex_7+", "luminance of MNEE solutions connected from the path's vertex 7 or later"}};
+}  // namespace
 
 MneePath::MneePath(const Scene& scene, const PathSettings& path, const MneeSettings& mnee, const SampledWavelengths& wl,
                    const Ray& camera_ray, PathObserver* observer, double q, PilotSample* pilot)
@@ -100,10 +117,12 @@ void MneePath::connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSD
     // Each solution weighed against the techniques that produce the same path: the connection was
     // made with probability q, so it counts 1 / q and its density is q p_mnee (BSDF sampling's
     // paths are weighed the same way in emitter_weight and connect_at_interface).
-    for (const ManifoldSolution& sol : c.set.solutions)
-        m_out.add(sol.from_surface ? Technique::MneeSurface : Technique::MneeStraight,
-                  beta * sol.value *
-                      (sol.count * power_heuristic(c.q * sol.density, {sol.pdf_bsdf, sol.pdf_nee_last}) / c.q));
+    for (const ManifoldSolution& sol : c.set.solutions) {
+        const SampledSpectrum v =
+            beta * sol.value * (sol.count * power_heuristic(c.q * sol.density, {sol.pdf_bsdf, sol.pdf_nee_last}) / c.q);
+        by_vertex[std::min<size_t>(size_t(m_walk.depth), std::size(by_vertex) - 1)].add(m_ctx.wl.to_xyz(v).y);
+        m_out.add(sol.from_surface ? Technique::MneeSurface : Technique::MneeStraight, v);
+    }
 }
 
 SampledSpectrum MneePath::connect_at_interface(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& sctx,
