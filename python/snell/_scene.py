@@ -128,6 +128,8 @@ class Scene:
         """
         if seed is not None and not (isinstance(seed, int) and 0 <= seed < 2**64):
             raise ValueError(f"seed must be an int in [0, 2**64), got {seed!r}")
+        if stop is not None and not isinstance(stop, StopHandle):
+            raise TypeError(f"stop must be a snell.StopHandle, got {type(stop).__name__}")
         for name, v in (("spp", spp), ("threads", threads)):
             if v is not None and (isinstance(v, bool) or not isinstance(v, int)):
                 raise TypeError(f"{name} must be an int, got {type(v).__name__}")

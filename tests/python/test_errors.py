@@ -67,6 +67,7 @@ def test_bad_integrator_type_and_parameter(droplet):
         ({"threads": -2}, ValueError, "threads must be"),
         ({"spp": 4, "time": 1.0}, ValueError, "not both"),
         ({"progress": 5}, TypeError, "progress"),
+        ({"stop": True}, TypeError, "StopHandle"),
     ],
 )
 def test_bad_render_arguments(droplet, kwargs, exc, match):
