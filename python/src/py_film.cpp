@@ -15,6 +15,16 @@ pyb::array_t<float> rgb_view(const PyFilm& f, const std::vector<float>& data, co
     return pyb::array_t<float>({h, w, pyb::ssize_t(3)}, {w * 3 * fs, 3 * fs, fs}, data.data(), owner);
 }
 
+// An H x W array of `value(film, x, y)` per pixel.
+template <typename T, typename F>
+pyb::array_t<T> pixel_map(const PyFilm& f, F value) {
+    pyb::array_t<T> a({f.height, f.width});
+    auto v = a.template mutable_unchecked<2>();
+    for (int y = 0; y < f.height; ++y)
+        for (int x = 0; x < f.width; ++x) v(y, x) = value(f.result.film, x, y);
+    return a;
+}
+
 }  // namespace
 
 void bind_film(pyb::module_& m) {
@@ -40,40 +50,25 @@ void bind_film(pyb::module_& m) {
                 return rgb_view(f, f.layers[k - 1], self);
             },
             pyb::arg("k"))
-        // Per pixel: the technique index of the largest sample (-1: none or unnamed) and the
-        // share of the pixel's light it carries (Film::largest_sample_share; after the clamp).
+        // Per pixel: the technique index of the largest sample (-1: none or unnamed), its
+        // luminance (Y) before the clamp, the share of the pixel's light it carries
+        // (Film::largest_sample_share; after the clamp), and the pixel's sample count.
         .def("technique_map",
              [](const PyFilm& f) {
-                 pyb::array_t<int8_t> t({f.height, f.width});
-                 auto v = t.mutable_unchecked<2>();
-                 for (int y = 0; y < f.height; ++y)
-                     for (int x = 0; x < f.width; ++x) v(y, x) = int8_t(f.result.film.largest_sample_technique(x, y));
-                 return t;
+                 return pixel_map<int8_t>(
+                     f, [](const Film& m, int x, int y) { return int8_t(m.largest_sample_technique(x, y)); });
              })
-        // Per pixel: the luminance (Y) of its largest sample and its sample count, before the
-        // clamp (the pixel's mean is its samples' sum over the count).
         .def("largest_sample_map",
              [](const PyFilm& f) {
-                 pyb::array_t<float> s({f.height, f.width});
-                 auto v = s.mutable_unchecked<2>();
-                 for (int y = 0; y < f.height; ++y)
-                     for (int x = 0; x < f.width; ++x) v(y, x) = float(f.result.film.largest_sample_y(x, y));
-                 return s;
+                 return pixel_map<float>(f,
+                                         [](const Film& m, int x, int y) { return float(m.largest_sample_y(x, y)); });
              })
         .def("samples_map",
              [](const PyFilm& f) {
-                 pyb::array_t<uint64_t> s({f.height, f.width});
-                 auto v = s.mutable_unchecked<2>();
-                 for (int y = 0; y < f.height; ++y)
-                     for (int x = 0; x < f.width; ++x) v(y, x) = f.result.film.samples(x, y);
-                 return s;
+                 return pixel_map<uint64_t>(f, [](const Film& m, int x, int y) { return m.samples(x, y); });
              })
         .def("sample_share_map", [](const PyFilm& f) {
-            pyb::array_t<float> s({f.height, f.width});
-            auto v = s.mutable_unchecked<2>();
-            for (int y = 0; y < f.height; ++y)
-                for (int x = 0; x < f.width; ++x) v(y, x) = float(f.result.film.largest_sample_share(x, y));
-            return s;
+            return pixel_map<float>(f, [](const Film& m, int x, int y) { return float(m.largest_sample_share(x, y)); });
         });
 }
 

@@ -38,17 +38,6 @@ std::mutex& render_mutex() {
 constexpr auto kNap = std::chrono::milliseconds(20);
 constexpr double kProgressInterval = 0.2;  // seconds
 
-// The exception Python has set, taken off the thread state (the caller holds the GIL).
-pyb::object take_python_error() {
-    PyObject *type = nullptr, *value = nullptr, *trace = nullptr;
-    PyErr_Fetch(&type, &value, &trace);
-    PyErr_NormalizeException(&type, &value, &trace);
-    if (trace && value) PyException_SetTraceback(value, trace);
-    Py_XDECREF(type);
-    Py_XDECREF(trace);
-    return value ? pyb::reinterpret_steal<pyb::object>(value) : pyb::none();
-}
-
 // Seconds left, from the fraction done and the time so far (-1: not known yet).
 double eta_seconds(double fraction, double elapsed, double time_limit) {
     if (time_limit > 0) return std::max(0.0, time_limit - elapsed);
@@ -152,8 +141,8 @@ pyb::tuple render_scene(const PyScene& scene, const pyb::object& integrator, con
             }
             if (cancel.load()) continue;  // stopping: wait for the pass to end
             pyb::gil_scoped_acquire gil;
-            if (PyErr_CheckSignals() != 0) {  // Ctrl-C (or another signal whose handler raised)
-                pending = take_python_error();
+            if (PyErr_CheckSignals() != 0) {                 // Ctrl-C (or another signal whose handler raised)
+                pending = pyb::error_already_set().value();  // takes the error off the thread state
                 cancel = true;
             } else if (handle && handle->requested.load()) {
                 cancel = true;
