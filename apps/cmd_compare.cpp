@@ -46,15 +46,17 @@ struct Technique {
 };
 
 Technique parse_technique(const std::string& name) {
-    if (name == "pt" || name == "path" || name == "nee" || name == "mnee" || name == "bdpt" || name == "erpt")
+    if (name == "pt" || name == "path" || name == "nee" || name == "mnee" || name == "bdpt" || name == "erpt" ||
+        name == "hslt")
         return {name, name, false, "", ""};
     if (name == "mnee-biased" || name == "mnee(biased)") return {name, "mnee", true, "", ""};
     if (name == "mnee-paper" || name == "mnee(paper)") return {name, "mnee", false, "", "one"};
     if (name == "pssmlt(nee)") return {name, "pssmlt", false, "nee", ""};
     if (name == "pssmlt(mnee)") return {name, "pssmlt", false, "mnee", ""};
-    throw std::runtime_error("unknown integrator '" + name +
-                             "' (known: pt, path, nee, bdpt, erpt, mnee, mnee-biased or mnee(biased), mnee-paper or "
-                             "mnee(paper), pssmlt(nee), pssmlt(mnee))");
+    throw std::runtime_error(
+        "unknown integrator '" + name +
+        "' (known: pt, path, nee, bdpt, erpt, hslt, mnee, mnee-biased or mnee(biased), mnee-paper or "
+        "mnee(paper), pssmlt(nee), pssmlt(mnee))");
 }
 
 // A loaded scene and the integrator to render it with.

@@ -132,9 +132,9 @@ int run(int argc, char** argv) {
     uint64_t cmp_seed = 0;
     cmp_cmd->add_option("scene", cmp.scene, "scene file, or builtin:droplet")->required();
     cmp_cmd
-        ->add_option(
-            "--integrators", cmp.integrators,
-            "comma-separated: pt, path, nee, bdpt, erpt, mnee, mnee-biased, mnee-paper, pssmlt(nee), pssmlt(mnee)")
+        ->add_option("--integrators", cmp.integrators,
+                     "comma-separated: pt, path, nee, bdpt, erpt, hslt, mnee, mnee-biased, mnee-paper, pssmlt(nee), "
+                     "pssmlt(mnee)")
         ->required()
         ->delimiter(',');
     cmp_cmd->add_option("--time", cmp.time, "wall-clock seconds per integrator")->required()->check(kSeconds);

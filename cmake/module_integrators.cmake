@@ -19,6 +19,10 @@ snell_library(snell_integrators
   src/integrators/pssmlt/primary_sample_sampler.cpp
   src/integrators/pssmlt/pssmlt.cpp
   src/integrators/pssmlt/path_sample.cpp
+  src/integrators/pssmlt/metropolis_loop.cpp
+  src/integrators/hslt/hslt_path.cpp
+  src/integrators/hslt/hslt_mutation.cpp
+  src/integrators/hslt/hslt.cpp
   src/integrators/erpt/erpt.cpp
   src/integrators/erpt/energy_redistribution.cpp
   src/integrators/erpt/shape_watch.cpp
@@ -43,6 +47,7 @@ snell_test(test_dispersion SOURCES tests/stat/test_dispersion.cpp LIBS ${SNELL_A
 snell_test(test_connection_allocation SOURCES tests/stat/test_connection_allocation.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_sampler_images SOURCES tests/stat/test_sampler_images.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_pssmlt SOURCES tests/stat/test_pssmlt.cpp LIBS ${SNELL_ALL_LIBS})
+snell_test(test_hslt SOURCES tests/stat/test_hslt.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_scale_invariance SOURCES tests/stat/test_scale_invariance.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_bdpt SOURCES tests/stat/test_bdpt_agreement.cpp tests/stat/test_bdpt_light_tracing.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_erpt SOURCES tests/stat/test_erpt.cpp LIBS ${SNELL_ALL_LIBS})

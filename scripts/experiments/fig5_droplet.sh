@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Paper Fig. 5: equal-time comparison on the droplet (scenes/droplet) of the paper's techniques,
-# pt, nee, bdpt, pssmlt(nee), pssmlt(mnee), erpt, mnee and mnee(biased), against a long mnee
+# pt, nee, bdpt, pssmlt(nee), pssmlt(mnee), erpt, hslt, mnee and mnee(biased), against a long mnee
 # reference; relMSE and PSNR over the image and over the transmitted (under the droplet) and
 # reflected (left of it) caustics. Output: results/fig5_droplet/ (summary.md, and the
 # `snell compare` HTML report in report/). INTEGRATORS=a,b,... picks a subset.
@@ -13,7 +13,7 @@ OUT=results/fig5_droplet
 SCENE=scenes/droplet/droplet.xml
 TRANSMITTED=$(scale_crop 230,190,190,110)
 REFLECTED=$(scale_crop 150,200,90,120)
-INTEGRATORS=${INTEGRATORS:-"pt,nee,bdpt,pssmlt(nee),pssmlt(mnee),erpt,mnee,mnee(biased)"}
+INTEGRATORS=${INTEGRATORS:-"pt,nee,bdpt,pssmlt(nee),pssmlt(mnee),erpt,hslt,mnee,mnee(biased)"}
 rm -rf "$OUT"; mkdir -p "$OUT"
 
 "${LAUNCH[@]}" "$SNELL" compare "$SCENE" --integrators "$INTEGRATORS" --time "$T" \

@@ -5,6 +5,7 @@
 #include "integrators/bdpt/bdpt.h"
 #include "integrators/direct/direct.h"
 #include "integrators/erpt/erpt.h"
+#include "integrators/hslt/hslt.h"
 #include "integrators/integrator.h"
 #include "integrators/mnee/mnee_integrator.h"
 #include "integrators/path/path_tracer.h"
@@ -37,6 +38,8 @@ const std::map<std::string, Factory>& registry() {
                                                      MneeSettings::from_props(p));
          }},
         {"pssmlt", [](const Props& p) { return std::make_shared<PssmltIntegrator>(PssmltSettings::from_props(p)); }},
+        // Half-vector space light transport (Kaplanyan et al. 2014), the paper's last baseline.
+        {"hslt", [](const Props& p) { return std::make_shared<HsltIntegrator>(HsltSettings::from_props(p)); }},
     };
     return r;
 }

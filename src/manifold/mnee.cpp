@@ -24,21 +24,6 @@ bool is_specular(const ManifoldVertex& v) { return !v.bsdf->has_microfacet(); }
 /// IOR of the side of v that direction w points into (1 outside, eta inside).
 double side_ior(const ManifoldVertex& v, const Vec3& w) { return dot(w, v.ng) >= 0 ? 1.0 : v.eta; }
 
-/// Each vertex refracts, and for rough ones both directions see the microfacet from their
-/// own side (otherwise the converged path is not one the BSDF can scatter).
-bool admissible(const Vec3& xb, const std::vector<ManifoldVertex>& chain, const Vec3& xc) {
-    for (size_t i = 0; i < chain.size(); ++i) {
-        const ManifoldVertex& v = chain[i];
-        const Vec3 wi = normalize((i == 0 ? xb : chain[i - 1].p) - v.p);
-        const Vec3 wo = normalize((i + 1 == chain.size() ? xc : chain[i + 1].p) - v.p);
-        // The scattering the chain asks of the vertex: wi and wo on one side (reflect) or not.
-        if ((dot(wi, v.ng) * dot(wo, v.ng) > 0) != v.reflect) return false;
-        const Vec3 h = generalized_half_vector(v, wi, wo);
-        if (!(dot(wi, h) * dot(wi, v.ng) > 0) || !(dot(wo, h) * dot(wo, v.ng) > 0)) return false;
-    }
-    return true;
-}
-
 /// Directions (towards the camera side, towards the light side) at vertex i of a chain.
 void vertex_directions(const Vec3& xb, const std::vector<ManifoldVertex>& chain, const Vec3& xc, size_t i, Vec3* wi,
                        Vec3* wo) {
@@ -89,6 +74,21 @@ uint64_t elapsed_ns(std::chrono::steady_clock::time_point t0) {
 }
 
 }  // namespace
+
+/// Each vertex refracts, and for rough ones both directions see the microfacet from their
+/// own side (otherwise the converged path is not one the BSDF can scatter).
+bool chain_admissible(const Vec3& xb, const std::vector<ManifoldVertex>& chain, const Vec3& xc) {
+    for (size_t i = 0; i < chain.size(); ++i) {
+        const ManifoldVertex& v = chain[i];
+        const Vec3 wi = normalize((i == 0 ? xb : chain[i - 1].p) - v.p);
+        const Vec3 wo = normalize((i + 1 == chain.size() ? xc : chain[i + 1].p) - v.p);
+        // The scattering the chain asks of the vertex: wi and wo on one side (reflect) or not.
+        if ((dot(wi, v.ng) * dot(wo, v.ng) > 0) != v.reflect) return false;
+        const Vec3 h = generalized_half_vector(v, wi, wo);
+        if (!(dot(wi, h) * dot(wi, v.ng) > 0) || !(dot(wo, h) * dot(wo, v.ng) > 0)) return false;
+    }
+    return true;
+}
 
 double half_vector_jacobian(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo, const Vec3& h) {
     const double eta_i = side_ior(v, wi), eta_o = side_ior(v, wo);
@@ -179,7 +179,7 @@ MneeOutcome mnee_walk(const Scene& scene, const MneeSettings& st, const SurfaceI
             wc::count_walk_end(false, wc::WalkEnd::ProjectionFailed);
             return MneeOutcome::ProjectionFailed;
     }
-    if (!admissible(xb.p, chain, lp.p)) {
+    if (!chain_admissible(xb.p, chain, lp.p)) {
         ++wc::walk_fail_scattering;
         wc::count_walk_end(false, wc::WalkEnd::WrongScattering);
         return MneeOutcome::WrongScattering;
@@ -321,7 +321,7 @@ double solution_density(const Scene& scene, const MneeSettings& st, const Surfac
     scatter_as_the_path(xb.p, input, xc);
     for (const ManifoldVertex& v : input)
         if (v.reflect && !st.reflections) return 0;
-    if (!admissible(xb.p, input, xc)) return 0;
+    if (!chain_admissible(xb.p, input, xc)) return 0;
     // The domain: refractive interfaces lie on the straight segment x_b -> x_c, blocked by an
     // opaque surface or not (the integrator runs the surface seeds for both).
     const SeedStatus status = traced ? traced->status : trace_straight_seed(scene, xb, xc, lambda, st).status;
@@ -349,7 +349,7 @@ double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInterac
     // The input path as manifold vertices, with its own half vectors.
     std::vector<ManifoldVertex> input;
     if (!manifold_vertices_of(path, k, lambda, &input)) return 0;
-    if (!admissible(xb.p, input, xc)) return 0;
+    if (!chain_admissible(xb.p, input, xc)) return 0;
 
     // Line 2: the seed path from x_b to x_c must cross the same shapes in the same order.
     StraightSeed own;

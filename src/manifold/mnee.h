@@ -134,6 +134,10 @@ double mnee_pdf(const Scene& scene, const MneeSettings& settings, const SurfaceI
 bool chain_of_path(const SurfaceInteraction& xb, const SurfaceInteraction* path, int k, const Vec3& xc, double lambda,
                    std::vector<ManifoldVertex>* chain, std::vector<Vec2>* unit_slopes);
 
+/// A converged chain between x_b and x_c scatters as it asks: each vertex reflects or refracts
+/// as its `reflect` says, and both directions see the (micro)facet from their own side.
+bool chain_admissible(const Vec3& xb, const std::vector<ManifoldVertex>& chain, const Vec3& xc);
+
 /// Culling of a seed at x_b with the tolerance margin of Fig. 3.
 bool mnee_seed_culled(const SurfaceInteraction& xb, const BSDF& bsdf_b, const Vec3& xc, double margin);
 

@@ -19,4 +19,4 @@ TEST_P(Furnace, WhiteSphereInWhiteWorldIsWhite) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Integrators, Furnace, ::testing::Values("pt", "path", "nee"));
+INSTANTIATE_TEST_SUITE_P(Integrators, Furnace, ::testing::Values("pt", "path", "nee", "hslt"));

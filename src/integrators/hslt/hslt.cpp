@@ -1,0 +1,166 @@
+#include "integrators/hslt/hslt.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "bsdf/bsdf.h"
+#include "core/distribution.h"
+#include "core/props.h"
+#include "core/stats.h"
+#include "integrators/pssmlt/metropolis_loop.h"
+#include "scene/scene.h"
+
+namespace snell {
+
+HsltSettings HsltSettings::from_props(const Props& props) {
+    HsltSettings s;
+    const auto probability = [&](const char* name, double v) {
+        const double p = props.get_float(name, v);
+        if (!(p >= 0 && p <= 1)) props.raise_param(name, std::string("hslt: ") + name + " must lie in [0, 1]");
+        return p;
+    };
+    s.large_step_probability = probability("large_step_probability", s.large_step_probability);
+    s.lens_probability = probability("lens_probability", s.lens_probability);
+    s.light_probability = probability("light_probability", s.light_probability);
+    if (s.lens_probability + s.light_probability > 1)
+        props.raise_param("light_probability", "hslt: lens_probability + light_probability must be at most 1");
+    s.kelemen_weights = props.get_bool("kelemen_weights", s.kelemen_weights);
+    parse_chain_counts(props, "hslt", 2, &s.mutations_per_pixel, &s.bootstrap_samples, &s.chains);
+    const int64_t depth = props.get_int("max_depth", -1);
+    if (depth == 0 || depth < -1 || depth > 64)
+        props.raise_param("max_depth", "hslt: max_depth must lie in [1, 64] (or -1)");
+    if (depth > 0) s.max_depth = int(depth);
+    s.hide_emitters = props.get_bool("hide_emitters", s.hide_emitters);
+    props.get_int("rr_depth", 5);  // accepted for scenes written for the path tracers; no roulette here
+    const auto positive = [&](const char* name, double v) {
+        const double x = props.get_float(name, v);
+        if (!(x > 0) || !std::isfinite(x)) props.raise_param(name, std::string("hslt: ") + name + " must be > 0");
+        return x;
+    };
+    HsltMutationSettings& m = s.mutation;
+    m.width = positive("perturbation_width", m.width);
+    m.rough_width = positive("rough_width", m.rough_width);
+    m.lens_width = positive("lens_width", m.lens_width);
+    m.light_width = positive("light_width", m.light_width);
+    m.walk = WalkSettings::from_props(props);
+    return s;
+}
+
+namespace {
+
+StatCounter proposed[4] = {{"hslt.large.proposed", "large steps proposed"},
+                           {"hslt.half_vector.proposed", "half-vector perturbations proposed"},
+                           {"hslt.lens.proposed", "lens perturbations proposed"},
+                           {"hslt.light.proposed", "light perturbations proposed"}};
+StatCounter accepted[4] = {{"hslt.large.accepted", "large steps accepted"},
+                           {"hslt.half_vector.accepted", "half-vector perturbations accepted"},
+                           {"hslt.lens.accepted", "lens perturbations accepted"},
+                           {"hslt.light.accepted", "light perturbations accepted"}};
+
+uint64_t bootstrap_seed(uint64_t seed, uint64_t i) { return mix_bits(mix_bits(seed ^ 0x48534c54ULL) ^ (i * 2 + 1)); }
+uint64_t chain_seed(uint64_t seed, uint64_t c) { return mix_bits(mix_bits(seed + 0x2545f4914f6cdd1dULL) ^ (c * 2)); }
+
+void check_scene(const Scene& scene) {
+    if (!scene.camera() || !scene.camera()->pinhole())
+        throw std::runtime_error("hslt renders through a pinhole (perspective) sensor only");
+}
+
+}  // namespace
+
+RenderResult render_hslt(const Scene& scene, const HsltSettings& st, int spectral_samples, const FilmSpec& spec,
+                         const RenderOptions& opt, const std::atomic<bool>* cancel) {
+    check_scene(scene);
+    const PerspectiveCamera& camera = *scene.camera()->pinhole();
+    MetropolisLoop loop(spec, opt, cancel, st.chains, st.mutations_per_pixel, "hslt");
+    const HsltContext ctx{&scene, &camera, &spec, length(scene.bounds().extent())};
+
+    // Bootstrap, in two rounds over the team: first with every length equally likely, to learn
+    // how the light divides over the lengths; then with lengths drawn in those proportions (each
+    // kept at a tenth of its uniform share at least, so every length stays reachable), for the
+    // normalisation b = E[Y] and the chain seeds.
+    const size_t n_boot = size_t(st.bootstrap_samples);
+    const size_t n_lengths = size_t(st.max_depth);
+    std::vector<double> pmf(n_lengths, 1.0 / double(n_lengths));
+    const auto bootstrap_path = [&](size_t i, const std::vector<double>& depth_pmf, HsltPath* path) {
+        PCG32 rng(bootstrap_seed(opt.seed, i), i * 2 + 1);
+        return sample_hslt_path(scene, camera, spec, depth_pmf, spectral_samples, st.hide_emitters, rng, path);
+    };
+    {
+        const std::vector<double> y = team_bootstrap(loop.team(), loop.arena(), n_boot / 2, [&](size_t i) {
+            HsltPath p;
+            return bootstrap_path(i, pmf, &p) ? p.target() * p.depth_pmf : 0.0;
+        });
+        std::vector<double> per_length(n_lengths, 0.0);
+        double total = 0;
+        for (size_t i = 0; i < y.size(); ++i) {
+            if (!(y[i] > 0)) continue;
+            HsltPath p;
+            bootstrap_path(i, pmf, &p);
+            per_length[size_t(p.length() - 1)] += y[i];
+            total += y[i];
+        }
+        if (total > 0)
+            for (size_t j = 0; j < n_lengths; ++j) pmf[j] = (per_length[j] / total + 0.1 / double(n_lengths)) / 1.1;
+    }
+    const std::vector<double> boot_y = team_bootstrap(loop.team(), loop.arena(), n_boot, [&](size_t i) {
+        HsltPath p;
+        return bootstrap_path(i, pmf, &p) ? p.target() : 0.0;
+    });
+    double b = 0;
+    for (double y : boot_y) b += y;
+    b /= double(n_boot);
+    if (!(b > 0)) return loop.black();
+    const Distribution1D seeds(boot_y);
+    const double p_large = st.large_step_probability;
+    const double pk = st.kelemen_weights ? p_large : 0.0;
+
+    return loop.run([&](int c, uint64_t quota, std::vector<Vec3>& film) {
+        PCG32 rng(chain_seed(opt.seed, uint64_t(c)), uint64_t(c) * 2);
+        HsltPath current, proposal;
+        bootstrap_path(seeds.sample_discrete(rng.next_double()), pmf, &current);
+        uint64_t m = 0;
+        for (; loop.keep_going(m, quota); ++m) {
+            const double u = rng.next_double();
+            HsltMutation kind = HsltMutation::Large;
+            double a = 0;
+            if (u < p_large) {
+                if (!sample_hslt_path(scene, camera, spec, pmf, spectral_samples, st.hide_emitters, rng, &proposal))
+                    proposal.xyz = Vec3();
+                a = std::min(1.0, proposal.target() / current.target());
+            } else {
+                const double v = (u - p_large) / (1 - p_large);
+                HsltProposal pr;
+                if (v < st.lens_probability) {
+                    kind = HsltMutation::Lens;
+                    pr = perturb_lens(ctx, current, st.mutation, rng, &proposal);
+                } else if (v < st.lens_probability + st.light_probability) {
+                    kind = HsltMutation::Light;
+                    pr = perturb_light(ctx, current, st.mutation, rng, &proposal);
+                } else {
+                    kind = HsltMutation::HalfVector;
+                    pr = perturb_half_vectors(ctx, current, st.mutation, rng, &proposal);
+                }
+                if (!pr.valid) proposal.xyz = Vec3();
+                a = pr.valid ? std::min(1.0, pr.ratio) : 0.0;
+            }
+            ++proposed[int(kind)];
+            // Expected-value splats, a large step counted as an independent sample as well
+            // (Kelemen et al. 2002, Sec. 4), as pssmlt does.
+            const bool large = kind == HsltMutation::Large;
+            const double fc = current.target(), fp = proposal.target();
+            const double wc = (1 - a) / (fc / b + pk);
+            const double wp = (a + (st.kelemen_weights && large ? 1.0 : 0.0)) / (fp / b + pk);
+            if (wc > 0) loop.deposit(film, current.raster, current.xyz * wc);
+            if (wp > 0 && fp > 0) loop.deposit(film, proposal.raster, proposal.xyz * wp);
+            if (rng.next_double() < a) {
+                std::swap(current, proposal);
+                ++accepted[int(kind)];
+            }
+        }
+        return m;
+    });
+}
+
+}  // namespace snell
