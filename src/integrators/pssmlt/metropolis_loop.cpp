@@ -1,5 +1,6 @@
 #include "integrators/pssmlt/metropolis_loop.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -47,7 +48,8 @@ MetropolisLoop::MetropolisLoop(const FilmSpec& film, const RenderOptions& opt, c
                                  " renders the whole film with Markov chains: --crop and --sample-range do not apply "
                                  "(run it under mpirun, which splits the chains, or merge renders of other seeds)");
     // The chain count decides the image, so it must come from neither the machine nor the team.
-    m_chains = chains > 0 ? chains : (m_timed ? m_threads * m_team->size() : kDefaultChains);
+    // Equal-time renders run the same chains, in rounds (run()).
+    m_chains = chains > 0 ? chains : kDefaultChains;
     const uint64_t pixels = uint64_t(film.out_width()) * uint64_t(film.out_height());
     m_total = uint64_t(mutations_per_pixel > 0 ? mutations_per_pixel : opt.spp) * pixels;
     reset_stats();
@@ -61,7 +63,7 @@ void MetropolisLoop::deposit(std::vector<Vec3>& film, const Vec2& raster, const 
 }
 
 bool MetropolisLoop::keep_going(uint64_t m, uint64_t quota) const {
-    if (!m_timed && m >= quota) return false;
+    if (m >= quota) return false;
     if (m % kCheck == 0 && m > 0) {
         if (m_bar) m_bar->add(m_timed ? 0 : kCheck * uint64_t(m_team->size()));  // MPI: rank 0's share, scaled
         if (m_stopping.requested()) return false;
@@ -105,19 +107,29 @@ RenderResult MetropolisLoop::run(const std::function<uint64_t(int c, uint64_t qu
     std::atomic<uint64_t> mutations{0};
     m_bar = render_progress(m_opt, *m_team, m_label, m_total);
     const uint64_t n = uint64_t(m_chains);
-    run_team_pass(
-        *m_team, m_arena, m_threads, m_chains, [&] { return m_stopping.requested(); }, SIZE_MAX,
-        [&](int64_t c, int slot) {
-            std::vector<Vec3>& film = films[size_t(slot)];
-            film.assign(pixels, Vec3());
-            const uint64_t quota = m_total / n + (uint64_t(c) < m_total % n ? 1 : 0);
-            mutations += chain(int(c), quota, film);
-            const std::lock_guard<std::mutex> lock(film_mutex);
-            for (size_t p = 0; p < pixels; ++p)
-                if (film[p].x != 0 || film[p].y != 0 || film[p].z != 0)
-                    result.film.add_splat(int(p % size_t(w)), int(p / size_t(w)), film[p]);
-            return !m_stopping.cancelled();
-        });
+    // A fixed-length render runs each chain once, to its share of the mutations. An equal-time
+    // render runs every chain in rounds of growing length until the budget is spent: with one
+    // chain per thread (as before), a chain that found a rare bright path (a caustic path tracing
+    // seldom samples) stayed near it for most of the budget, and two chains made the image
+    // (hslt on the droplet: 60 % of its light in 11 pixels).
+    uint64_t round = 1024;
+    for (;;) {
+        const PassOutcome pass = run_team_pass(
+            *m_team, m_arena, m_threads, m_chains, [&] { return m_stopping.requested(); }, SIZE_MAX,
+            [&](int64_t c, int slot) {
+                std::vector<Vec3>& film = films[size_t(slot)];
+                film.assign(pixels, Vec3());
+                const uint64_t quota = m_timed ? round : m_total / n + (uint64_t(c) < m_total % n ? 1 : 0);
+                mutations += chain(int(c), quota, film);
+                const std::lock_guard<std::mutex> lock(film_mutex);
+                for (size_t p = 0; p < pixels; ++p)
+                    if (film[p].x != 0 || film[p].y != 0 || film[p].z != 0)
+                        result.film.add_splat(int(p % size_t(w)), int(p / size_t(w)), film[p]);
+                return !m_stopping.cancelled();
+            });
+        if (!m_timed || pass.stop || !pass.complete) break;
+        round = std::min<uint64_t>(round * 2, uint64_t(1) << 20);
+    }
     if (m_bar) m_bar->finish();
     // Pixel value = (film area) / (mutations) * splat sum: the chains visit the film with density
     // Y / b over the window grown by the filter margin, whose area replaces the pixel count.

@@ -31,8 +31,8 @@ void parse_chain_counts(const Props& props, const char* who, int64_t min_bootstr
 
 class MetropolisLoop {
 public:
-    /// `chains` 0: 64 for a fixed-length render (run `threads` at a time, so the image does not
-    /// depend on the machine), one per thread of every process in equal-time mode.
+    /// `chains` 0: 64 (run `threads` at a time, so that a fixed-length image does not depend on
+    /// the machine; an equal-time render runs them in rounds).
     /// `mutations_per_pixel` 0: the options' spp. Resets the statistics (the bootstrap counts).
     /// Throws for a crop or a sample range: a chain roams the whole film.
     MetropolisLoop(const FilmSpec& film, const RenderOptions& options, const std::atomic<bool>* cancel, int chains,
@@ -41,6 +41,7 @@ public:
     RenderTeam& team() const { return *m_team; }
     tbb::task_arena& arena() { return m_arena; }
     bool timed() const { return m_timed; }
+    int chains() const { return m_chains; }
 
     /// Adds v at full-film raster position `raster` to a chain's film, with the pixel filter's
     /// weights.
@@ -50,7 +51,9 @@ public:
     bool keep_going(uint64_t m, uint64_t quota) const;
 
     /// Runs every chain: `chain(c, quota, film)` runs chain c on a cleared film (calling
-    /// keep_going before each mutation) and returns the mutations it made. The chains' deposits
+    /// keep_going before each mutation) and returns the mutations it made. An equal-time render
+    /// calls it once per round for every chain, with the round's quota: a chain keeps its state
+    /// between calls. The chains' deposits
     /// carry b (expected-value weights (1 - a) b / Y ...); the image is the splats times the
     /// film area of the window over the mutations.
     RenderResult run(const std::function<uint64_t(int c, uint64_t quota, std::vector<Vec3>& film)>& chain);

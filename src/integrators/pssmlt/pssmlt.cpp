@@ -1,6 +1,7 @@
 #include "integrators/pssmlt/pssmlt.h"
 
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -65,15 +66,27 @@ RenderResult render_pssmlt(const Scene& scene, const PssmltSettings& settings, i
     if (b <= 0) return loop.black();  // no bootstrap path carried light: an (estimated) black image
     const Distribution1D seeds(boot_y);
 
+    // A chain's state, kept between the rounds of an equal-time render.
+    struct Chain {
+        PrimarySampleSampler sampler;
+        PathSample current;
+    };
+    std::vector<std::unique_ptr<Chain>> chains(size_t(loop.chains()));
     return loop.run([&](int c, uint64_t quota, std::vector<Vec3>& film) {
-        // Resample a bootstrap path proportionally to Y and reproduce it exactly (same
-        // stream, iteration 0 draws every dimension fresh), then give the chain its own stream.
-        PCG32 pick(chain_seed(opt.seed, uint64_t(c)), uint64_t(c) * 2 + 1);
-        const size_t i = seeds.sample_discrete(pick.next_double());
-        PrimarySampleSampler sampler(bootstrap_seed(opt.seed, i), i, p_large, settings.s1, settings.s2);
-        PathSample current = evaluate(scene, *camera, *inner, spectral_samples, spec, sampler);
-        sampler.accept();
-        sampler.reseed(chain_seed(opt.seed, uint64_t(c)), uint64_t(c) * 2);
+        std::unique_ptr<Chain>& chain = chains[size_t(c)];
+        if (!chain) {
+            // Resample a bootstrap path proportionally to Y and reproduce it exactly (same
+            // stream, iteration 0 draws every dimension fresh), then give the chain its own stream.
+            PCG32 pick(chain_seed(opt.seed, uint64_t(c)), uint64_t(c) * 2 + 1);
+            const size_t i = seeds.sample_discrete(pick.next_double());
+            chain = std::make_unique<Chain>(
+                Chain{PrimarySampleSampler(bootstrap_seed(opt.seed, i), i, p_large, settings.s1, settings.s2), {}});
+            chain->current = evaluate(scene, *camera, *inner, spectral_samples, spec, chain->sampler);
+            chain->sampler.accept();
+            chain->sampler.reseed(chain_seed(opt.seed, uint64_t(c)), uint64_t(c) * 2);
+        }
+        PrimarySampleSampler& sampler = chain->sampler;
+        PathSample& current = chain->current;
         uint64_t m = 0;
         for (; loop.keep_going(m, quota); ++m) {
             sampler.start_iteration();
