@@ -306,34 +306,40 @@ TEST(Hslt, LargeStepsAloneAgreeWithNee) {
                           replica_stats(nee, 256, kBlock, 200, kReplicas), "hslt large steps vs nee");
 }
 
+// 3 % more light than the estimate must be seen: the reference's replicas scaled (the same
+// renders with the emitter 3 % brighter, without rendering them again).
+ReplicaStats brighter(ReplicaStats s) {
+    for (Estimate& e : s.blocks) {
+        e.mean *= 1.03;
+        e.stderr_ *= 1.03;
+    }
+    s.image.mean *= 1.03;
+    s.image.stderr_ *= 1.03;
+    return s;
+}
+
+// Agreement with nee in the box, and the power to see a 3 % error there.
 TEST(Hslt, AgreesWithNeeInABox) {
     LoadedScene ls = load_xml(kCornellBox, {{"integrator", "hslt"}, {"res", "16"}});
     LoadedScene nee = load_xml(kCornellBox, {{"integrator", "nee"}, {"res", "16"}});
-    expect_replicas_agree(hslt_replica_stats(ls, test_settings(ls, 256), 300),
-                          replica_stats(nee, 256, kBlock, 400, kReplicas), "hslt vs nee");
+    const ReplicaStats mlt = hslt_replica_stats(ls, test_settings(ls, 256), 300);
+    const ReplicaStats ref = replica_stats(nee, 256, kBlock, 400, kReplicas);
+    expect_replicas_agree(mlt, ref, "hslt vs nee");
+    EXPECT_GT(disagreements(mlt, brighter(ref), 0.01, false), 0) << "a 3 % error in the box went unseen";
 }
 
 // Caustics through smooth glass (light, glass, glass, floor, camera) and the glass seen from
-// the camera: specular chains held at h = 0 while the walk moves them.
+// the camera: specular chains held at h = 0 while the walk moves them. And the power to see 3 %
+// there: a replica's image mean spreads by 1.7 % at 8,192 mutations per pixel (2.8 % at
+// 2,048, with a heavy upper tail: 16 replicas at 2,048 sat 2.4 % high for one seed set and
+// 0.3 % high over 48 others), so the whole-image test resolves 3 % with margin.
 TEST(Hslt, AgreesWithBdptOnACaustic) {
     LoadedScene ls = load_xml(kGlassBall, {{"integrator", "hslt"}});
     LoadedScene bdpt = load_xml(kGlassBall, {{"integrator", "bdpt"}});
-    expect_replicas_agree(hslt_replica_stats(ls, test_settings(ls, 2048), 500),
-                          replica_stats(bdpt, 1024, kBlock, 600, kReplicas), "hslt vs bdpt, glass ball");
-}
-
-// Power: 3 % more light in the reference is detected, in the box and on the caustic.
-TEST(Hslt, DetectsAThreePercentError) {
-    LoadedScene box = load_xml(kCornellBox, {{"integrator", "hslt"}, {"res", "16"}});
-    LoadedScene nee = load_xml(kCornellBox, {{"integrator", "nee"}, {"radiance", "6.18"}, {"res", "16"}});
-    EXPECT_GT(disagreements(hslt_replica_stats(box, test_settings(box, 256), 300),
-                            replica_stats(nee, 256, kBlock, 400, kReplicas), 0.01, false),
-              0);
-    LoadedScene ls = load_xml(kGlassBall, {{"integrator", "hslt"}});
-    LoadedScene bdpt = load_xml(kGlassBall, {{"integrator", "bdpt"}, {"radiance", "41.2"}});
-    EXPECT_GT(disagreements(hslt_replica_stats(ls, test_settings(ls, 2048), 500),
-                            replica_stats(bdpt, 1024, kBlock, 600, kReplicas), 0.01, false),
-              0);
+    const ReplicaStats mlt = hslt_replica_stats(ls, test_settings(ls, 8192), 500);
+    const ReplicaStats ref = replica_stats(bdpt, 1024, kBlock, 600, kReplicas);
+    expect_replicas_agree(mlt, ref, "hslt vs bdpt, glass ball");
+    EXPECT_GT(disagreements(mlt, brighter(ref), 0.01, false), 0) << "a 3 % error on the caustic went unseen";
 }
 
 TEST(Hslt, DeterministicForASeed) {

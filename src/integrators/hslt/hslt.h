@@ -24,10 +24,9 @@ struct HsltSettings {
     double lens_probability = 0.25, light_probability = 0.25;
     bool kelemen_weights = true;      ///< (kelemen_weights) as pssmlt's
     int64_t mutations_per_pixel = 0;  ///< (mutations_per_pixel) 0: the render options' spp
-    /// (bootstrap_samples) one-length paths estimating b: each carries one length, so b is noisier
-    /// per path than pssmlt's (100,000 left b 1.3 % off in the test box; 400,000 takes 0.3 s there).
+    /// (bootstrap_samples) MNEE paths estimating b, and large-step paths the chains start from.
     int64_t bootstrap_samples = 400000;
-    int chains = 0;  ///< (chains) 0: as pssmlt (64, or one per thread timed)
+    int chains = 0;  ///< (chains) 0: 64, as pssmlt
     /// Longest path in segments (max_depth; HSLT needs a bound: 16 when the scene gives none).
     int max_depth = 16;
     bool hide_emitters = false;  ///< (hide_emitters)

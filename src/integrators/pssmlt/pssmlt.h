@@ -26,8 +26,8 @@ struct PssmltSettings {
     /// render options' spp. Ignored in equal-time mode (RenderOptions::time_limit > 0).
     int64_t mutations_per_pixel = 0;
     int64_t bootstrap_samples = 100000;  ///< (bootstrap_samples) independent paths estimating b
-    /// (chains) Markov chains; 0: 64 for a fixed-length render (run `threads` at a time, so
-    /// the image does not depend on the machine), one per thread in equal-time mode.
+    /// (chains) Markov chains; 0: 64, run `threads` at a time (so the image does not depend on
+    /// the machine), in rounds in equal-time mode (metropolis_loop.h).
     int chains = 0;
     double s1 = 1.0 / 1024, s2 = 1.0 / 64;  ///< small-step range (Kelemen's defaults, not in scene files)
     PathSettings path;                      ///< (max_depth, rr_depth, hide_emitters) of the inner estimator
