@@ -73,28 +73,47 @@ std::vector<unsigned char> read_all(const std::string& path) {
     return std::vector<unsigned char>(s.begin(), s.end());
 }
 
-std::vector<unsigned char> inflate_all(const unsigned char* in, size_t n, const std::string& path) {
-    z_stream z{};
-    if (inflateInit(&z) != Z_OK) throw std::runtime_error(path + ": zlib initialisation failed");
-    std::vector<unsigned char> out(std::max<size_t>(n * 4, 4096));
-    z.next_in = const_cast<unsigned char*>(in);
-    z.avail_in = uInt(std::min<size_t>(n, std::numeric_limits<uInt>::max()));
-    int rc = Z_OK;
-    while (rc != Z_STREAM_END) {
-        if (z.total_out == out.size()) out.resize(out.size() * 2);
-        z.next_out = out.data() + z.total_out;
-        z.avail_out = uInt(std::min<size_t>(out.size() - z.total_out, std::numeric_limits<uInt>::max()));
-        rc = inflate(&z, Z_NO_FLUSH);
-        if (rc == Z_BUF_ERROR && z.avail_in == 0) rc = Z_DATA_ERROR;  // the stream ends early
-        if (rc != Z_OK && rc != Z_STREAM_END) {
-            inflateEnd(&z);
-            throw std::runtime_error(path + ": corrupt compressed mesh data (zlib error " + std::to_string(rc) + ")");
-        }
+// zlib inflation on demand: the mesh body is inflated only as far as its header's counts say it
+// reaches, so a small file cannot expand into gigabytes before those counts are checked (issue
+// 30: 1.5 MB of zeros inflated to a 4.8 GB peak before the mesh was looked at).
+class Inflater {
+public:
+    Inflater(const unsigned char* in, size_t n, std::string path) : m_path(std::move(path)) {
+        if (inflateInit(&m_z) != Z_OK) throw std::runtime_error(m_path + ": zlib initialisation failed");
+        m_z.next_in = const_cast<unsigned char*>(in);
+        m_z.avail_in = uInt(std::min<size_t>(n, std::numeric_limits<uInt>::max()));
     }
-    out.resize(z.total_out);
-    inflateEnd(&z);
-    return out;
-}
+    ~Inflater() { inflateEnd(&m_z); }
+    Inflater(const Inflater&) = delete;
+    Inflater& operator=(const Inflater&) = delete;
+
+    /// Inflates until `bytes` are out (or the stream ends first); returns what is out so far.
+    const std::vector<unsigned char>& inflate_to(size_t bytes) {
+        if (bytes > m_out.size()) m_out.resize(bytes);
+        while (!m_ended && m_z.total_out < bytes) {
+            m_z.next_out = m_out.data() + m_z.total_out;
+            m_z.avail_out = uInt(std::min<size_t>(bytes - m_z.total_out, std::numeric_limits<uInt>::max()));
+            int rc = inflate(&m_z, Z_NO_FLUSH);
+            if (rc == Z_BUF_ERROR && m_z.avail_in == 0) rc = Z_DATA_ERROR;  // the stream ends early
+            if (rc == Z_STREAM_END) m_ended = true;
+            if (rc != Z_OK && rc != Z_STREAM_END)
+                throw std::runtime_error(m_path + ": corrupt compressed mesh data (zlib error " + std::to_string(rc) +
+                                         ")");
+        }
+        m_out.resize(size_t(m_z.total_out));
+        return m_out;
+    }
+
+private:
+    z_stream m_z{};
+    std::vector<unsigned char> m_out;
+    bool m_ended = false;
+    std::string m_path;
+};
+
+// Deflate's densest stream expands 1032-fold (zlib's technical notes): a body longer than that
+// times its compressed size cannot be in the file, whatever its header claims.
+constexpr uint64_t kMaxDeflateRatio = 1032;
 
 template <typename T>
 Vec3 get_vec3(Reader& r) {
@@ -129,29 +148,44 @@ MeshData load_serialized(const std::string& path, int64_t shape_index, bool* fac
     };
     const uint64_t begin = offset_of(size_t(shape_index));
     const uint64_t end = size_t(shape_index) + 1 < count ? offset_of(size_t(shape_index) + 1) : table;
-    if (!(begin + 4 < end && end <= table))
+    // Subtractions that cannot wrap: an entry near 2^64 made begin + 4 overflow (issue 30).
+    if (!(begin < end && end <= table && end - begin > 4))
         throw std::runtime_error(path + ": corrupt offset table (mesh " + std::to_string(shape_index) + ")");
     head.seek(size_t(begin));
     if (head.get<uint16_t>() != kMagic || head.get<uint16_t>() != version)
         throw std::runtime_error(path + ": mesh " + std::to_string(shape_index) + " has a bad header");
 
-    const std::vector<unsigned char> data = inflate_all(file.data() + begin + 4, size_t(end - begin - 4), path);
-    Reader r(data, path);
-    const uint32_t flags = r.get<uint32_t>();
-    if (version == 4) (void)r.cstring();  // the mesh's name
-    const uint64_t nv = r.get<uint64_t>(), nt = r.get<uint64_t>();
+    const size_t compressed = size_t(end - begin - 4);
+    Inflater body(file.data() + begin + 4, compressed, path);
+    // The header first: flags, the name (version 4), the counts. Names longer than this are refused.
+    constexpr size_t kHeaderBytes = 4 + 65536 + 16;
+    std::vector<unsigned char> header = body.inflate_to(kHeaderBytes);
+    Reader h(header, path);
+    const uint32_t flags = h.get<uint32_t>();
+    if (version == 4) (void)h.cstring();  // the mesh's name
+    const uint64_t nv = h.get<uint64_t>(), nt = h.get<uint64_t>();
+    const size_t header_size = h.pos();
     const bool dbl = flags & serialized::kDoublePrecision;
     const size_t real = dbl ? 8 : 4;
-    // Every count is checked against the bytes present before anything is allocated.
+    // Every count is checked against the bytes the stream can hold before it is inflated, and
+    // against the bytes it does hold before anything is allocated.
     const uint64_t per_vertex = 3 * real + ((flags & serialized::kVertexNormals) ? 3 * real : 0) +
                                 ((flags & serialized::kTexcoords) ? 2 * real : 0) +
                                 ((flags & serialized::kVertexColors) ? 3 * real : 0);
     const size_t index_size = nv > std::numeric_limits<uint32_t>::max() ? 8 : 4;
-    const uint64_t available = data.size() - r.pos();
-    if (nv == 0 || nt == 0 || nv > available / per_vertex || nt > available / (3 * index_size) ||
-        nv * per_vertex + nt * 3 * index_size > available)
-        throw std::runtime_error(path + ": mesh " + std::to_string(shape_index) + " claims " + std::to_string(nv) +
-                                 " vertices and " + std::to_string(nt) + " triangles, more than its data holds");
+    const uint64_t can_hold = kMaxDeflateRatio * uint64_t(compressed) + 64;
+    const auto too_many = [&](const std::string& than) {
+        return std::runtime_error(path + ": mesh " + std::to_string(shape_index) + " claims " + std::to_string(nv) +
+                                  " vertices and " + std::to_string(nt) + " triangles, more than " + than);
+    };
+    if (header_size > can_hold || nv == 0 || nt == 0 || nv > can_hold / per_vertex ||
+        nt > can_hold / (3 * index_size) || nv * per_vertex + nt * 3 * index_size > can_hold - header_size)
+        throw too_many("its " + std::to_string(compressed) + " compressed bytes can hold");
+    const std::vector<unsigned char>& data =
+        body.inflate_to(size_t(header_size + nv * per_vertex + nt * 3 * index_size));
+    if (data.size() < header_size + nv * per_vertex + nt * 3 * index_size) throw too_many("its data holds");
+    Reader r(data, path);
+    r.seek(header_size);
     if (nv > std::numeric_limits<uint32_t>::max())
         throw std::runtime_error(path + ": more than 2^32 vertices in one mesh");
 

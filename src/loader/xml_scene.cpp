@@ -157,16 +157,21 @@ private:
     /// Scene elements nest a few levels; every pass over them (this parser, the 0.6 upgrade, the
     /// loader) recurses, so a deeper document is refused before any of them runs, by an iterative
     /// walk (issue 12: 100,000 nested elements overflowed the stack).
+    /// One budget for the whole scene: an included document starts at the depth of the <include>
+    /// that reads it (issue 30: 200 levels per file, 600 files deep, overflowed the stack while
+    /// each file alone was within the limit).
     static constexpr int kMaxDepth = 256;
-    static void check_depth(const pugi::xml_document& doc, const FileCtx& f) {
+    int m_include_depth = 0;  // depth of the <include> elements the current document is read through
+    void check_depth(const pugi::xml_document& doc, const FileCtx& f) const {
         std::vector<std::pair<pugi::xml_node, int>> stack;
-        for (pugi::xml_node c : doc.children()) stack.emplace_back(c, 1);
+        for (pugi::xml_node c : doc.children()) stack.emplace_back(c, m_include_depth + 1);
         while (!stack.empty()) {
             const auto [n, depth] = stack.back();
             stack.pop_back();
             if (depth > kMaxDepth)
                 throw SceneError(f.at(n), n.name(),
-                                 "elements nested deeper than " + std::to_string(kMaxDepth) + " levels");
+                                 "elements nested deeper than " + std::to_string(kMaxDepth) + " levels" +
+                                     (m_include_depth > 0 ? " (counting the <include> elements that lead here)" : ""));
             for (pugi::xml_node c : n.children())
                 if (c.type() == pugi::node_element) stack.emplace_back(c, depth + 1);
         }
@@ -235,8 +240,12 @@ private:
             throw SceneError(loc, "include", "include cycle: " + chain + canonical);
         }
         m_include_stack.push_back(canonical);
+        int depth = 0;  // of the <include> element, in its document
+        for (pugi::xml_node a = n; a && a.type() == pugi::node_element; a = a.parent()) ++depth;
+        m_include_depth += depth;
         // Included elements are spliced in place: they land in the including element.
         parse_document(text, FileCtx(p.string(), p.parent_path().string(), text), parent, false);
+        m_include_depth -= depth;
         m_include_stack.pop_back();
     }
 
@@ -338,7 +347,12 @@ private:
             throw SceneError(loc, "path",
                              "no such folder '" + value + "' (relative to '" + f.dir +
                                  "', the <path> folders and the main scene's folder)");
-        m_search_paths.insert(m_search_paths.begin(), p->string());
+        // A folder given again moves to the front rather than being searched twice (issue 30:
+        // 20,000 <path value="."/> took 80 s to read).
+        const std::string dir = fs::weakly_canonical(*p, ec).string();
+        const std::string key = ec ? p->string() : dir;
+        m_search_paths.erase(std::remove(m_search_paths.begin(), m_search_paths.end(), key), m_search_paths.end());
+        m_search_paths.insert(m_search_paths.begin(), key);
     }
 
     // A relative file name as Mitsuba's file resolver finds it, with the folder of the file that
@@ -347,13 +361,21 @@ private:
     std::optional<fs::path> resolve_file(const std::string& name, const std::string& own_dir) const {
         const fs::path file(name);
         if (file.is_absolute()) return file;
-        std::vector<fs::path> candidates{fs::path(own_dir) / file};
-        for (const auto& dir : m_search_paths) candidates.push_back(fs::path(dir) / file);
-        candidates.push_back(fs::path(m_main_dir) / file);
-        for (const auto& dir : m_extra_paths) candidates.push_back(fs::path(dir) / file);
-        std::error_code ec;
-        for (const auto& c : candidates)
-            if (fs::exists(c, ec)) return c;
+        // Tried in order, each built only when the ones before it are missing.
+        const auto found = [&](const std::string& dir, std::optional<fs::path>* out) {
+            std::error_code ec;
+            fs::path c = fs::path(dir) / file;
+            if (!fs::exists(c, ec)) return false;
+            *out = std::move(c);
+            return true;
+        };
+        std::optional<fs::path> out;
+        if (found(own_dir, &out)) return out;
+        for (const auto& dir : m_search_paths)
+            if (found(dir, &out)) return out;
+        if (found(m_main_dir, &out)) return out;
+        for (const auto& dir : m_extra_paths)
+            if (found(dir, &out)) return out;
         return std::nullopt;
     }
 

@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <bit>
@@ -302,4 +303,82 @@ TEST(MeshIo, SerializedErrorsNameThePath) {
     put<uint32_t>(missing_table, 1000000, false);
     EXPECT_NE(error(missing_table).find("corrupt offset table"), std::string::npos);
     EXPECT_NE(error("").find("too short"), std::string::npos);
+}
+
+namespace {
+
+// A version-4 file of one mesh whose zlib stream holds `body` and then `zeros` zero bytes
+// (deflated piecewise: the zeros never sit in memory whole).
+std::string serialized_with_tail(const std::string& body, size_t zeros) {
+    z_stream z{};
+    EXPECT_EQ(deflateInit(&z, 9), Z_OK);
+    std::string out;
+    std::vector<unsigned char> buf(1 << 16);
+    const auto pump = [&](const unsigned char* in, size_t n, int flush) {
+        z.next_in = const_cast<unsigned char*>(in);
+        z.avail_in = uInt(n);
+        do {
+            z.next_out = buf.data();
+            z.avail_out = uInt(buf.size());
+            deflate(&z, flush);
+            out.append(reinterpret_cast<const char*>(buf.data()), buf.size() - z.avail_out);
+        } while (z.avail_out == 0);
+    };
+    pump(reinterpret_cast<const unsigned char*>(body.data()), body.size(), Z_NO_FLUSH);
+    const std::vector<unsigned char> chunk(1 << 20, 0);
+    for (size_t left = zeros; left > 0; left -= std::min(left, chunk.size()))
+        pump(chunk.data(), std::min(left, chunk.size()), Z_NO_FLUSH);
+    pump(nullptr, 0, Z_FINISH);
+    deflateEnd(&z);
+    std::string mesh;
+    put<uint16_t>(mesh, 0x041C, false);
+    put<uint16_t>(mesh, 4, false);
+    return serialized_file(4, {mesh + out});
+}
+
+std::string quad_body(uint64_t nv, uint64_t nt) {
+    std::string body;
+    put<uint32_t>(body, serialized::kSinglePrecision, false);
+    body += std::string("bomb") + '\0';
+    put<uint64_t>(body, nv, false);
+    put<uint64_t>(body, nt, false);
+    for (const Vec3& v : kQuad)
+        put<float>(body, float(v.x), false), put<float>(body, float(v.y), false), put<float>(body, float(v.z), false);
+    for (const auto& t : kQuadTris)
+        for (uint32_t i : t) put<uint32_t>(body, i, false);
+    return body;
+}
+
+long peak_rss_kb() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return u.ru_maxrss;
+}
+
+}  // namespace
+
+// Issue 30: an offset-table entry near 2^64 wrapped `begin + 4 < end` and read before the buffer.
+TEST(MeshIo, SerializedOffsetNearTwoToTheSixtyFourIsCorrupt) {
+    const fs::path f = temp_dir() / "wrap.serialized";
+    std::string bytes = serialized_file(4, {serialized_mesh(4, serialized::kSinglePrecision, kQuad, kQuadTris)});
+    bytes.replace(bytes.size() - 12, 8, std::string("\xfe\xff\xff\xff\xff\xff\xff\xff", 8));
+    write(f, bytes);
+    expect_throws_naming([&] { load_serialized(f.string(), 0); }, f.string(), "corrupt offset table");
+}
+
+// Issue 30: a small file inflating to gigabytes. The body is inflated only as far as its counts
+// reach (a valid quad followed by 256 MB of zeros loads, without inflating the zeros), and counts
+// that no deflate stream of the file's size can hold are refused before inflating anything.
+// The bombs stay within 100 MB (the whole stream took more than 512 MB before).
+TEST(MeshIo, SerializedBombsAreNotInflated) {
+    const long before = peak_rss_kb();
+    const fs::path tail = temp_dir() / "tail.serialized";
+    write(tail, serialized_with_tail(quad_body(4, 2), size_t(256) << 20));
+    const MeshData m = load_serialized(tail.string(), 0);
+    EXPECT_EQ(m.positions.size(), 4u);
+    EXPECT_EQ(m.triangles.size(), 2u);
+    const fs::path claims = temp_dir() / "claims.serialized";
+    write(claims, serialized_with_tail(quad_body(uint64_t(1) << 33, uint64_t(1) << 33), size_t(16) << 20));
+    expect_throws_naming([&] { load_serialized(claims.string(), 0); }, claims.string(), "compressed bytes can hold");
+    EXPECT_LT(peak_rss_kb() - before, 100 * 1024) << "kB of peak memory";
 }

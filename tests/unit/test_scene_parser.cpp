@@ -2,8 +2,11 @@
 // includes, refs, value tags, transform composition and error messages with file:line.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include "loader/xml_scene.h"
 
@@ -185,6 +188,16 @@ TEST(SceneParser, SearchPathsAndMitsubaFileResolution) {
     const std::string bad = file_error(dir + "/bad_path.xml");
     EXPECT_NE(bad.find("bad_path.xml:2: <path>"), std::string::npos) << bad;
     EXPECT_NE(bad.find("no_such_folder"), std::string::npos) << bad;
+    // A folder given again is searched once, at the front (issue 30: 20,000 <path value="."/>
+    // took 80 s, each <path> rebuilding every candidate of the search): thousands of repeats and
+    // spellings of the same folders still find tri.obj in assets/, given last.
+    std::string repeated = "<scene version=\"3.0.0\">\n";
+    for (int i = 0; i < 20000; ++i) repeated += i % 2 ? "<path value=\"./meshes/..\"/>" : "<path value=\"meshes\"/>";
+    repeated +=
+        "<path value=\"assets\"/>\n<shape type=\"obj\"><string name=\"filename\" value=\"tri.obj\"/></shape>\n</scene>";
+    const auto r = parse_scene_xml_string(repeated, "repeated.xml", dir, {});
+    EXPECT_EQ(std::filesystem::canonical(file_of(*r->children[0].obj)),
+              std::filesystem::canonical(dir + "/assets/tri.obj"));
     // Only directly inside <scene>.
     expect_error(R"(<scene version="3.0.0">
     <shape type="sphere"><path value="."/></shape>
@@ -225,6 +238,36 @@ TEST(SceneParser, IncludeErrors) {
     EXPECT_NE(inner.find("malformed XML"), std::string::npos) << inner;
     const std::string nofile = file_error(kDataDir + "/nope.xml");
     EXPECT_NE(nofile.find("nope.xml"), std::string::npos) << nofile;
+}
+
+// Issue 30: the nesting limit is one budget across <include>s. A chain of files each nesting
+// 200 levels (every one within the limit alone) overflowed the stack, and so did a long chain of
+// files that only include the next; both are refused where the budget runs out.
+TEST(SceneParser, NestingBudgetIsSharedAcrossIncludes) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / ("snell_include_chain_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const auto chain = [&](const std::string& stem, int files, int levels) {
+        for (int i = 0; i < files; ++i) {
+            std::string open, close;
+            for (int l = 0; l < levels; ++l) open += "<bsdf type=\"twosided\">", close += "</bsdf>";
+            const std::string inner = i + 1 < files ? "<include filename=\"" + stem + std::to_string(i + 1) + ".xml\"/>"
+                                                    : "<bsdf type=\"diffuse\"/>";
+            std::ofstream(dir / (stem + std::to_string(i) + ".xml")) << "<scene version=\"3.0.0\">\n"
+                                                                     << open << inner << close << "\n</scene>\n";
+        }
+        std::ofstream(dir / (stem + ".xml")) << "<scene version=\"3.0.0\">\n<shape type=\"sphere\"><include filename=\""
+                                             << stem << "0.xml\"/></shape>\n</scene>\n";
+        return file_error((dir / (stem + ".xml")).string());
+    };
+    const std::string deep = chain("deep", 600, 200);
+    EXPECT_NE(deep.find("deep1.xml:2: <bsdf>"), std::string::npos) << deep;
+    EXPECT_NE(deep.find("nested deeper than 256 levels (counting the <include> elements"), std::string::npos) << deep;
+    const std::string longer = chain("long", 3000, 0);
+    EXPECT_NE(longer.find("nested deeper than 256 levels"), std::string::npos) << longer;
+    // Within the budget a chain still loads.
+    EXPECT_EQ(chain("ok", 20, 5), "");
+    fs::remove_all(dir);
 }
 
 TEST(SceneParser, RefsAndIds) {
