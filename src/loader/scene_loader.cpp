@@ -109,7 +109,14 @@ public:
             Props p("integrator", "path", root.loc);
             m_out.integrator = create_integrator(p);
         }
-        located(root, [&] { scene->build(); });
+        located(root, [&] {
+            try {
+                scene->build();
+            } catch (const InstanceRangeError& e) {
+                const XmlObject& inst = *m_instances.at(e.index);
+                throw SceneError(inst.loc, inst.tag, e.what());
+            }
+        });
         m_out.scene = std::move(scene);
     }
 
@@ -120,6 +127,7 @@ private:
     std::map<const XmlObject*, std::shared_ptr<BSDF>> m_bsdfs;  // one instance per element (refs share)
     std::map<const XmlObject*, TextureRef> m_textures;
     std::map<const XmlObject*, std::shared_ptr<ShapeGroup>> m_groups;
+    std::vector<const XmlObject*> m_instances;  // in the order the scene holds them
 
     // The SMS code's caustic flags on shapes and emitters: accepted, one notice per scene.
     void sms_flags(const Props& p) {
@@ -198,6 +206,7 @@ private:
             p.check_unused();
             if (!(std::abs(to_world.det3()) > 0)) p.raise_param("to_world", "to_world must be invertible");
             scene.add_instance(std::make_shared<Instance>(group(*g), to_world));
+            m_instances.push_back(&o);
             return;
         }
         const XmlObject* emitter = nullptr;

@@ -109,10 +109,35 @@ void Scene::build() {
         if (!finite || !(extent <= kMaxSceneCoordinate))
             throw std::runtime_error(coordinate_error("the scene's geometry", extent));
     }
+    Bounds3 reach = m_bounds;  // where rays start: the geometry and the sensor
     if (m_camera) {
-        const double cam = max_abs_component(m_camera->to_world().point(Vec3(0, 0, 0)));
+        const Vec3 eye = m_camera->to_world().point(Vec3(0, 0, 0));
+        const double cam = max_abs_component(eye);
         if (!(cam <= kMaxSceneCoordinate)) throw std::runtime_error(coordinate_error("the sensor's position", cam));
+        reach.expand(eye);
     }
+    // Embree traces an instance's rays in its group's space: the composed transform must keep
+    // them in range there too (issue 30: an instance scaled by 1e-20 passed the world-space
+    // check and its rays, 1e20 times longer, made Embree abort). Affine: the box's corners bound it.
+    if (reach.valid())
+        for (size_t i = 0; i < m_instances.size(); ++i) {
+            const Transform& to_local = m_instances[i]->to_local();
+            double local = 0;
+            for (int c = 0; c < 8; ++c) {
+                const Vec3 corner(c & 1 ? reach.hi.x : reach.lo.x, c & 2 ? reach.hi.y : reach.lo.y,
+                                  c & 4 ? reach.hi.z : reach.lo.z);
+                local = std::max(local, max_abs_component(to_local.point(corner)));
+            }
+            if (!(local <= kMaxSceneCoordinate)) {
+                char buf[320];
+                std::snprintf(buf, sizeof buf,
+                              "the instance's to_world carries the scene (and its rays) to %.3g from the origin of "
+                              "its shapegroup's space; snell traces up to %.0e there (scale the instance less "
+                              "extremely, or scale its shapes instead)",
+                              local, kMaxSceneCoordinate);
+                throw InstanceRangeError(i, buf);
+            }
+        }
     rtcCommitScene(m_scene);
     if (rtcGetDeviceError(m_device) != RTC_ERROR_NONE) throw std::runtime_error("Embree failed to build the scene");
 

@@ -2,6 +2,8 @@
 #include <embree3/rtcore.h>
 
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "camera/camera.h"
@@ -21,6 +23,13 @@ extern StatCounter shadow_rays;  ///< "scene.shadow_rays": any-hit queries
 /// "scene.untraceable_rays": rays beyond what Embree represents, answered without tracing
 extern StatCounter untraceable_rays;
 }  // namespace scene_stats
+
+/// Scene::build's refusal of an instance whose transform carries the scene's rays out of the
+/// range Embree traces in (its index among the instances added, for the loader to locate).
+struct InstanceRangeError : std::runtime_error {
+    InstanceRangeError(size_t i, const std::string& what) : std::runtime_error(what), index(i) {}
+    size_t index;
+};
 
 /// The scene: shapes in an Embree BVH, lights and their sampler, the camera.
 /// Ray offsets come from each point's own rounding error (Shape::position_error, as pbrt-v4's

@@ -556,3 +556,18 @@ TEST(SceneLoaderFull, DeepNestingIsAClearError) {
     for (int i = 0; i < 200; ++i) ok = R"(<bsdf type="twosided">)" + ok + "</bsdf>";
     EXPECT_NO_THROW(load_string(scene_with("<shape type=\"sphere\">" + ok + "</shape>")));
 }
+
+// Issue 30: an instance scaled by 1e-20 passed the world-space coordinate check, and Embree
+// aborted on its rays (1e20 times longer in the group's space). The composed transform is
+// checked where the rays are traced; an instance scaled by 1e-3 still loads.
+TEST(SceneLoaderFull, InstanceScaledBeyondTraceableRangeIsAnError) {
+    const auto scene = [](const char* scale) {
+        return std::string("<scene version=\"3.0.0\">\n<sensor type=\"perspective\"><transform name=\"to_world\">") +
+               "<lookat origin=\"0, 0, 5\" target=\"0, 0, 0\" up=\"0, 1, 0\"/></transform></sensor>\n" +
+               "<shape type=\"shapegroup\" id=\"g\"><shape type=\"sphere\"/></shape>\n" +
+               "<shape type=\"instance\"><ref id=\"g\"/><transform name=\"to_world\"><scale value=\"" + scale +
+               "\"/></transform></shape>\n</scene>";
+    };
+    expect_error(scene("1e-20"), "test.xml:4: <shape>", "carries the scene (and its rays)");
+    EXPECT_NO_THROW(load_scene_string(scene("1e-3"), "test.xml", kDataDir));
+}
