@@ -9,6 +9,7 @@ snell_library(snell_light
   src/light/constant.cpp
   src/light/envmap.cpp
   src/light/rgb_illuminant_table.cpp
+  src/light/texture_emission.cpp
   src/light/factory.cpp
 )
 # Environment maps are read with io/image.h; area lights use the Shape interface; textured

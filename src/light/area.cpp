@@ -3,7 +3,7 @@
 // | parameter | type     | meaning                                                    |
 // |-----------|----------|------------------------------------------------------------|
 // | radiance  | spectrum or texture | emitted radiance: a colour is upsampled as an illuminant |
-// |           |                     | (D65 white), a texture as its own spectrum (Mitsuba 3)   |
+// |           |                     | (D65 white), a texture as its own spectrum (Mitsuba 3), unbounded |
 //
 //   <shape type="sphere">
 //       <emitter type="area"> <rgb name="radiance" value="10, 10, 10"/> </emitter>
@@ -11,6 +11,8 @@
 //
 // Emission is one-sided: only towards the side the shape's normal points to.
 #include "light/area.h"
+
+#include "light/texture_emission.h"
 
 namespace snell {
 
@@ -28,7 +30,7 @@ SampledSpectrum AreaLight::radiance_at(const Vec3& p, const Vec3& n, const Vec2&
     si.p = p;
     si.n = si.ng = n;
     si.uv = uv;
-    return m_texture->eval(si, wl);
+    return texture_emission(*m_texture, si, wl);
 }
 
 std::optional<LightSample> AreaLight::sample_li(const LightSampleContext& ref, const Vec2& u,

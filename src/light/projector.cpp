@@ -8,6 +8,8 @@
 // | to_world     | transform           | emitter-to-world; it projects along its local +z         |
 #include "light/projector.h"
 
+#include "light/texture_emission.h"
+
 #include <cmath>
 
 namespace snell {
@@ -39,7 +41,7 @@ SampledSpectrum ProjectorLight::emitted(const Vec3&, const Vec3&, const Vec2&, c
         SurfaceInteraction si;
         si.p = m_position;
         si.uv = uv;
-        E = m_texture->eval(si, wl);
+        E = texture_emission(*m_texture, si, wl);
     } else {
         E = m_irradiance.eval(wl);
     }

@@ -12,6 +12,8 @@
 //       </transform> </emitter>
 #include "light/spot.h"
 
+#include "light/texture_emission.h"
+
 namespace snell {
 
 SpotLight::SpotLight(const Spectrum& intensity, const Transform& to_world, double cutoff_angle_deg,
@@ -47,7 +49,7 @@ SampledSpectrum SpotLight::intensity(const Vec3& w_world, const SampledWavelengt
         SurfaceInteraction si;
         si.p = m_position;
         si.uv = Vec2(0.5 + l.x * k, 0.5 + l.y * k);
-        I *= m_texture->eval(si, wl);
+        I *= texture_emission(*m_texture, si, wl);
     }
     return I;
 }

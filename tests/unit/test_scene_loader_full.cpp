@@ -1,6 +1,7 @@
 // Stage 2 of scene loading: the parsed XML instantiated through every factory (BSDFs, shapes,
 // emitters, integrators), and the errors that only instantiation can find, with file:line.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -8,6 +9,7 @@
 #include "bsdf/bsdf.h"
 #include "integrators/integrator.h"
 #include "integrators/mnee/mnee_integrator.h"
+#include "io/image.h"
 #include "light/light.h"
 #include "loader/scene_loader.h"
 #include "unit/loader_errors.h"
@@ -570,4 +572,44 @@ TEST(SceneLoaderFull, InstanceScaledBeyondTraceableRangeIsAnError) {
     };
     expect_error(scene("1e-20"), "test.xml:4: <shape>", "carries the scene (and its rays)");
     EXPECT_NO_THROW(load_scene_string(scene("1e-3"), "test.xml", kDataDir));
+}
+
+// Issue 30: emission textures went through the reflectance upsampling, which clamps to [0, 1]:
+// an area light textured 1, 2, 10 or 100 rendered the same image. The emitted spectrum now
+// scales with the texture's value up to 1e4 at every wavelength, grey and coloured, and a grey
+// texture of v emits v at every wavelength.
+TEST(SceneLoaderFull, EmissionTexturesAreUnbounded) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / ("snell_emission_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const auto le_of = [&](const RGB& rgb, const char* type) {
+        Image img;
+        img.width = img.height = 2;
+        for (int i = 0; i < 4; ++i) img.rgb.insert(img.rgb.end(), {float(rgb.r), float(rgb.g), float(rgb.b)});
+        const fs::path f = dir / "emission.exr";
+        write_exr(f.string(), img);
+        const std::string radiance =
+            std::string(type) == "bitmap"
+                ? "<texture type=\"bitmap\" name=\"radiance\"><string name=\"filename\" value=\"" + f.string() +
+                      "\"/></texture>"
+                : "<rgb name=\"radiance\" value=\"" + std::to_string(rgb.r) + ", " + std::to_string(rgb.g) + ", " +
+                      std::to_string(rgb.b) + "\"/>";
+        const LoadedScene ls = load_scene_string(
+            scene_with("<shape type=\"rectangle\"><emitter type=\"area\">" + radiance + "</emitter></shape>"),
+            "test.xml", kDataDir);
+        const Light& light = *ls.scene->lights().at(0);
+        const SampledWavelengths wl = SampledWavelengths::sample_visible({0.3, 0.7}, kSpectrumSamples);
+        return std::make_pair(light.le(Vec3(0, 0, 0), Vec3(0, 0, 1), Vec2(0.5, 0.5), Vec3(0, 0, 1), wl), wl);
+    };
+    for (const RGB& base : {RGB(1, 1, 1), RGB(0.9, 0.4, 0.1)}) {
+        const auto [one, wl] = le_of(base, "bitmap");
+        for (double v : {2.0, 10.0, 100.0, 1e4}) {
+            const auto [scaled, wl2] = le_of(RGB(base.r * v, base.g * v, base.b * v), "bitmap");
+            for (int k = 0; k < kSpectrumSamples; ++k)
+                EXPECT_NEAR(scaled[k] / one[k], v, 1e-4 * v) << v << " at " << wl[k];
+        }
+    }
+    const auto [grey, wl] = le_of(RGB(37, 37, 37), "bitmap");
+    for (int k = 0; k < kSpectrumSamples; ++k) EXPECT_NEAR(grey[k], 37.0, 1e-6) << wl[k];
+    fs::remove_all(dir);
 }
