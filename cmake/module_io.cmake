@@ -1,4 +1,4 @@
-# File formats only (owner: io): EXR/PNG images, texture images (OpenImageIO), OBJ/PLY/serialized meshes, render statistics JSON. Nothing
+# File formats only (owner: io): EXR/PNG images, images read by OpenImageIO, OBJ/PLY/serialized meshes, render statistics JSON. Nothing
 # here knows the film, shapes or scenes; callers convert to and from plain buffers and MeshData.
 snell_library(snell_io
   src/io/image.cpp
@@ -17,7 +17,7 @@ target_include_directories(snell_io PRIVATE ${STB_INCLUDE_DIR})
 snell_test(test_image
   SOURCES tests/unit/test_image.cpp tests/unit/test_image_stats.cpp
           tests/unit/test_image_progress.cpp
-  LIBS snell_io OpenEXR::OpenEXR ${STB_LIBRARY})
+  LIBS snell_io OpenEXR::OpenEXR PkgConfig::OIIO ${STB_LIBRARY})
 if(TARGET test_image)
   target_include_directories(test_image PRIVATE ${STB_INCLUDE_DIR})
 endif()

@@ -10,9 +10,7 @@
 
 #include "bindings.h"
 #include "io/image.h"
-#include "io/texture_image.h"
 #include "report/image_metrics.h"
-#include "texture/bitmap.h"
 
 namespace snell::py {
 
@@ -45,33 +43,16 @@ std::string extension(const std::string& path) {
     return e;
 }
 
-// Any other image file (PNG, JPEG, TIFF): OpenImageIO, linearised where the file is sRGB-encoded,
-// grey spread to three channels.
-Image read_other(const std::string& path) {
-    const TextureImage t = read_texture_image(path);
-    Image img;
-    img.width = t.width;
-    img.height = t.height;
-    img.rgb.resize(size_t(t.width) * t.height * 3);
-    for (size_t i = 0; i < size_t(t.width) * t.height; ++i)
-        for (int c = 0; c < 3; ++c) {
-            const float v = t.texels[i * size_t(t.channels) + (t.channels == 3 ? c : 0)];
-            img.rgb[i * 3 + c] = t.srgb_encoded ? float(srgb_to_linear(v)) : v;
-        }
-    return img;
-}
-
 }  // namespace
 
 void bind_images(pyb::module_& m) {
     m.def(
         "read",
         [](const std::string& path) {
-            const std::string e = extension(path);
             Image img;
             {
                 pyb::gil_scoped_release nogil;
-                img = e == ".exr" || e == ".hdr" ? read_image(path) : read_other(path);
+                img = read_image(path);
             }
             return to_array(std::move(img));
         },

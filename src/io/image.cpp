@@ -6,19 +6,18 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStdIO.h>
-#include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/srgb.h"
 #include "io/atomic_file.h"
+#include "io/texture_image.h"
 
 namespace snell {
 
@@ -47,12 +46,6 @@ void check_image(const std::string& what, const std::string& path, const Image& 
         fail(what, path, "image has non-positive size " + std::to_string(img.width) + "x" + std::to_string(img.height));
     if (img.rgb.size() != size_t(img.width) * img.height * 3)
         fail(what, path, "pixel buffer holds " + std::to_string(img.rgb.size()) + " floats, expected 3*width*height");
-}
-
-// IEC 61966-2-1 sRGB transfer function (linear -> encoded), input clamped to [0,1].
-double srgb_oetf(double v) {
-    v = std::clamp(v, 0.0, 1.0);
-    return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
 }
 
 }  // namespace
@@ -136,7 +129,7 @@ void write_png(const std::string& path, const Image& img, double exposure) {
     for (size_t i = 0; i < img.rgb.size(); ++i) {
         const double v = double(img.rgb[i]) * scale;
         // NaN maps to black rather than to an undefined cast.
-        bytes[i] = std::isnan(v) ? 0 : uint8_t(std::lround(255.0 * srgb_oetf(v)));
+        bytes[i] = std::isnan(v) ? 0 : uint8_t(std::lround(255.0 * linear_to_srgb(v)));
     }
     // Encoded in memory, then written atomically (io/atomic_file.h).
     std::string data;
@@ -152,40 +145,22 @@ void write_png(const std::string& path, const Image& img, double exposure) {
     }
 }
 
-Image read_hdr(const std::string& path) {
-    std::error_code ec;  // only regular files: opening a FIFO would block (issue 12)
-    if (!std::filesystem::is_regular_file(path, ec)) throw std::runtime_error("cannot open image '" + path + "'");
-    FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) throw std::runtime_error("cannot open image '" + path + "'");
-    const bool is_hdr = stbi_is_hdr_from_file(f);
-    int w = 0, h = 0, n = 0;
-    // The size from the header first: stb allocates the whole image before reading a pixel.
-    if (is_hdr && stbi_info_from_file(f, &w, &h, &n)) {
-        try {
-            check_image_size("cannot read HDR image", path, w, h, 3);
-        } catch (...) {
-            std::fclose(f);
-            throw;
-        }
-    }
-    float* data = is_hdr ? stbi_loadf_from_file(f, &w, &h, &n, 3) : nullptr;
-    std::fclose(f);
-    if (!is_hdr) throw std::runtime_error(path + ": not a Radiance HDR (RGBE) file");
-    if (!data) throw std::runtime_error(path + ": cannot read HDR image (" + std::string(stbi_failure_reason()) + ")");
-    Image img;
-    img.width = w;
-    img.height = h;
-    img.rgb.assign(data, data + size_t(w) * size_t(h) * 3);
-    stbi_image_free(data);
-    return img;
-}
-
+// One reader for every image a scene names (issue 30): an environment map and a texture made
+// from one file get one verdict. Through stb, a truncated run-length .hdr hung as an envmap,
+// or loaded black, while the same file was a clean error as a texture.
 Image read_image(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (ext == ".exr") return read_exr(path);
-    if (ext == ".hdr" || ext == ".rgbe" || ext == ".pic") return read_hdr(path);
-    throw std::runtime_error(path + ": unsupported image format '" + ext + "' (supported: .exr, .hdr)");
+    const TextureImage t = read_texture_image(path);
+    Image img;
+    img.width = t.width;
+    img.height = t.height;
+    const size_t n = size_t(t.width) * size_t(t.height);
+    img.rgb.resize(n * 3);
+    for (size_t i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) {
+            const float v = t.texels[i * size_t(t.channels) + size_t(t.channels == 3 ? c : 0)];
+            img.rgb[i * 3 + size_t(c)] = t.srgb_encoded ? float(srgb_to_linear(v)) : v;
+        }
+    return img;
 }
 
 }  // namespace snell

@@ -24,9 +24,9 @@ constexpr int64_t kMaxImagePixels = int64_t(1) << 27;
 constexpr int64_t kMaxImageFloats = int64_t(1) << 29;
 /// Throws "<what> '<path>': ..." unless a w x h image of `channels` channels is within the limits.
 void check_image_size(const std::string& what, const std::string& path, int64_t w, int64_t h, int64_t channels);
-/// Reads a Radiance RGBE (.hdr) file; throws naming the path.
-Image read_hdr(const std::string& path);
-/// read_exr or read_hdr by the file's extension (.exr, .hdr); anything else throws naming it.
+/// Any image OpenImageIO reads (OpenEXR, Radiance .hdr, PNG, JPEG, TIFF, ...) through
+/// read_texture_image's checks, as linear RGB: sRGB-encoded files are linearised, grey is spread
+/// to three channels, alpha dropped. Throws naming the path.
 Image read_image(const std::string& path);
 /// Writes an 8-bit sRGB-encoded PNG after multiplying by 2^exposure; throws naming the path.
 void write_png(const std::string& path, const Image& img, double exposure = 0.0);

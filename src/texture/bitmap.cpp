@@ -7,11 +7,6 @@
 
 namespace snell {
 
-double srgb_to_linear(double v) {
-    if (v <= 0.04045) return v / 12.92;
-    return std::pow((v + 0.055) / 1.055, 2.4);
-}
-
 BitmapTexture::BitmapTexture(TextureImage image, Filter filter, Wrap wrap, bool raw, Transform to_uv)
     : m_width(image.width),
       m_height(image.height),

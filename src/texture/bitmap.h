@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/srgb.h"
 #include "io/texture_image.h"
 #include "texture/texture.h"
 
@@ -70,8 +71,5 @@ private:
     mutable std::once_flag m_coeff_once;
     mutable std::vector<float> m_coeffs;
 };
-
-/// sRGB's decoding curve (IEC 61966-2-1), from encoded [0, 1] to linear.
-double srgb_to_linear(double v);
 
 }  // namespace snell
