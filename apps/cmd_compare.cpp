@@ -139,6 +139,12 @@ RenderResult run(const Prepared& p, double time_limit, int spp, int threads, uin
     return render(*p.ls.scene, *p.integrator, p.ls.film, o, &g_cancel);
 }
 
+std::string fmt_seconds(double s) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g s", s);
+    return buf;
+}
+
 std::string crop_text(const Crop& c) {
     return std::to_string(c.x) + "," + std::to_string(c.y) + "," + std::to_string(c.w) + "," + std::to_string(c.h);
 }
@@ -281,6 +287,9 @@ int cmd_compare(const CompareOptions& options) {
         const RenderResult r = run(p, ri.time_limit, int(ri.spp), rep.threads, ref_seed);
         ri.stats = make_report(opt.scene, ri.integrator, p.ls.film.out_width(), p.ls.film.out_height(), r, ri.spp,
                                ri.time_limit, rep.threads, ref_seed);
+        if (r.spp_completed == 0 && !g_cancel.load())
+            throw std::runtime_error("the reference (" + ri.integrator + ", " + fmt_seconds(r.seconds) +
+                                     ") drew no sample in some pixels: give it more --reference-time");
         ref = film_to_image(r.film);
     }
     ri.image_exr = "reference.exr";
@@ -314,6 +323,12 @@ int cmd_compare(const CompareOptions& options) {
         for (const Crop& c : rep.crops)
             res.regions.push_back({"crop " + crop_text(rep.in_film(c)), c, compare_images(img, ref, c)});
         res.convergence.push_back({opt.time, r.seconds, r.spp_mean, res.regions[0].metrics});
+        if (r.interrupted)
+            res.unranked = "interrupted after " + fmt_seconds(r.seconds);
+        else if (r.spp_mean <= 0)
+            res.unranked = "drew no sample in " + fmt_seconds(opt.time);
+        else if (r.spp_completed == 0)
+            res.unranked = "some pixels drew no sample in " + fmt_seconds(opt.time);
 
         res.image_exr = t.name + ".exr";
         res.image_png = t.name + ".png";
@@ -347,12 +362,15 @@ int cmd_compare(const CompareOptions& options) {
     for (size_t k = 0; k < order.size(); ++k) {
         const IntegratorResult& it = rep.integrators[order[k]];
         const ImageMetrics& m = it.regions[0].metrics;
-        std::printf("%-4zu %-12s %12.5g %10.5g %10.3f %10.5g %8llu %12.4g\n", k + 1, it.name.c_str(), m.rel_mse, m.rmse,
-                    m.psnr, m.smape, (unsigned long long)it.stats.spp_reached, it.stats.paths_per_second());
+        const std::string place = it.ranked() ? std::to_string(k + 1) : "-";
+        std::printf("%-4s %-12s %12.5g %10.5g %10.3f %10.5g %8llu %12.4g%s\n", place.c_str(), it.name.c_str(),
+                    m.rel_mse, m.rmse, m.psnr, m.smape, (unsigned long long)it.stats.spp_reached,
+                    it.stats.paths_per_second(), it.ranked() ? "" : ("  not ranked: " + it.unranked).c_str());
     }
     std::printf("wrote %s and %s\n", html_path.c_str(), json_path.c_str());
     if (g_cancel.load()) {
-        std::fprintf(stderr, "snell compare: interrupted; the report holds the integrators that finished\n");
+        std::fprintf(stderr, "snell compare: interrupted; the report ranks the %zu of %zu integrators that finished\n",
+                     rep.ranked_count(), techniques.size());
         return 130;
     }
     return 0;

@@ -5,6 +5,7 @@
 
 #include "app_common.h"
 #include "commands.h"
+#include "output_files.h"
 #include "render/partial_film.h"
 
 namespace fs = std::filesystem;
@@ -12,18 +13,15 @@ namespace fs = std::filesystem;
 namespace snell {
 
 int cmd_merge(const std::vector<std::string>& parts, std::string out, double exposure, std::string stats_path,
-              bool quiet) {
+              bool quiet, bool make_dirs) {
     double coverage = 0;
     const PartialFilm merged = merge_partial_films(parts, &coverage);
-    if (out.empty()) out = "merged.exr";
-    fs::path out_path(out);
-    if (out_path.extension() != ".exr") out_path += ".exr";
-    fs::path png_path = out_path;
-    png_path.replace_extension(".png");
-    if (stats_path.empty()) stats_path = fs::path(out_path).replace_extension(".json").string();
+    const OutputFiles files = output_files(out, stats_path, "merged.exr", make_dirs);
+    const fs::path &out_path = files.exr, &png_path = files.png;
+    stats_path = files.stats.string();
 
     const Image img = film_to_image(merged.film);
-    write_exr(out_path.string(), img);
+    if (!out_path.empty()) write_exr(out_path.string(), img);
     write_png(png_path.string(), img, exposure);
     // The report of the merged film: what the film itself says (the parts' counters stay in
     // their own stats files).
@@ -48,9 +46,10 @@ int cmd_merge(const std::vector<std::string>& parts, std::string out, double exp
     if (coverage < 1 - 1e-12)
         std::fprintf(stderr, "snell: warning: the parts hold %.4g %% of the frame's pixel samples\n", 100 * coverage);
     if (!quiet)
-        std::fprintf(stderr, "snell: merged %zu partial films (%s, %dx%d, %llu spp)\n  wrote %s, %s, %s\n",
+        std::fprintf(stderr, "snell: merged %zu partial films (%s, %dx%d, %llu spp)\n  wrote %s%s%s, %s\n",
                      parts.size(), merged.info.integrator.c_str(), merged.info.width, merged.info.height,
-                     (unsigned long long)merged.info.spp, out_path.c_str(), png_path.c_str(), stats_path.c_str());
+                     (unsigned long long)merged.info.spp, out_path.c_str(), out_path.empty() ? "" : ", ",
+                     png_path.c_str(), stats_path.c_str());
     return kExitOk;
 }
 

@@ -15,6 +15,7 @@
 #include "integrators/integrator.h"
 #include "io/stats_json.h"
 #include "manifold/walk_statistics.h"
+#include "output_files.h"
 #include "render/partial_film.h"
 #include "render/renderer.h"
 #include "render/team_pass.h"
@@ -142,17 +143,10 @@ int cmd_render(const RenderCommandOptions& o) {
     if (partial && time_limit > 0)
         throw std::runtime_error("a partial film (--crop, --sample-range) needs a sample count, not a time budget");
 
-    if (out.empty()) out = "out.exr";
-    fs::path out_path(out);
-    if (out_path.extension() != ".exr") out_path += ".exr";
-    if (out_path.has_parent_path()) fs::create_directories(out_path.parent_path());
-    fs::path png_path = out_path;
-    png_path.replace_extension(".png");
-    if (stats_path.empty()) {
-        fs::path p = out_path;
-        p.replace_extension(".json");
-        stats_path = p.string();
-    }
+    const OutputFiles files = output_files(out, stats_path, "out.exr", o.make_dirs, partial);
+    const fs::path& out_path = files.exr;
+    const fs::path& png_path = files.png;
+    stats_path = files.stats.string();
 
     std::signal(SIGINT, on_sigint);
     std::signal(SIGTERM, on_sigint);  // mpirun and farm managers stop a job with SIGTERM
@@ -203,7 +197,7 @@ int cmd_render(const RenderCommandOptions& o) {
     }
 
     const Image img = film_to_image(r.film);
-    write_exr(out_path.string(), img);
+    if (!out_path.empty()) write_exr(out_path.string(), img);
     write_png(png_path.string(), img, exposure);
     if (strategies) {
         const std::vector<std::string>& layers = r.layer_names;
@@ -211,13 +205,11 @@ int cmd_render(const RenderCommandOptions& o) {
             std::fprintf(stderr, "snell: --strategies: integrator %s has no per-strategy images\n",
                          integ->name().c_str());
         for (size_t k = 0; k < layers.size(); ++k) {
-            fs::path p = out_path;
-            p.replace_filename(out_path.stem().string() + "_" + layers[k] + ".exr");
-            write_exr(p.string(), film_to_image(r.film, int(k) + 1));
+            write_exr(files.stem().string() + "_" + layers[k] + ".exr", film_to_image(r.film, int(k) + 1));
         }
         if (!layers.empty() && !quiet)
             std::fprintf(stderr, "snell: wrote %zu strategy images %s_<d_s_t>.exr\n", layers.size(),
-                         (out_path.parent_path() / out_path.stem()).c_str());
+                         files.stem().c_str());
     }
 
     RenderReport rep = make_report(ls.path, integ->name(), ls.film.out_width(), ls.film.out_height(), r,
@@ -230,12 +222,12 @@ int cmd_render(const RenderCommandOptions& o) {
     if (!quiet || r.interrupted)
         std::fprintf(stderr,
                      "snell: %s%.2f s, %llu spp (mean %.1f), %.3g paths/s, %.3g rays/s; discarded NaN %llu, Inf %llu, "
-                     "negative %llu; beyond float32 %llu\n  wrote %s, %s, %s\n",
+                     "negative %llu; beyond float32 %llu\n  wrote %s%s%s, %s\n",
                      r.interrupted ? "INTERRUPTED after " : "", r.seconds, (unsigned long long)r.spp_completed,
                      r.spp_mean, double(rep.paths) / s, double(rep.rays + rep.shadow_rays) / s,
                      (unsigned long long)rep.discarded_nan, (unsigned long long)rep.discarded_inf,
                      (unsigned long long)rep.discarded_negative, (unsigned long long)rep.beyond_float, out_path.c_str(),
-                     png_path.c_str(), stats_path.c_str());
+                     out_path.empty() ? "" : ", ", png_path.c_str(), stats_path.c_str());
     if (!quiet && r.film.max_sample_share() > 0) {
         if (r.film.spread_radius() > 0)
             std::fprintf(stderr,

@@ -24,6 +24,7 @@ struct RenderCommandOptions {
     std::optional<uint64_t> seed;
     double exposure = 0;
     std::string stats_path;
+    bool make_dirs = false;  ///< --mkdir: create missing folders of -o and --stats
     bool quiet = false;
     std::vector<std::string> defines;
     bool strategies = false;
@@ -38,7 +39,7 @@ int cmd_render(const RenderCommandOptions& opt);
 
 /// `snell merge part*.exr -o frame.exr`: partial films into the frame (docs/distributed.md).
 int cmd_merge(const std::vector<std::string>& parts, std::string out, double exposure, std::string stats_path,
-              bool quiet);
+              bool quiet, bool make_dirs = false);
 
 /// `out` with its one %d or %0Nd replaced by `frame` (-o frame_%04d.exr -D frame=12); `out`
 /// unchanged without one. Throws std::runtime_error for other % patterns or a missing frame.

@@ -2,6 +2,9 @@
 // only declares the command line; each sub-command lives in its own cmd_*.cpp.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -26,6 +29,28 @@ const CLI::Validator kSeconds(
         return "";
     },
     "SECONDS>0");
+// CLI11 reads "--seed -1" into a uint64_t as 2^64 - 1, and a seed of 2^64 or more as 2^64 - 1
+// too; "--exposure nan" passed (issue 30). Both are refused here, saying what is expected.
+const CLI::Validator kSeed(
+    [](std::string& in) -> std::string {
+        errno = 0;
+        char* end = nullptr;
+        const bool digits =
+            !in.empty() && std::all_of(in.begin(), in.end(), [](unsigned char c) { return std::isdigit(c); });
+        (void)std::strtoull(in.c_str(), &end, 10);
+        if (!digits || errno == ERANGE) return "expected a seed in [0, 2^64 - 1] (decimal digits), got '" + in + "'";
+        return "";
+    },
+    "SEED in [0, 2^64-1]");
+const CLI::Validator kExposure(
+    [](std::string& in) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(in.c_str(), &end);
+        if (end == in.c_str() || *end != '\0' || !std::isfinite(v) || std::abs(v) > 64)
+            return "expected an exposure in stops, a finite number in [-64, 64], got '" + in + "'";
+        return "";
+    },
+    "STOPS in [-64, 64]");
 const CLI::Validator kSpp = CLI::Range(int64_t(1), int64_t(1) << 30, "SPP in [1, 2^30]");
 const CLI::Validator kThreads = CLI::Range(0, 4096, "THREADS in [0, 4096], 0 = all cores");
 
@@ -56,8 +81,8 @@ int run(int argc, char** argv) {
     uint64_t seed = 0;
     render_cmd->add_option("scene", ro.scene, "scene file, or builtin:droplet")->required();
     render_cmd->add_option("-o,--output", ro.out,
-                           "output EXR (a PNG and a stats JSON are written beside it); one %d or %0Nd is replaced "
-                           "by -D frame=N");
+                           "output image: NAME.exr (with its PNG preview NAME.png) or NAME.png alone; a stats JSON "
+                           "beside it; one %d or %0Nd is replaced by -D frame=N");
     auto* spp_opt =
         render_cmd->add_option("--spp", ro.spp, "samples per pixel (default: the scene's sample_count)")->check(kSpp);
     auto* time_opt =
@@ -66,9 +91,11 @@ int run(int argc, char** argv) {
             ->excludes(spp_opt);
     render_cmd->add_option("-t,--threads", ro.threads, "worker threads (default: all cores)")->check(kThreads);
     auto* seed_opt =
-        render_cmd->add_option("--seed", seed, "sampler seed (default: the scene's <sampler> seed, else 0)");
-    render_cmd->add_option("--exposure", ro.exposure, "PNG exposure in stops");
-    render_cmd->add_option("--stats", ro.stats_path, "stats JSON path (default: beside the EXR)");
+        render_cmd->add_option("--seed", seed, "sampler seed (default: the scene's <sampler> seed, else 0)")
+            ->check(kSeed);
+    render_cmd->add_option("--exposure", ro.exposure, "PNG exposure in stops")->check(kExposure);
+    render_cmd->add_option("--stats", ro.stats_path, "stats JSON path (default: beside the image)");
+    render_cmd->add_flag("--mkdir", ro.make_dirs, "create the folders of -o and --stats that do not exist");
     render_cmd->add_option("-D,--define", ro.defines, "override a scene <default>: -D name=value")
         ->allow_extra_args(false);
     render_cmd
@@ -96,9 +123,14 @@ int run(int argc, char** argv) {
     double merge_exposure = 0;
     bool merge_quiet = false;
     merge_cmd->add_option("parts", merge_parts, "partial film EXRs")->required();
-    merge_cmd->add_option("-o,--output", merge_out, "output EXR (a PNG and a stats JSON beside it)")->required();
-    merge_cmd->add_option("--exposure", merge_exposure, "PNG exposure in stops");
-    merge_cmd->add_option("--stats", merge_stats, "stats JSON path (default: beside the EXR)");
+    merge_cmd
+        ->add_option("-o,--output", merge_out,
+                     "output image: NAME.exr (with its PNG preview) or NAME.png; a stats JSON beside it")
+        ->required();
+    merge_cmd->add_option("--exposure", merge_exposure, "PNG exposure in stops")->check(kExposure);
+    merge_cmd->add_option("--stats", merge_stats, "stats JSON path (default: beside the image)");
+    bool merge_mkdir = false;
+    merge_cmd->add_flag("--mkdir", merge_mkdir, "create the folders of -o and --stats that do not exist");
     merge_cmd->add_flag("-q,--quiet", merge_quiet, "no summary");
 
     CLI::App* diff_cmd = app.add_subcommand("diff", "error metrics of an image against a reference (both EXR)");
@@ -159,8 +191,9 @@ int run(int argc, char** argv) {
     cmp_cmd->add_option("--crop", cmp.crops, "also evaluate and show the rectangle x,y,w,h (repeatable)");
     cmp_cmd->add_option("-t,--threads", cmp.threads, "worker threads, the same for every integrator (default: all)")
         ->check(kThreads);
-    auto* cmp_seed_opt = cmp_cmd->add_option("--seed", cmp_seed, "sampler seed (default: the scene's, else 0)");
-    cmp_cmd->add_option("--exposure", cmp.exposure, "PNG exposure in stops");
+    auto* cmp_seed_opt =
+        cmp_cmd->add_option("--seed", cmp_seed, "sampler seed (default: the scene's, else 0)")->check(kSeed);
+    cmp_cmd->add_option("--exposure", cmp.exposure, "PNG exposure in stops")->check(kExposure);
     cmp_cmd
         ->add_option("--convergence-steps", cmp.convergence_steps,
                      "extra renders at budget/2^k, k = N..1, for the convergence plot (0: none)")
@@ -187,7 +220,8 @@ int run(int argc, char** argv) {
             if (seed_opt->count()) ro.seed = seed;
             return cmd_render(ro);
         }
-        if (merge_cmd->parsed()) return cmd_merge(merge_parts, merge_out, merge_exposure, merge_stats, merge_quiet);
+        if (merge_cmd->parsed())
+            return cmd_merge(merge_parts, merge_out, merge_exposure, merge_stats, merge_quiet, merge_mkdir);
         if (cmp_cmd->parsed()) {
             if (cmp_seed_opt->count()) cmp.seed = cmp_seed;
             if (cmp.reference_file.empty() && cmp.reference_spp == 0 && cmp.reference_time == 0)

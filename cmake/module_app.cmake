@@ -7,6 +7,7 @@ set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${PROJECT_SOURCE_
 # line (apps/snell.cpp) and the Python module (python/), run the same code.
 add_library(snell_commands STATIC
   apps/app_common.cpp
+  apps/output_files.cpp
   apps/cmd_render.cpp
   apps/cmd_diff.cpp
   apps/cmd_compare.cpp

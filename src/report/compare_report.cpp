@@ -12,8 +12,15 @@ std::vector<size_t> CompareReport::order_by_psnr() const {
     auto psnr = [&](size_t i) {
         return integrators[i].regions.empty() ? -INFINITY : integrators[i].regions[0].metrics.psnr;
     };
-    std::stable_sort(idx.begin(), idx.end(), [&](size_t a, size_t b) { return psnr(a) > psnr(b); });
+    std::stable_sort(idx.begin(), idx.end(), [&](size_t a, size_t b) {
+        const bool ra = integrators[a].ranked(), rb = integrators[b].ranked();
+        return ra != rb ? ra : ra && psnr(a) > psnr(b);
+    });
     return idx;
+}
+
+size_t CompareReport::ranked_count() const {
+    return size_t(std::count_if(integrators.begin(), integrators.end(), [](const auto& it) { return it.ranked(); }));
 }
 
 namespace {
@@ -80,7 +87,8 @@ nlohmann::json report_json(const CompareReport& r) {
         ji["name"] = it.name;
         ji["type"] = it.type;
         ji["biased"] = it.biased;
-        ji["rank"] = rank[i];
+        ji["rank"] = it.ranked() ? nlohmann::json(rank[i]) : nlohmann::json(nullptr);
+        if (!it.ranked()) ji["unranked"] = it.unranked;
         ji["seconds"] = it.stats.seconds;
         ji["spp_reached"] = it.stats.spp_reached;
         ji["spp_mean"] = it.stats.spp_mean;
@@ -109,7 +117,8 @@ nlohmann::json report_json(const CompareReport& r) {
         j["integrators"].push_back(ji);
     }
     j["order_by_psnr"] = nlohmann::json::array();
-    for (size_t k : order) j["order_by_psnr"].push_back(r.integrators[k].name);
+    for (size_t k : order)
+        if (r.integrators[k].ranked()) j["order_by_psnr"].push_back(r.integrators[k].name);
     return j;
 }
 

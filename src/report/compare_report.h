@@ -37,6 +37,11 @@ struct IntegratorResult {
     std::vector<ConvergencePoint> convergence;    ///< increasing time; the last is the equal-time render
     std::string image_exr, image_png, error_png;  ///< relative to the report folder
     std::vector<std::string> crop_pngs;           ///< enlarged crops, one per crop
+    /// Why the result is shown but not ranked ("interrupted after 0.3 s", "drew no sample"); empty
+    /// when it ran its whole budget and every pixel holds a sample (issue 30: `--time 1e-300` and
+    /// Ctrl-C ranked integrators that drew nothing).
+    std::string unranked;
+    bool ranked() const { return unranked.empty(); }
 };
 
 /// Where the reference came from.
@@ -74,13 +79,17 @@ struct CompareReport {
     ReferenceInfo reference;
     std::vector<IntegratorResult> integrators;  ///< in command-line order
 
-    /// Indices into `integrators` by whole-image PSNR, best (highest) first; ties keep order.
+    /// Indices into `integrators`: the ranked ones by whole-image PSNR, best (highest) first (ties
+    /// keep order), then the unranked ones in command-line order.
     std::vector<size_t> order_by_psnr() const;
+    /// How many results are ranked (the first ones of order_by_psnr()).
+    size_t ranked_count() const;
 };
 
 /// JSON of the metrics (non-finite PSNR, e.g. identical images, becomes null).
 nlohmann::json metrics_json(const ImageMetrics& m);
-/// Every number of the report; integrators carry "rank" (1 = best PSNR).
+/// Every number of the report; integrators carry "rank" (1 = best PSNR; null, with "unranked"
+/// saying why, for a result that is not ranked).
 nlohmann::json report_json(const CompareReport& r);
 
 }  // namespace snell

@@ -106,8 +106,9 @@ std::string html_report(const CompareReport& r) {
         const IntegratorResult& it = r.integrators[k];
         const ImageMetrics& m = it.regions.at(0).metrics;
         h += figure(it.image_png, it.name, dw,
-                    "<b>" + esc(it.name) + "</b>PSNR " + fmt("%.2f", m.psnr) + " dB, relMSE " + fmt("%.4g", m.rel_mse) +
-                        ", " + std::to_string(it.stats.spp_reached) + " spp");
+                    "<b>" + esc(it.name) + "</b>" + (it.ranked() ? "" : "not ranked: " + esc(it.unranked) + "; ") +
+                        "PSNR " + fmt("%.2f", m.psnr) + " dB, relMSE " + fmt("%.4g", m.rel_mse) + ", " +
+                        std::to_string(it.stats.spp_reached) + " spp");
     }
     h += "</div>\n";
 
@@ -158,8 +159,10 @@ std::string html_report(const CompareReport& r) {
         const IntegratorResult& it = r.integrators[order[rank]];
         for (size_t g = 0; g < it.regions.size(); ++g) {
             const ImageMetrics& m = it.regions[g].metrics;
-            h += std::string("<tr") + (rank == 0 ? " class=\"best\"" : "") + "><td>" + std::to_string(rank + 1) +
-                 "</td><td class=\"name\">" + esc(it.name) + "</td><td class=\"name\">" + esc(it.regions[g].region) +
+            const std::string place = it.ranked() ? std::to_string(rank + 1) : "&ndash;";
+            const std::string name = esc(it.name) + (it.ranked() ? "" : " (not ranked: " + esc(it.unranked) + ")");
+            h += std::string("<tr") + (rank == 0 && it.ranked() ? " class=\"best\"" : "") + "><td>" + place +
+                 "</td><td class=\"name\">" + name + "</td><td class=\"name\">" + esc(it.regions[g].region) +
                  "</td><td>" + fmt("%.4g", m.rel_mse) + "</td><td>" + fmt("%.4g", m.rmse) + "</td><td>" +
                  fmt("%.2f", m.psnr) + "</td><td>" + fmt("%.4g", m.smape) + "</td><td>" +
                  std::to_string(it.stats.spp_reached) + "</td><td>" + fmt("%.1f", it.stats.spp_mean) + "</td><td>" +

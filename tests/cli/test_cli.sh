@@ -169,4 +169,41 @@ check "an <include> of a FIFO is an error, not a hang" "[ $rc -eq 1 ] && echo \"
 out=$(timeout 60 "$SNELL" render "$TMP" -o "$TMP/dir.exr" -q 2>&1); rc=$?
 check "a folder as the scene is an error" "[ $rc -eq 1 ]"
 
+
+# 13. Issue 30: output names mean what was typed. -o DIR wrote DIR.exr, -o out.png wrote
+#     out.png.exr, -o /dev/full wrote /dev/full.exr (exit 0), --stats X.exr -o X.exr replaced the
+#     image with the JSON, a missing folder was created, --seed -1 became 2^64-1 and
+#     --exposure nan was accepted.
+mkdir -p "$TMP/outdir"
+for o in "$TMP/outdir" "$TMP/noext" /dev/full "$TMP/x.jpg"; do
+  out=$("$SNELL" render builtin:droplet --spp 1 -q -o "$o" 2>&1); rc=$?
+  check "-o $o is refused with a clear message" "[ $rc -eq 1 ] && echo \"\$out\" | grep -q 'is a folder\|must end in .exr'"
+done
+check "nothing was written for the refused names" "[ ! -e \"$TMP/outdir.exr\" ] && [ ! -e \"$TMP/noext.exr\" ] && [ ! -e /dev/full.exr ]"
+"$SNELL" render builtin:droplet --spp 1 -q -o "$TMP/only.png"; rc=$?
+check "-o NAME.png writes the PNG and its stats alone" "[ $rc -eq 0 ] && [ -s \"$TMP/only.png\" ] && [ -s \"$TMP/only.json\" ] && [ ! -e \"$TMP/only.png.exr\" ] && [ ! -e \"$TMP/only.exr\" ]"
+"$SNELL" render builtin:droplet --spp 1 -q -o "$TMP/both.exr"; rc=$?
+check "-o NAME.exr writes the EXR and its PNG preview" "[ $rc -eq 0 ] && [ -s \"$TMP/both.exr\" ] && [ -s \"$TMP/both.png\" ] && [ -s \"$TMP/both.json\" ]"
+cp "$TMP/both.exr" "$TMP/keep.exr"
+for st in "$TMP/both.exr" "$TMP/../$(basename "$TMP")/both.png"; do
+  out=$("$SNELL" render builtin:droplet --spp 1 -q -o "$TMP/both.exr" --stats "$st" 2>&1); rc=$?
+  check "--stats $st naming an image is refused" "[ $rc -eq 1 ] && echo \"\$out\" | grep -q 'would replace it'"
+done
+check "the refused --stats left the image as it was" "cmp -s \"$TMP/both.exr\" \"$TMP/keep.exr\""
+out=$("$SNELL" render builtin:droplet --spp 1 -q -o "$TMP/missing/dir/x.exr" 2>&1); rc=$?
+check "a missing folder is an error" "[ $rc -eq 1 ] && echo \"\$out\" | grep -q 'does not exist (create it, or pass --mkdir)' && [ ! -e \"$TMP/missing\" ]"
+"$SNELL" render builtin:droplet --spp 1 -q -o "$TMP/made/dir/x.exr" --mkdir; rc=$?
+check "--mkdir creates it" "[ $rc -eq 0 ] && [ -s \"$TMP/made/dir/x.exr\" ]"
+for args in "--seed -1" "--seed 18446744073709551616" "--seed 1e3" "--exposure nan" "--exposure inf" "--exposure 1e9"; do
+  out=$("$SNELL" render builtin:droplet --spp 1 -q -o "$TMP/n.exr" $args 2>&1); rc=$?
+  check "$args exits 2 with a clear message" "[ $rc -eq 2 ] && echo \"\$out\" | grep -q 'expected a seed\|expected an exposure'"
+done
+"$SNELL" render builtin:droplet --spp 1 -q -o "$TMP/s.exr" --seed 18446744073709551615; rc=$?
+check "--seed 2^64-1 is a seed" "[ $rc -eq 0 ] && grep -q '18446744073709551615' \"$TMP/s.json\""
+
+
+# 14. Issue 30: `snell compare --time 1e-300` ranked integrators that drew no sample.
+out=$("$SNELL" compare builtin:droplet --integrators nee,mnee --time 1e-300 --reference-spp 2 --convergence-steps 0 -q -o "$TMP/cmp" 2>&1); rc=$?
+check "compare shows integrators that drew no sample unranked" "[ $rc -eq 0 ] && echo \"\$out\" | grep -q '^-  *nee .*not ranked: drew no sample' && grep -q '\"order_by_psnr\": \[\]' \"$TMP/cmp/report.json\" && grep -q '\"rank\": null' \"$TMP/cmp/report.json\""
+
 exit $fail

@@ -80,7 +80,7 @@ out=$("$SNELL" render "$TMP/pssmlt.xml" --spp 8 -q --crop 0,0,24,18 -o "$TMP/x.e
 check "pssmlt refuses a crop (its chains roam the film)" "[ $rc -eq 1 ] && echo \"\$out\" | grep -q 'pssmlt renders the whole film'"
 
 # 3. Frame numbers in the output name.
-"$SNELL" render "$TMP/path.xml" --spp 1 -q -D frame=7 -o "$TMP/anim/frame_%04d.exr"; rc=$?
+"$SNELL" render "$TMP/path.xml" --spp 1 -q -D frame=7 -o "$TMP/anim/frame_%04d.exr" --mkdir; rc=$?
 check "-o frame_%04d.exr -D frame=7 writes frame_0007.exr" "[ $rc -eq 0 ] && [ -s '$TMP/anim/frame_0007.exr' ]"
 "$SNELL" render "$TMP/path.xml" --spp 1 -q -o "$TMP/frame_%04d.exr" 2>/dev/null; rc=$?
 check "a frame pattern without -D frame is an error" "[ $rc -eq 1 ]"
