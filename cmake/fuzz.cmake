@@ -2,9 +2,10 @@
 # the sanitizer build). ctest's fuzz.loader_corpus runs a bounded, seeded number of cases from the
 # checked-in corpus; `make fuzz` runs long.
 if(SNELL_BUILD_FUZZ)
-  add_executable(fuzz_loader tests/fuzz/fuzz_loader.cpp tests/fuzz/bundle.cpp tests/fuzz/xml_mutator.cpp)
+  add_executable(fuzz_loader tests/fuzz/fuzz_loader.cpp tests/fuzz/bundle.cpp tests/fuzz/xml_mutator.cpp
+                             tests/fuzz/asset_mutator.cpp)
   target_include_directories(fuzz_loader PRIVATE ${PROJECT_SOURCE_DIR}/tests)
-  target_link_libraries(fuzz_loader PRIVATE snell_loader snell_integrators pugixml::pugixml)
+  target_link_libraries(fuzz_loader PRIVATE snell_loader snell_integrators pugixml::pugixml ZLIB::ZLIB)
   target_compile_options(fuzz_loader PRIVATE ${SNELL_WARNINGS} -fsanitize=fuzzer)
   target_link_options(fuzz_loader PRIVATE -fsanitize=fuzzer)
   add_dependencies(snell_test_suite fuzz_loader)

@@ -27,6 +27,7 @@
 
 #include "core/props.h"
 #include "core/rgb_to_spectrum_table.h"
+#include "fuzz/asset_mutator.h"
 #include "fuzz/bundle.h"
 #include "fuzz/xml_mutator.h"
 #include "light/rgb_illuminant_table.h"
@@ -183,8 +184,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 }
 
 // Mutates one file of the bundle: the XML files mostly through their tree (fuzz/xml_mutator.h),
-// sometimes as bytes; meshes and images as bytes. Now and then the whole bundle as bytes, which
-// also renames, splits and merges files.
+// meshes and images half the time through their format (fuzz/asset_mutator.h), the rest as
+// bytes. Now and then the whole bundle as bytes, which also renames, splits and merges files.
 extern "C" size_t LLVMFuzzerCustomMutator(uint8_t* data, size_t size, size_t max_size, unsigned int seed) {
     std::minstd_rand rng(seed);
     if (rng() % 20 == 0) return LLVMFuzzerMutate(data, size, max_size);
@@ -192,7 +193,9 @@ extern "C" size_t LLVMFuzzerCustomMutator(uint8_t* data, size_t size, size_t max
     const bool bundled = size >= 7 && std::string_view(reinterpret_cast<const char*>(data), 7) == "@@file ";
     auto& f = files[rng() % files.size()];
     const bool xml = f.name.ends_with(".xml");
-    if (!(xml && rng() % 8 != 0 && snell::fuzz::mutate_scene_xml(f.data, rng()))) {
+    const bool structured = xml ? rng() % 8 != 0 && snell::fuzz::mutate_scene_xml(f.data, rng())
+                                : rng() % 2 == 0 && snell::fuzz::mutate_asset(f.name, f.data, rng());
+    if (!structured) {
         const size_t budget = max_size > size ? max_size - size : 0;
         const size_t old = f.data.size();
         if (old + budget == 0) return LLVMFuzzerMutate(data, size, max_size);

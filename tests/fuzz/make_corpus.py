@@ -63,6 +63,14 @@ def png(width, height, pixel):
             chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
 
 
+def hdr_rle(width, height, value=100):
+    """Radiance .hdr, new-style run-length scanlines (2, 2, width, then one run per channel)."""
+    head = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n" % (height, width)
+    line = bytes([2, 2, width >> 8, width & 255]) + b"".join(bytes([128 + width, 128 if c == 3 else value])
+                                                            for c in range(4))
+    return head + line * height
+
+
 def vol(res, values):
     """Mitsuba .vol grid, version 3, float32, one channel, bounding box [0, 1]^3."""
     return b"VOL\x03" + struct.pack("<5i", 1, res, res, res, 1) + struct.pack("<6f", 0, 0, 0, 1, 1, 1) + \
@@ -261,6 +269,32 @@ def main():
         <texture type="bitmap" name="irradiance"><string name="filename" value="p.png"/></texture>
     </emitter>""", integrator='<integrator type="bdpt"><integer name="max_depth" value="4"/></integrator>')),
         ("p.png", png(3, 2, lambda x, y: (80 * x, 100 * y, 200)))]
+
+    # Issue 30's features: a run-length .hdr environment map (through the texture reader), JPEG
+    # and EXR textures as emission (area radiance above 1, a spot light's pattern), an include
+    # chain, a serialized mesh in an instanced shape group.
+    corpus["envmap_hdr_rle"] = [("scene.xml", scene(GLASS + """
+    <emitter type="envmap"><string name="filename" value="sky.hdr"/></emitter>""")), ("sky.hdr", hdr_rle(16, 4))]
+    corpus["emission_textures"] = [("scene.xml", scene(GLASS + """
+    <shape type="rectangle">
+        <transform name="to_world"><scale value="0.5"/><translate value="0, 0, 3"/></transform>
+        <emitter type="area"><texture type="bitmap" name="radiance"><string name="filename" value="e.exr"/>
+        </texture></emitter>
+    </shape>
+    <emitter type="spot"><transform name="to_world"><lookat origin="1, 1, 3" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <texture type="bitmap" name="texture"><string name="filename" value="s.jpg"/></texture></emitter>""")),
+        ("e.exr", exr(2, 2, lambda x, y: (10.0, 2.0 + x, 100.0 * y))),
+        ("s.jpg", (HERE / "assets/tiny.jpg").read_bytes())]
+    corpus["include_chain"] = [("scene.xml", scene(LIGHT + """
+    <shape type="sphere"><include filename="a.xml"/></shape>""")),
+        ("a.xml", '<scene version="3.0.0"><bsdf type="twosided"><include filename="b.xml"/></bsdf></scene>\n'),
+        ("b.xml", '<scene version="3.0.0"><bsdf type="diffuse"/></scene>\n')]
+    corpus["serialized_instance"] = [("scene.xml", scene(LIGHT + """
+    <shape type="shapegroup" id="g">
+        <shape type="serialized"><string name="filename" value="two.serialized"/></shape>
+    </shape>
+    <shape type="instance"><ref id="g"/><transform name="to_world"><scale value="0.5"/></transform></shape>""")),
+        ("two.serialized", (full / "meshes/two.serialized").read_bytes())]
 
     # BSDFs, instancing, checkerboard, a volume texture, spectra.
     corpus["bsdfs"] = [("scene.xml", scene(LIGHT + """
