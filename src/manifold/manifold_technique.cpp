@@ -1,6 +1,7 @@
 #include "manifold/manifold_technique.h"
 
 #include <algorithm>
+#include <type_traits>
 
 #include "manifold/all_solutions_estimator.h"
 #include "manifold/fallback_estimator.h"
@@ -116,10 +117,15 @@ SolutionSet ManifoldTechnique::solve(const ManifoldQuery& q, const Light& light,
 }
 
 double ManifoldTechnique::density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain,
-                                  int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
-                                  double lambda) const {
+                                  int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda,
+                                  bool surface_trials, bool* surface_path) const {
+    if (surface_path) *surface_path = false;
     return with_estimator(*m_scene, *m_settings, [&](const auto& estimator) {
-        return estimator.density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
+        // Only the multi-solution estimators weigh their surface solutions apart.
+        if constexpr (std::is_base_of_v<MultiSolutionEstimator, std::decay_t<decltype(estimator)>>)
+            return estimator.density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, surface_trials, surface_path);
+        else
+            return estimator.density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
     });
 }
 

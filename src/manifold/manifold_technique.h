@@ -41,6 +41,10 @@ struct ManifoldQuery {
     int max_k = -1;
     /// connect() measures the work of its walks (ManifoldConnection::work; the allocation's pilot).
     bool meter_work = false;
+    /// The surface trials run (ConnectionAllocation; false, only where surface solutions are
+    /// weighed apart: the straight seed's solution alone, and density() gives the trials' paths
+    /// 0 for the same region).
+    bool surface_trials = true;
 };
 
 /// One light connection from x_b (ManifoldTechnique::connect).
@@ -96,8 +100,12 @@ public:
     /// density for the path Alg. 2 walks to, c times it for another path if Alg. 2's walk
     /// converges (to the other), and 0 if it does not converge. A path through an emissive
     /// interface is the straight seed's alone: Alg. 2 whenever the straight seed is walked.
+    /// Where surface solutions are weighed apart (MneeSettings::splits_surface_solutions),
+    /// `surface_trials` false (a region without them) gives the paths only the trials reach 0,
+    /// and `surface_path` tells whether the path is one of those.
     double density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain, int k,
-                   const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda) const;
+                   const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda,
+                   bool surface_trials = true, bool* surface_path = nullptr) const;
 
 private:
     const Scene* m_scene;

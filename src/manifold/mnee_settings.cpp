@@ -97,12 +97,25 @@ MneeSettings MneeSettings::from_props(const Props& p) {
         p.raise_param("allocation",
                       "allocation=learned may leave a region without walks, and the biased mode's outlier rule then "
                       "drops its refracted light: use allocation=fixed");
+    s.trial_allocation = p.get_choice("trial_allocation", s.trial_allocation,
+                                      {{"learned", TrialAllocation::Learned},
+                                       {"always", TrialAllocation::Always},
+                                       {"never", TrialAllocation::Never}});
+    if (p.has("trial_allocation") && !(s.learned_allocation && s.splits_surface_solutions()))
+        p.raise_param("trial_allocation",
+                      "trial_allocation needs allocation=learned and surface solutions weighed apart "
+                      "(solutions=unbiased or all, seeding=straight+surface, surface_weight < 1)");
     s.pilot_spp = int(p.get_int("pilot_spp", s.pilot_spp));
     if (s.pilot_spp < 1 || s.pilot_spp > 4096) p.raise_param("pilot_spp", "pilot_spp must lie in [1, 4096]");
     s.allocation_block = int(p.get_int("allocation_block", s.allocation_block));
     if (s.allocation_block < 1 || s.allocation_block > 4096)
         p.raise_param("allocation_block", "allocation_block must lie in [1, 4096]");
     return s;
+}
+
+bool MneeSettings::splits_surface_solutions() const {
+    return (solutions == MneeSolutions::Unbiased || solutions == MneeSolutions::All) &&
+           seeding == MneeSeeding::StraightAndSurface && surface_weight < 1;
 }
 
 }  // namespace snell

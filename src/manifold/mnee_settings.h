@@ -34,6 +34,8 @@ enum class MneeSolutions { One, All, Unbiased, Fallback, Keyed };
 /// (surface_side) where a surface seed starts: at x_b (SMS's seeds), at the light point (traced
 /// through the glass from the light), or either with probability 1/2.
 enum class SurfaceSide { Receiver, Light, Both };
+/// (trial_allocation) which image regions run the surface trials (MneeSettings).
+enum class TrialAllocation { Learned, Always, Never };
 
 struct MneeSettings {
     int max_vertices = 8;           ///< (max_vertices) refractive vertices collected on a seed path
@@ -102,9 +104,21 @@ struct MneeSettings {
     /// in the biased mode, whose outlier rule needs every region's walks, with solutions=keyed,
     /// and inside pssmlt and erpt, which have no pixels to learn per).
     bool learned_allocation = false;
+    /// (trial_allocation) with the learned allocation and surface solutions weighed apart
+    /// (splits_surface_solutions()): `learned`, each region also chooses whether its connections
+    /// run the surface trials (on a height field they cost more than half of MNEE's time and
+    /// rarely find a solution the straight seed misses); `always`: every region runs them;
+    /// `never`: none does (their paths are left to BSDF sampling, as Alg. 2 leaves them).
+    TrialAllocation trial_allocation = TrialAllocation::Learned;
     int pilot_spp = 4;          ///< (pilot_spp) samples per pixel the allocation learns from, at q
     int allocation_block = 16;  ///< (allocation_block) pixels on a side of a region
     WalkSettings walk;          ///< (max_iterations, threshold, allow_error_increase, projection, ...)
+
+    /// Whether the surface trials' solutions are a technique apart from the straight seed's in
+    /// MIS (both kinds of seeds, surface_weight < 1, solutions all or unbiased): where the
+    /// straight seed is clear they weigh c times their density, and a region may then do without
+    /// them (trial_allocation), their density 0 there.
+    bool splits_surface_solutions() const;
 
     /// The scene's `mnee` parameters (docs/integrators.md), with the scene defaults: the
     /// unbiased estimator with both kinds of seeds and the learned allocation. A bad value or a

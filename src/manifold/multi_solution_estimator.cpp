@@ -4,12 +4,11 @@
 #include "manifold/seed_path.h"
 #include "manifold/surface_seed.h"
 #include "manifold/walk_counters.h"
+#include "manifold/work_meter.h"
 
 namespace snell {
 
-bool MultiSolutionEstimator::weighs_surface_solutions() const {
-    return m_settings->seeding == MneeSeeding::StraightAndSurface && m_settings->surface_weight < 1;
-}
+bool MultiSolutionEstimator::weighs_surface_solutions() const { return m_settings->splits_surface_solutions(); }
 
 void MultiSolutionEstimator::solve(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light,
                                    double pmf, const LightPoint& lp, const std::vector<ManifoldVertex>& seed,
@@ -26,6 +25,9 @@ void MultiSolutionEstimator::solve(const ManifoldQuery& q, const BSDFContext& ct
     // solution at all: a shadow), the trials would only fail too, at the cost of full walks.
     const bool weighted = q.straight_seed && weighs_surface_solutions();
     if (weighted && !straight_converged) return;
+    // A region without surface trials (ConnectionAllocation) leaves their paths to BSDF sampling:
+    // density() gives them 0 there, as it is told.
+    if (!q.surface_trials && weighs_surface_solutions()) return;
     // There, too, only the paths Alg. 2 can tell apart are the technique's: those crossing the
     // straight seed's shapes in its order, refracting at each (density() gives the others 0,
     // BSDF sampling's). A trial that finds another one has failed.
@@ -37,8 +39,10 @@ void MultiSolutionEstimator::solve(const ManifoldQuery& q, const BSDFContext& ct
         return false;
     };
     PCG32 rng = trial_stream(sampler);
+    const double w0 = q.meter_work ? work_so_far() : 0.0;
     for (const Shape* caster : manifold_casters(*m_scene, ctx.hero()))
         trials_on(q, ctx, slot, light, pmf, lp, *caster, rng, draws, max_k, foreign, before, out);
+    if (q.meter_work) out.trial_work += work_so_far() - w0;
     // The solutions the straight seed does not walk to (all found by surface seeds; the straight
     // seed's own is never added twice) weigh c times their density in MIS, as density() answers
     // for their BSDF-sampled copies.
@@ -50,7 +54,9 @@ void MultiSolutionEstimator::solve(const ManifoldQuery& q, const BSDFContext& ct
 
 double MultiSolutionEstimator::density(const SurfaceInteraction& xb, const BSDF& bsdf_b,
                                        const SurfaceInteraction* chain, int k, const Light& light, double pmf,
-                                       const Vec3& xc, const Vec3& nc, double lambda) const {
+                                       const Vec3& xc, const Vec3& nc, double lambda, bool surface_trials,
+                                       bool* surface_path) const {
+    if (surface_path) *surface_path = false;
     // With surface seeds alone, a path through an emissive interface is no one's: the solution
     // density gives 0.
     if (walks_straight_seed() && passes_emitter(chain, k))
@@ -60,12 +66,18 @@ double MultiSolutionEstimator::density(const SurfaceInteraction& xb, const BSDF&
     // path its walk reaches (the same value), c times the solution density for another where
     // that walk converges (to the other one), 0 where it does not. solve() counts the same paths
     // with the same weights.
+    // The paths only the surface trials reach (behind a blocker, or beside a converged straight
+    // walk that reaches another path) are theirs: 0 where the region runs none.
     const StraightSeed seed = trace_straight_seed(*m_scene, xb, xc, lambda, *m_settings);
-    if (seed.status != SeedStatus::Refractive)
-        return every_solution_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
+    if (seed.status != SeedStatus::Refractive) {
+        if (surface_path) *surface_path = true;
+        return surface_trials ? every_solution_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed) : 0.0;
+    }
     bool converged = false;
     const double reached = alg2_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed, &converged);
     if (reached > 0 || !converged) return reached;
+    if (surface_path) *surface_path = true;
+    if (!surface_trials) return 0.0;
     return m_settings->surface_weight * every_solution_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
 }
 

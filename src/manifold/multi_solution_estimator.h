@@ -18,9 +18,13 @@ public:
     /// The solution density; with surface_weight c < 1, where the straight seed is clear, Alg. 2
     /// for the path its walk reaches, c times the solution density for another where that walk
     /// converges (to the other), 0 where it does not. A path through an emissive interface is
-    /// the straight seed's alone (Alg. 2) whenever the straight seed is walked.
+    /// the straight seed's alone (Alg. 2) whenever the straight seed is walked. With surface
+    /// solutions weighed apart, `surface_trials` false gives the surface trials' paths 0 (a
+    /// region without them, ManifoldQuery::surface_trials) and `surface_path` tells whether the
+    /// path is theirs.
     double density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain, int k,
-                   const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda) const;
+                   const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda,
+                   bool surface_trials = true, bool* surface_path = nullptr) const;
 
 protected:
     /// The estimator's use of the surface trials on one caster.

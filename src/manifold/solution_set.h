@@ -29,6 +29,9 @@ struct ManifoldSolution {
 /// What one light connection yields.
 struct SolutionSet {
     std::vector<ManifoldSolution> solutions;
+    /// With ManifoldQuery::meter_work: the work of the surface trials among the walks (what a
+    /// region without them saves; work_meter.h).
+    double trial_work = 0;
 };
 
 /// Tolerance of same_solution, relative to the segments next to each vertex.

@@ -33,6 +33,8 @@ StatHistogram walk_end_alg1{"mnee.walk_end_alg1", "Alg. 1 walks by how they ende
 StatHistogram walk_end_alg2{"mnee.walk_end_alg2", "Alg. 2 walks by how they ended (WalkEnd)", uint32_t(WalkEnd::Count)};
 StatHistogram allocation_regions{"mnee.allocation_regions",
                                  "image regions by the connect probability they chose (0, 1/64 .. 1/2, 1)", 8};
+StatCounter allocation_regions_without_trials{"mnee.allocation_regions_without_trials",
+                                              "image regions connecting without surface trials"};
 
 const char* walk_end_name(WalkEnd e) {
     switch (e) {

@@ -55,6 +55,8 @@ extern StatHistogram walk_end_alg2;        ///< "mnee.walk_end_alg2": Alg. 2 wal
 /// "mnee.allocation_regions": image regions by the connect probability they chose
 /// (ConnectionAllocation's candidates, bin j: kConnectCandidates[j]).
 extern StatHistogram allocation_regions;
+/// "mnee.allocation_regions_without_trials": regions with q > 0 that run no surface trials.
+extern StatCounter allocation_regions_without_trials;
 
 /// Counts one ended walk of Alg. 1 (`alg2` false) or Alg. 2.
 inline void count_walk_end(bool alg2, WalkEnd e) { (alg2 ? walk_end_alg2 : walk_end_alg1).add(uint32_t(e)); }

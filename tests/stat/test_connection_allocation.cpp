@@ -110,6 +110,53 @@ TEST(ConnectionAllocation, RegionsChooseTheLeastVarianceTimesWork) {
     EXPECT_EQ(h[0], 1u);
 }
 
+namespace {
+
+// n pilot samples (q_pilot = 1) of pixel (x, y) whose connections walk the straight seed (a
+// path BSDF sampling hardly finds, p_m = 1, p_other = 10^-3: the walks pay) and run surface trials of work
+// `trial_work`, which find, when `p_surface` > 0 (or `only_trials`), a second path of value 1
+// that BSDF sampling finds with density p_surface (0 with only_trials).
+void feed_trials(ConnectionAllocation& a, int x, int y, int n, double p_surface, bool only_trials, double trial_work) {
+    for (int i = 0; i < n; ++i) {
+        PilotSample s;
+        s.add_connection(1.0, 1.0, 1e-3, 1.0);
+        if (p_surface > 0 || only_trials)
+            s.add_connection(1.0, 1.0, only_trials ? 0.0 : p_surface, 1.0, /*surface=*/true);
+        s.work_connect = 1.0 + trial_work;
+        s.work_trials = trial_work;
+        a.add(x, y, s, 1.0 + 0.5 * (i % 2), s.work_connect + 1.0);
+    }
+}
+
+}  // namespace
+
+// The surface trials run where their paths would otherwise be BSDF sampling's rare finds, and
+// not where they find nothing the straight seed misses (a height field); never where the pilot
+// saw light only they produce. Without the choice every region runs them.
+TEST(ConnectionAllocation, RegionsRunSurfaceTrialsWhereTheyPay) {
+    for (bool choose : {true, false}) {
+        ConnectionAllocation a(48, 16, 0, 0, 16, 1.0, choose);
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x) {
+                feed_trials(a, x, y, 4, 0.0, false, 20);                  // trials find nothing
+                feed_trials(a, x + 16, y, 4, 1e-3, false, 20);            // a post-fold path
+                feed_trials(a, x + 32, y, 4, 0.0, x == 3 && y == 5, 20);  // ... one only theirs
+            }
+        a.fit();
+        EXPECT_GT(a.q(5, 5), 0.0);
+        EXPECT_EQ(a.surface_trials(5, 5), !choose) << "choose " << choose;
+        EXPECT_TRUE(a.surface_trials(20, 5));
+        EXPECT_TRUE(a.surface_trials(40, 5));
+        EXPECT_EQ(a.regions_without_trials(), choose ? 1u : 0u);
+    }
+    // trial_allocation=never: no region runs them, whatever the pilot saw.
+    ConnectionAllocation never(16, 16, 0, 0, 16, 1.0, false, false);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) feed_trials(never, x, y, 4, 1e-3, false, 20);
+    never.fit();
+    EXPECT_FALSE(never.surface_trials(5, 5));
+}
+
 // Regions are squares of the full film: a crop chooses as the full film does in every region
 // it holds whole, from the same samples.
 TEST(ConnectionAllocation, ACropChoosesAsTheFullFilm) {
@@ -256,7 +303,7 @@ void expect_estimators_agree(SceneOf scene, const std::vector<std::pair<std::str
     for (const auto& [what, extra] : estimators) {
         LoadedScene mnee = load_xml(scene(extra), {{"integrator", "mnee"}});
         LoadedScene brighter = load_xml(scene(extra), {{"integrator", "mnee"}, {"radiance", "3.09"}});
-        const int spp = what == "learned allocation" ? learned_spp : 64;
+        const int spp = what.starts_with("learned allocation") ? learned_spp : 64;
         RenderOptions opt;
         opt.spp = 4;
         opt.progress = false;
@@ -282,6 +329,12 @@ TEST(ConnectionAllocation, EveryEstimatorAgreesWithNeeOnABallOnAPlane) {
                                 {"fallback", std::string(R"(<string name="solutions" value="fallback"/>)") + fixed},
                                 {"keyed", std::string(R"(<string name="solutions" value="keyed"/>)") + fixed},
                                 {"learned allocation", kLearned},
+                                // Surface weight 0.9: the trials' paths weigh nearly their full
+                                // density, so a density that forgot the regions without them
+                                // would lose most of the post-fold light.
+                                {"learned allocation, no surface trials",
+                                 std::string(kLearned) + R"(<string name="trial_allocation" value="never"/>)" +
+                                     R"(<float name="surface_weight" value="0.9"/>)"},
                             },
                             64);
 }

@@ -66,7 +66,7 @@ MneeSettings fallback_settings() {
 
 // One light sample's solutions (an empty set when the straight seed does not refract).
 SolutionSet solve(const Scene& scene, const SurfaceInteraction& xb, const MneeSettings& st, Sampler& smp,
-                  LightPoint* lp_out = nullptr) {
+                  LightPoint* lp_out = nullptr, bool surface_trials = true) {
     const Light& light = *scene.lights()[0];
     const SampledWavelengths wl = SampledWavelengths::single(550);
     const auto ls = light.sample_li({xb.p, xb.n}, smp.next_2d(), wl);
@@ -82,7 +82,9 @@ SolutionSet solve(const Scene& scene, const SurfaceInteraction& xb, const MneeSe
                           MediumStack(),
                           false,
                           /*straight_seed=*/status == SeedStatus::Refractive};
-    return ManifoldTechnique(scene, st).solve(q, light, 1.0, lp, chain, smp);
+    ManifoldQuery query = q;
+    query.surface_trials = surface_trials;
+    return ManifoldTechnique(scene, st).solve(query, light, 1.0, lp, chain, smp);
 }
 
 SolutionSet solve(const Scene& scene, const SurfaceInteraction& xb, const MneeSettings& st, uint64_t seed) {
@@ -347,11 +349,28 @@ TEST(ManifoldSolutions, SurfaceWeightScalesTheOtherSolutionsAlikeInSolveAndDensi
             const double d = density_of(technique, scene, xb, path, lp), d_full = density_of(sms, scene, xb, path, lp);
             EXPECT_NEAR(d, s.density, 1e-5 * s.density) << (s.from_surface ? "surface" : "straight") << " solution";
             EXPECT_NEAR(d, (s.from_surface ? 0.03 : 1.0) * d_full, 1e-9 * d_full);
+            // A region without surface trials (ConnectionAllocation) gives their paths 0, and
+            // density() says which paths are theirs.
+            bool surface_path = !s.from_surface;
+            const double d_none = technique.density(xb, *xb.bsdf(), path.data(), int(path.size()), *scene.lights()[0],
+                                                    1.0, lp.p, lp.n, 550, /*surface_trials=*/false, &surface_path);
+            EXPECT_EQ(surface_path, s.from_surface);
+            EXPECT_EQ(d_none, s.from_surface ? 0.0 : d);
             ++(s.from_surface ? surface : straight);
         }
     }
     EXPECT_GE(straight, 100);
     EXPECT_GE(surface, 20);  // post-fold solutions found by the surface trials
+    // ... and solve() there counts the straight seed's solution alone.
+    int alone = 0;
+    for (int n = 0; n < 300; ++n) {
+        LightPoint lp;
+        for (const ManifoldSolution& s : solve(scene, xb, st, smp, &lp, /*surface_trials=*/false).solutions) {
+            EXPECT_FALSE(s.from_surface);
+            ++alone;
+        }
+    }
+    EXPECT_GE(alone, 10);
 
     // Where the straight walk does not converge, the surface solutions are BSDF sampling's:
     // density() gives them 0 (not c times the density) and solve() counts none. At this receiver

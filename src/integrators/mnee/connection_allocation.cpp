@@ -13,7 +13,7 @@ double finite_or_zero(double v) { return std::isfinite(v) ? v : 0.0; }
 
 }  // namespace
 
-void PilotSample::add_path(double f, double p_m, double p_other, double q_pilot) {
+void PilotSample::add_path(double f, double p_m, double p_other, double q_pilot, bool surface) {
     if (!(f > 0) || !std::isfinite(f) || !(p_m > 0)) return;
     if (!(p_other > 0)) needs_mnee = true;
     // Every pilot sample of every technique estimates the integral of g over the refracted
@@ -25,31 +25,39 @@ void PilotSample::add_path(double f, double p_m, double p_other, double q_pilot)
     for (int j = 0; j < kCandidateCount; ++j) {
         const double mix = kConnectCandidates[size_t(j)] * p_m + p_other;
         if (mix > 0) m2[size_t(j)] += finite_or_zero(f * f / (mix * pilot));
+        // Without surface trials their paths have MNEE density 0.
+        const double without = (surface ? 0.0 : kConnectCandidates[size_t(j)] * p_m) + p_other;
+        if (without > 0) m2_no_trials[size_t(j)] += finite_or_zero(f * f / (without * pilot));
     }
+    if (surface && !(p_other > 0)) needs_trials = true;
     m2_pilot += finite_or_zero(f * f / (pilot * pilot));
 }
 
-void PilotSample::add_connection(double value, double p_m, double p_other, double q_pilot) {
-    add_path(value * p_m, p_m, p_other, q_pilot);
+void PilotSample::add_connection(double value, double p_m, double p_other, double q_pilot, bool surface) {
+    add_path(value * p_m, p_m, p_other, q_pilot, surface);
 }
 
-void PilotSample::add_other(double value, double p_t, double p_m, double p_other, double q_pilot) {
-    add_path(value * p_t, p_m, p_other, q_pilot);
+void PilotSample::add_other(double value, double p_t, double p_m, double p_other, double q_pilot, bool surface) {
+    add_path(value * p_t, p_m, p_other, q_pilot, surface);
 }
 
-ConnectionAllocation::ConnectionAllocation(int width, int height, int crop_x, int crop_y, int block, double q_pilot)
+ConnectionAllocation::ConnectionAllocation(int width, int height, int crop_x, int crop_y, int block, double q_pilot,
+                                           bool choose_trials, bool trials_everywhere)
     : m_width(width),
       m_height(height),
       m_crop_x(crop_x),
       m_crop_y(crop_y),
       m_block(std::max(1, block)),
       m_q_pilot(q_pilot),
+      m_choose_trials(choose_trials),
+      m_trials_everywhere(trials_everywhere),
       m_pixels(size_t(std::max(0, width)) * size_t(std::max(0, height))) {
     m_rx0 = floor_div(crop_x, m_block);
     m_ry0 = floor_div(crop_y, m_block);
     m_rw = floor_div(crop_x + width - 1, m_block) - m_rx0 + 1;
     m_rh = floor_div(crop_y + height - 1, m_block) - m_ry0 + 1;
     m_choice.assign(size_t(std::max(0, m_rw)) * size_t(std::max(0, m_rh)), int8_t(-1));
+    m_trials.assign(m_choice.size(), int8_t(1));
 }
 
 int ConnectionAllocation::region_of(int x, int y) const {
@@ -68,21 +76,32 @@ double ConnectionAllocation::q(int x, int y) const {
     return c < 0 ? m_q_pilot : kConnectCandidates[size_t(c)];
 }
 
+bool ConnectionAllocation::surface_trials(int x, int y) const {
+    const int r = region_of(x, y);
+    return !m_fitted || r < 0 || m_trials[size_t(r)] != 0;
+}
+
 void ConnectionAllocation::add(int x, int y, const PilotSample& s, double value, double work) {
     const int lx = x - m_crop_x, ly = y - m_crop_y;
     if (m_fitted || lx < 0 || ly < 0 || lx >= m_width || ly >= m_height) return;
     PixelStats& p = m_pixels[size_t(ly) * size_t(m_width) + size_t(lx)];
     bool finite = std::isfinite(value) && std::isfinite(s.m2_pilot);
     for (double m : s.m2) finite = finite && std::isfinite(m);
+    for (double m : s.m2_no_trials) finite = finite && std::isfinite(m);
     if (!finite) return;  // the film drops such a sample too
-    for (int j = 0; j < kCandidateCount; ++j) p.m2[size_t(j)] += s.m2[size_t(j)];
+    for (int j = 0; j < kCandidateCount; ++j) {
+        p.m2[size_t(j)] += s.m2[size_t(j)];
+        p.m2_no_trials[size_t(j)] += s.m2_no_trials[size_t(j)];
+    }
     p.m2_pilot += s.m2_pilot;
     p.sum += value;
     p.sum2 += value * value;
     p.work += work;
     p.work_connect += s.work_connect;
+    p.work_trials += s.work_trials;
     p.work_density += s.work_density;
     p.needs_mnee = p.needs_mnee || s.needs_mnee;
+    p.needs_trials = p.needs_trials || s.needs_trials;
     ++p.n;
 }
 
@@ -96,7 +115,7 @@ void ConnectionAllocation::widen_to_regions(int& x0, int& y0, int& x1, int& y1) 
 }
 
 namespace {
-constexpr size_t kPilotValues = kCandidateCount + 8;  // PixelStats as doubles
+constexpr size_t kPilotValues = 2 * kCandidateCount + 10;  // PixelStats as doubles
 }  // namespace
 
 std::vector<double> ConnectionAllocation::pilot_state() const {
@@ -104,8 +123,11 @@ std::vector<double> ConnectionAllocation::pilot_state() const {
     for (size_t i = 0; i < m_pixels.size(); ++i) {
         const PixelStats& p = m_pixels[i];
         double* d = v.data() + i * kPilotValues;
-        for (int j = 0; j < kCandidateCount; ++j) d[j] = p.m2[size_t(j)];
-        d += kCandidateCount;
+        for (int j = 0; j < kCandidateCount; ++j) {
+            d[j] = p.m2[size_t(j)];
+            d[kCandidateCount + j] = p.m2_no_trials[size_t(j)];
+        }
+        d += 2 * kCandidateCount;
         d[0] = p.m2_pilot;
         d[1] = p.sum;
         d[2] = p.sum2;
@@ -114,6 +136,8 @@ std::vector<double> ConnectionAllocation::pilot_state() const {
         d[5] = p.work_density;
         d[6] = double(p.n);
         d[7] = p.needs_mnee ? 1.0 : 0.0;
+        d[8] = p.work_trials;
+        d[9] = p.needs_trials ? 1.0 : 0.0;
     }
     return v;
 }
@@ -123,8 +147,11 @@ void ConnectionAllocation::set_pilot_state(const std::vector<double>& v) {
     for (size_t i = 0; i < m_pixels.size(); ++i) {
         PixelStats& p = m_pixels[i];
         const double* d = v.data() + i * kPilotValues;
-        for (int j = 0; j < kCandidateCount; ++j) p.m2[size_t(j)] = d[j];
-        d += kCandidateCount;
+        for (int j = 0; j < kCandidateCount; ++j) {
+            p.m2[size_t(j)] = d[j];
+            p.m2_no_trials[size_t(j)] = d[kCandidateCount + j];
+        }
+        d += 2 * kCandidateCount;
         p.m2_pilot = d[0];
         p.sum = d[1];
         p.sum2 = d[2];
@@ -133,16 +160,23 @@ void ConnectionAllocation::set_pilot_state(const std::vector<double>& v) {
         p.work_density = d[5];
         p.n = uint32_t(d[6]);
         p.needs_mnee = d[7] > 0;
+        p.work_trials = d[8];
+        p.needs_trials = d[9] > 0;
     }
 }
 
 void ConnectionAllocation::fit() {
     if (m_fitted) return;
     const size_t regions = m_choice.size();
-    std::vector<std::array<double, kCandidateCount>> variance(regions), work(regions);
-    std::vector<bool> needs_mnee(regions, false);
-    for (auto& v : variance) v.fill(0.0);
-    for (auto& w : work) w.fill(0.0);
+    // Candidates: (with trials, q_j) then (without, q_j); with first, so that a tie keeps them.
+    constexpr int kKinds = 2;
+    using PerCandidate = std::array<std::array<double, kCandidateCount>, kKinds>;
+    std::vector<PerCandidate> variance(regions), work(regions);
+    std::vector<bool> needs_mnee(regions, false), needs_trials(regions, false);
+    for (auto& v : variance)
+        for (auto& a : v) a.fill(0.0);
+    for (auto& w : work)
+        for (auto& a : w) a.fill(0.0);
     // Raster order: each region sums its own pixels row by row, in a crop as in the full film.
     for (int ly = 0; ly < m_height; ++ly)
         for (int lx = 0; lx < m_width; ++lx) {
@@ -155,32 +189,57 @@ void ConnectionAllocation::fit() {
             const double mean2 = p.n > 1 ? (p.sum * p.sum - p.sum2) / (n * (n - 1)) : 0.0;
             const double rest = (p.sum2 - p.m2_pilot) / n - mean2;
             const double work_rest = (p.work - p.work_connect - p.work_density) / n;
-            for (int j = 0; j < kCandidateCount; ++j) {
-                const double q = kConnectCandidates[size_t(j)];
-                variance[r][size_t(j)] += rest + p.m2[size_t(j)] / n;
-                work[r][size_t(j)] += work_rest + (q / m_q_pilot * p.work_connect + (q > 0 ? p.work_density : 0.0)) / n;
+            for (int kind = 0; kind < kKinds; ++kind) {
+                const auto& m2 = kind == 0 ? p.m2 : p.m2_no_trials;
+                const double connect = p.work_connect - (kind == 0 ? 0.0 : p.work_trials);
+                for (int j = 0; j < kCandidateCount; ++j) {
+                    const double q = kConnectCandidates[size_t(j)];
+                    variance[r][size_t(kind)][size_t(j)] += rest + m2[size_t(j)] / n;
+                    work[r][size_t(kind)][size_t(j)] +=
+                        work_rest + (q / m_q_pilot * connect + (q > 0 ? p.work_density : 0.0)) / n;
+                }
             }
             needs_mnee[r] = needs_mnee[r] || p.needs_mnee;
+            needs_trials[r] = needs_trials[r] || p.needs_trials;
         }
     for (size_t r = 0; r < regions; ++r) {
-        const auto& v = variance[r];
-        const double vmax = *std::max_element(v.begin(), v.end());
-        int best = -1;
+        // The kinds this allocation may choose: with trials unless told never, without where
+        // told so or where it chooses, unless the pilot saw light only the trials produce.
+        const bool with = m_trials_everywhere || m_choose_trials;
+        const bool without = !m_trials_everywhere || (m_choose_trials && !needs_trials[r]);
+        double vmax = 0;
+        for (int kind = 0; kind < kKinds; ++kind)
+            if (kind == 0 ? with : without)
+                for (double v : variance[r][size_t(kind)]) vmax = std::max(vmax, v);
+        int best = -1, best_kind = 0;
         double best_cost = 0;
-        for (int j = needs_mnee[r] ? 1 : 0; j < kCandidateCount; ++j) {
-            // Variance x work is the inverse efficiency; where the pilot saw no variance at all
-            // (a black region) the work alone decides.
-            const double var = vmax > 0 ? std::max(v[size_t(j)], 1e-9 * vmax) : 1.0;
-            const double cost = var * work[r][size_t(j)];
-            if (best < 0 || cost < best_cost) {
-                best = j;
-                best_cost = cost;
+        for (int kind = 0; kind < kKinds; ++kind) {
+            if (!(kind == 0 ? with : without)) continue;
+            for (int j = needs_mnee[r] ? 1 : 0; j < kCandidateCount; ++j) {
+                // Variance x work is the inverse efficiency; where the pilot saw no variance at
+                // all (a black region) the work alone decides.
+                const double v = variance[r][size_t(kind)][size_t(j)];
+                const double var = vmax > 0 ? std::max(v, 1e-9 * vmax) : 1.0;
+                const double cost = var * work[r][size_t(kind)][size_t(j)];
+                if (best < 0 || cost < best_cost) {
+                    best = j;
+                    best_kind = kind;
+                    best_cost = cost;
+                }
             }
         }
         m_choice[r] = int8_t(best);
+        // q = 0 makes no connection: whether it would run trials does not matter.
+        m_trials[r] = int8_t(best_kind == 0 ? 1 : 0);
     }
     m_fitted = true;
     m_pixels = {};
+}
+
+uint64_t ConnectionAllocation::regions_without_trials() const {
+    uint64_t n = 0;
+    for (size_t r = 0; r < m_choice.size(); ++r) n += m_choice[r] > 0 && m_trials[r] == 0;
+    return n;
 }
 
 std::array<uint64_t, kCandidateCount> ConnectionAllocation::histogram() const {

@@ -12,6 +12,12 @@
 // sample's work. Each region then takes the q that minimises its variance
 // times its work. q = 0 leaves a region's refracted light to BSDF sampling alone (`nee`'s
 // estimator there), and is ruled out where the pilot saw light only MNEE produces.
+// Where the surface trials' solutions are a technique apart in MIS (surface_weight < 1), each
+// region also chooses whether its connections run them: without, their paths' MNEE density is 0
+// (BSDF sampling's alone), so the pilot's surface paths are judged at density 0 and their
+// work is left out. On a height field the trials cost more than the rest of a connection and
+// rarely find a path the straight seed misses; on a ball on a plane they carry its post-fold
+// light.
 //
 // Unbiased for any choice: a connection counts 1 / q and MIS weighs MNEE's density as q p_mnee
 // (MneeIntegrator), and the choice depends only on the pilot's samples, which are counted too.
@@ -38,22 +44,27 @@ struct PilotSample {
     /// int f^2 / (q p_m + p_other), and each path estimates it divided by the pilot's own
     /// combined density q_pilot p_m + p_other.
     std::array<double, kCandidateCount> m2{};
-    double m2_pilot = 0;      ///< the squares of the paths' contributions under the pilot's q
-    double work_connect = 0;  ///< work of the MNEE connections made (at the pilot's q)
-    double work_density = 0;  ///< work of MNEE's densities for the other techniques' MIS weights
-    bool needs_mnee = false;  ///< light that only MNEE produces here: q = 0 would lose it
+    /// The same without surface trials: the surface trials' paths at MNEE density 0.
+    std::array<double, kCandidateCount> m2_no_trials{};
+    double m2_pilot = 0;        ///< the squares of the paths' contributions under the pilot's q
+    double work_connect = 0;    ///< work of the MNEE connections made (at the pilot's q)
+    double work_trials = 0;     ///< ... of which their surface trials
+    double work_density = 0;    ///< work of MNEE's densities for the other techniques' MIS weights
+    bool needs_mnee = false;    ///< light that only MNEE produces here: q = 0 would lose it
+    bool needs_trials = false;  ///< light that only the surface trials produce here
 
     /// A connection made with probability q_pilot: `value` its contribution before MIS and 1 / q
     /// (mean over wavelengths, path throughput included), p_m MNEE's density of the path and
-    /// p_other the sum of the other techniques' densities of it.
-    void add_connection(double value, double p_m, double p_other, double q_pilot);
+    /// p_other the sum of the other techniques' densities of it; `surface`: a path only the
+    /// surface trials reach.
+    void add_connection(double value, double p_m, double p_other, double q_pilot, bool surface = false);
     /// A path sampled by another technique with density p_t: `value` its contribution before
-    /// MIS; p_m and p_other as above (p_other includes p_t).
-    void add_other(double value, double p_t, double p_m, double p_other, double q_pilot);
+    /// MIS; p_m, p_other and `surface` as above (p_other includes p_t).
+    void add_other(double value, double p_t, double p_m, double p_other, double q_pilot, bool surface = false);
 
 private:
     /// A path of integrand f (path throughput included) found by any technique.
-    void add_path(double f, double p_m, double p_other, double q_pilot);
+    void add_path(double f, double p_m, double p_other, double q_pilot, bool surface);
 };
 
 class ConnectionAllocation {
@@ -61,16 +72,22 @@ public:
     /// The pilot renders at q_pilot. Pixels are the film window's (width x height at offset
     /// crop_x, crop_y of the full film); regions are `block` x `block` squares of the full film,
     /// so a crop's regions are the full render's where they lie wholly inside it.
-    ConnectionAllocation(int width, int height, int crop_x, int crop_y, int block, double q_pilot);
+    /// `choose_trials`: regions also choose whether to run the surface trials (else they all do;
+    /// `trials_everywhere` false: none does).
+    ConnectionAllocation(int width, int height, int crop_x, int crop_y, int block, double q_pilot,
+                         bool choose_trials = false, bool trials_everywhere = true);
 
     bool learning() const { return !m_fitted; }
     double q_pilot() const { return m_q_pilot; }
     /// q for a sample of full-film pixel (x, y): the pilot's while learning, then its region's.
     double q(int x, int y) const;
+    /// Whether a sample of full-film pixel (x, y) runs the surface trials: always while learning.
+    bool surface_trials(int x, int y) const;
     /// One pilot sample of full-film pixel (x, y): what it recorded, its value (mean over
     /// wavelengths) and its whole work. Only the thread rendering the pixel may call this.
     void add(int x, int y, const PilotSample& s, double value, double work);
-    /// Ends the pilot: every region takes the candidate of least variance x work.
+    /// Ends the pilot: every region takes the candidate (q, and with or without trials) of least
+    /// variance x work.
     void fit();
 
     /// Widens the window rectangle [x0, x1) x [y0, y1) (pixels of the film window) to the whole
@@ -83,26 +100,30 @@ public:
 
     /// Regions by chosen candidate (kCandidateCount bins), for the statistics.
     std::array<uint64_t, kCandidateCount> histogram() const;
+    /// Regions that run no surface trials, for the statistics.
+    uint64_t regions_without_trials() const;
     /// The candidate index chosen by the region of full-film pixel (x, y) (-1 while learning).
     int choice(int x, int y) const;
 
 private:
     struct PixelStats {
-        std::array<double, kCandidateCount> m2{};
+        std::array<double, kCandidateCount> m2{}, m2_no_trials{};
         double m2_pilot = 0;
         double sum = 0, sum2 = 0;  ///< the samples' values and squares
-        double work = 0, work_connect = 0, work_density = 0;
+        double work = 0, work_connect = 0, work_trials = 0, work_density = 0;
         uint32_t n = 0;
-        bool needs_mnee = false;
+        bool needs_mnee = false, needs_trials = false;
     };
     int region_of(int x, int y) const;
 
     int m_width, m_height, m_crop_x, m_crop_y, m_block;
     int m_rx0, m_ry0, m_rw, m_rh;  ///< the regions that meet the window
     double m_q_pilot;
+    bool m_choose_trials, m_trials_everywhere;
     bool m_fitted = false;
     std::vector<PixelStats> m_pixels;  ///< freed by fit()
     std::vector<int8_t> m_choice;      ///< per region
+    std::vector<int8_t> m_trials;      ///< per region: runs the surface trials
 };
 
 }  // namespace snell

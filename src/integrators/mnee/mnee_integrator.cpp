@@ -23,20 +23,25 @@ public:
         const MneeSettings& st = mnee.mnee_settings();
         if (!st.learned_allocation) return;
         m_pilot_spp = uint64_t(st.pilot_spp);
-        m_allocation = std::make_unique<ConnectionAllocation>(film.out_width(), film.out_height(), film.crop_x,
-                                                              film.crop_y, st.allocation_block, st.connect_probability);
+        // Regions choose whether to run the surface trials where their solutions are weighed apart.
+        const bool split = st.splits_surface_solutions();
+        m_allocation = std::make_unique<ConnectionAllocation>(
+            film.out_width(), film.out_height(), film.crop_x, film.crop_y, st.allocation_block, st.connect_probability,
+            split && st.trial_allocation == TrialAllocation::Learned,
+            !(split && st.trial_allocation == TrialAllocation::Never));
     }
 
     SampleEstimate li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
                             SplatList& /*splats*/) const override {
-        if (!m_allocation) return path(scene, cs, ray, -1, nullptr).trace(sampler);
+        if (!m_allocation) return path(scene, cs, ray, -1, nullptr, true).trace(sampler);
         const int x = int(std::floor(cs.pixel_centre.x)), y = int(std::floor(cs.pixel_centre.y));
         const double q = m_allocation->q(x, y);
-        if (!m_allocation->learning()) return path(scene, cs, ray, q, nullptr).trace(sampler);
+        const bool trials = m_allocation->surface_trials(x, y);
+        if (!m_allocation->learning()) return path(scene, cs, ray, q, nullptr, trials).trace(sampler);
         // A pilot sample: its pixel's statistics are written by the one thread rendering it.
         PilotSample record;
         const double w0 = work_so_far();
-        const SampleEstimate e = path(scene, cs, ray, q, &record).trace(sampler);
+        const SampleEstimate e = path(scene, cs, ray, q, &record, trials).trace(sampler);
         m_allocation->add(x, y, record, e.L.average(), work_so_far() - w0);
         return e;
     }
@@ -45,6 +50,7 @@ public:
         m_allocation->fit();
         const auto h = m_allocation->histogram();
         for (size_t j = 0; j < h.size(); ++j) walk_counters::allocation_regions.add(int64_t(j), h[j]);
+        walk_counters::allocation_regions_without_trials += m_allocation->regions_without_trials();
     }
     bool learning() const override { return m_allocation && m_allocation->learning(); }
     uint64_t pilot_samples() const override { return m_allocation ? m_pilot_spp : 0; }
@@ -62,8 +68,9 @@ public:
     std::vector<std::string> technique_names() const override { return path_technique_names(); }
 
 private:
-    MneePath path(const Scene& scene, const CameraSample& cs, const Ray& ray, double q, PilotSample* pilot) const {
-        return MneePath(scene, m_mnee.settings(), m_mnee.mnee_settings(), cs.wl, ray, nullptr, q, pilot);
+    MneePath path(const Scene& scene, const CameraSample& cs, const Ray& ray, double q, PilotSample* pilot,
+                  bool trials) const {
+        return MneePath(scene, m_mnee.settings(), m_mnee.mnee_settings(), cs.wl, ray, nullptr, q, pilot, trials);
     }
 
     const MneeIntegrator& m_mnee;

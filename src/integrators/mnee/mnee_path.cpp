@@ -32,7 +32,7 @@ StatMoments by_vertex[] = {
 }  // namespace
 
 MneePath::MneePath(const Scene& scene, const PathSettings& path, const MneeSettings& mnee, const SampledWavelengths& wl,
-                   const Ray& camera_ray, PathObserver* observer, double q, PilotSample* pilot)
+                   const Ray& camera_ray, PathObserver* observer, double q, PilotSample* pilot, bool surface_trials)
     : m_scene(&scene),
       m_path(&path),
       m_mnee(&mnee),
@@ -40,7 +40,8 @@ MneePath::MneePath(const Scene& scene, const PathSettings& path, const MneeSetti
       m_ctx{wl, TransportMode::Radiance},
       m_walk(scene, path, wl, camera_ray, observer),
       m_q(q),
-      m_pilot(pilot) {
+      m_pilot(pilot),
+      m_surface_trials(surface_trials) {
     m_prev.at = {camera_ray.o, Vec3()};
 }
 
@@ -95,6 +96,7 @@ void MneePath::connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSD
     query.connect_probability = m_q >= 0 ? m_q : m_mnee->connect_probability;
     query.max_k = m_path->max_depth >= 0 ? m_path->max_depth - m_walk.depth - 2 : -1;
     query.meter_work = m_pilot != nullptr;
+    query.surface_trials = m_surface_trials;
     const ManifoldConnection c = m_technique.connect(query, sampler);
     switch (c.kind) {
         case ManifoldConnection::Kind::None:
@@ -110,9 +112,12 @@ void MneePath::connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSD
     // Delta lights keep q = 1 in every region: their connections are no part of the choice.
     if (m_pilot && !c.light->is_delta()) {
         m_pilot->work_connect += c.work;
+        m_pilot->work_trials += c.set.trial_work;
+        // The surface trials' solutions are the paths only they reach (the straight seed's own
+        // is never added twice).
         for (const ManifoldSolution& sol : c.set.solutions)
             m_pilot->add_connection((beta * sol.value * sol.count).average(), sol.density,
-                                    sol.pdf_bsdf + sol.pdf_nee_last, c.q);
+                                    sol.pdf_bsdf + sol.pdf_nee_last, c.q, sol.from_surface);
     }
     // Each solution weighed against the techniques that produce the same path: the connection was
     // made with probability q, so it counts 1 / q and its density is q p_mnee (BSDF sampling's
@@ -146,12 +151,13 @@ SampledSpectrum MneePath::connect_at_interface(const SurfaceInteraction& si, con
                  : s.p_prefix * bsdf.pdf(sctx, wo, wi) * std::abs(dot(lp.n, ls->wi)) / length_squared(lp.p - si.p);
     const bool refracts = dot(si.wo, si.ng) * dot(ls->wi, si.ng) < 0;
     const double q = connect_probability(*light);
-    const double p_m = mnee_density(refracts, *light, pmf, lp.p, lp.n, q);
+    bool surface = false;
+    const double p_m = mnee_density(refracts, *light, pmf, lp.p, lp.n, q, &surface);
     const double p_mnee = q * p_m;
     if (m_mnee->biased && covers(refracts) && !(p_mnee > 0)) return {};
     const SampledSpectrum unweighted = nee_estimate(si, bsdf, sctx, m_walk.media, *ls, f, pmf, 1.0);
     if (m_pilot && p_m > 0 && !light->is_delta())
-        m_pilot->add_other((m_walk.tp.beta * unweighted).average(), p_nee, p_m, p_nee + p_bsdf, q);
+        m_pilot->add_other((m_walk.tp.beta * unweighted).average(), p_nee, p_m, p_nee + p_bsdf, q, surface);
     return unweighted * power_heuristic(p_nee, {p_bsdf, p_mnee});
 }
 
@@ -166,11 +172,12 @@ double MneePath::emitter_weight(const Light& light, const Vec3& p, const Vec3& n
     const size_t last = size_t(s.k - 1);
     const double p_bsdf = s.p_prefix * s.q_last * std::abs(dot(lp.n, d)) / length_squared(lp.p - s.chain[last].p);
     const double q = connect_probability(light);
-    const double p_m = mnee_density(true, light, pmf, lp.p, lp.n, q);
+    bool surface = false;
+    const double p_m = mnee_density(true, light, pmf, lp.p, lp.n, q, &surface);
     const double p_mnee = q * p_m;
     const double p_nee =
         s.specular[last] ? 0.0 : s.p_prefix * pmf * light_point_pdf(scene, light, s.chain[last].p, lp.p, lp.n);
-    if (m_pilot && p_m > 0) m_pilot->add_other(value.average(), p_bsdf, p_m, p_bsdf + p_nee, q);
+    if (m_pilot && p_m > 0) m_pilot->add_other(value.average(), p_bsdf, p_m, p_bsdf + p_nee, q, surface);
     // Sec. 3.5: outlier removal drops the light that BSDF sampling finds through interfaces after
     // x_b but MNEE cannot: transmissive suffixes its walks do not reach, and suffixes with an
     // internal reflection (rare, bright hits through the glass: fireflies that no sample count
@@ -219,12 +226,14 @@ void MneePath::scattered(const SurfaceInteraction& si, const BSDF& bsdf, const B
 }
 
 double MneePath::mnee_density(bool last_refracts, const Light& light, double pmf, const Vec3& p, const Vec3& n,
-                              double q) const {
+                              double q, bool* surface_path) const {
+    *surface_path = false;
     const RefractiveSuffix& s = m_suffix;
     // q = 0: the region leaves these paths to BSDF sampling, and MIS needs no density (nor its walk).
     if (!covers(last_refracts) || !(q > 0)) return 0.0;
     const double w0 = m_pilot ? work_so_far() : 0.0;
-    const double d = m_technique.density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light, pmf, p, n, m_ctx.hero());
+    const double d = m_technique.density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light, pmf, p, n, m_ctx.hero(),
+                                         m_surface_trials, surface_path);
     if (m_pilot) m_pilot->work_density += work_so_far() - w0;
     return d;
 }

@@ -16,9 +16,10 @@ namespace snell {
 class MneePath {
 public:
     /// `q`: the connection probability of this sample's region (ConnectionAllocation; < 0:
-    /// MneeSettings::connect_probability). `pilot`: the allocation's pilot records this sample.
+    /// MneeSettings::connect_probability); `surface_trials`: whether the region runs the surface
+    /// trials. `pilot`: the allocation's pilot records this sample.
     MneePath(const Scene& scene, const PathSettings& path, const MneeSettings& mnee, const SampledWavelengths& wl,
-             const Ray& camera_ray, PathObserver* observer, double q, PilotSample* pilot);
+             const Ray& camera_ray, PathObserver* observer, double q, PilotSample* pilot, bool surface_trials = true);
 
     /// The sample's radiance (all randomness from `sampler`).
     SampleEstimate trace(Sampler& sampler);
@@ -50,9 +51,10 @@ private:
     /// its surface seeds also reflect (solutions other than one, with reflections).
     bool covers(bool last_refracts) const;
     /// MNEE's density of the BSDF-sampled suffix ending at the light point (p, n), or 0 when the
-    /// technique cannot produce it or q is 0; its work goes to the pilot's record.
-    double mnee_density(bool last_refracts, const Light& light, double pmf, const Vec3& p, const Vec3& n,
-                        double q) const;
+    /// technique cannot produce it or q is 0; its work goes to the pilot's record, and
+    /// `surface_path` tells whether only the surface trials reach it.
+    double mnee_density(bool last_refracts, const Light& light, double pmf, const Vec3& p, const Vec3& n, double q,
+                        bool* surface_path) const;
 
     const Scene* m_scene;
     const PathSettings* m_path;
@@ -64,6 +66,7 @@ private:
     RefractiveSuffix m_suffix;
     double m_q;
     PilotSample* m_pilot;
+    bool m_surface_trials;
     SampleRadiance m_out;
 };
 
