@@ -292,6 +292,18 @@ TEST(SceneLoaderFull, MneeDefaultsAndSurfaceWeight) {
                  "test.xml:4", "allocation=learned may leave a region without walks");
     expect_error(scene_with("<integrator type=\"mnee\">\n<integer name=\"pilot_spp\" value=\"0\"/></integrator>"),
                  "test.xml:4", "pilot_spp must lie in [1, 4096]");
+    // Regions choose whether to run the surface trials by default; `always` and `never` say so,
+    // and the choice needs the learned allocation and surface solutions weighed apart.
+    EXPECT_EQ(def.trial_allocation, TrialAllocation::Learned);
+    EXPECT_TRUE(def.splits_surface_solutions());
+    EXPECT_EQ(settings(R"(<string name="trial_allocation" value="never"/>)").trial_allocation, TrialAllocation::Never);
+    EXPECT_FALSE(settings(R"(<boolean name="biased" value="true"/>)").splits_surface_solutions());
+    expect_error(scene_with("<integrator type=\"mnee\">\n<string name=\"allocation\" value=\"fixed\"/><string "
+                            "name=\"trial_allocation\" value=\"never\"/></integrator>"),
+                 "test.xml:4", "trial_allocation needs allocation=learned");
+    expect_error(
+        scene_with("<integrator type=\"mnee\">\n<string name=\"trial_allocation\" value=\"sometimes\"/></integrator>"),
+        "test.xml:4", "trial_allocation");
     EXPECT_EQ(settings(R"(<string name="solutions" value="all"/>)").surface_weight, 1.0);
     EXPECT_EQ(settings(R"(<float name="surface_weight" value="1"/>)").surface_weight, 1.0);
     expect_error(scene_with("<integrator type=\"mnee\">\n<float name=\"surface_weight\" value=\"0\"/></integrator>"),
