@@ -135,7 +135,7 @@ void feed_trials(ConnectionAllocation& a, int x, int y, int n, double p_surface,
 // saw light only they produce. Without the choice every region runs them.
 TEST(ConnectionAllocation, RegionsRunSurfaceTrialsWhereTheyPay) {
     for (bool choose : {true, false}) {
-        ConnectionAllocation a(48, 16, 0, 0, 16, 1.0, choose);
+        ConnectionAllocation a(48, 16, 0, 0, 16, 1.0, choose ? TrialAllocation::Learned : TrialAllocation::Always);
         for (int y = 0; y < 16; ++y)
             for (int x = 0; x < 16; ++x) {
                 feed_trials(a, x, y, 4, 0.0, false, 20);                  // trials find nothing
@@ -150,7 +150,7 @@ TEST(ConnectionAllocation, RegionsRunSurfaceTrialsWhereTheyPay) {
         EXPECT_EQ(a.regions_without_trials(), choose ? 1u : 0u);
     }
     // trial_allocation=never: no region runs them, whatever the pilot saw.
-    ConnectionAllocation never(16, 16, 0, 0, 16, 1.0, false, false);
+    ConnectionAllocation never(16, 16, 0, 0, 16, 1.0, TrialAllocation::Never);
     for (int y = 0; y < 16; ++y)
         for (int x = 0; x < 16; ++x) feed_trials(never, x, y, 4, 1e-3, false, 20);
     never.fit();

@@ -42,15 +42,14 @@ void PilotSample::add_other(double value, double p_t, double p_m, double p_other
 }
 
 ConnectionAllocation::ConnectionAllocation(int width, int height, int crop_x, int crop_y, int block, double q_pilot,
-                                           bool choose_trials, bool trials_everywhere)
+                                           TrialAllocation trials)
     : m_width(width),
       m_height(height),
       m_crop_x(crop_x),
       m_crop_y(crop_y),
       m_block(std::max(1, block)),
       m_q_pilot(q_pilot),
-      m_choose_trials(choose_trials),
-      m_trials_everywhere(trials_everywhere),
+      m_trial_allocation(trials),
       m_pixels(size_t(std::max(0, width)) * size_t(std::max(0, height))) {
     m_rx0 = floor_div(crop_x, m_block);
     m_ry0 = floor_div(crop_y, m_block);
@@ -203,18 +202,20 @@ void ConnectionAllocation::fit() {
             needs_trials[r] = needs_trials[r] || p.needs_trials;
         }
     for (size_t r = 0; r < regions; ++r) {
-        // The kinds this allocation may choose: with trials unless told never, without where
-        // told so or where it chooses, unless the pilot saw light only the trials produce.
-        const bool with = m_trials_everywhere || m_choose_trials;
-        const bool without = !m_trials_everywhere || (m_choose_trials && !needs_trials[r]);
+        // The kinds the region may choose: with trials unless told never; without where told so,
+        // or where it chooses and the pilot saw no light that only the trials produce.
+        const bool learned = m_trial_allocation == TrialAllocation::Learned;
+        const std::array<bool, kKinds> allowed = {
+            m_trial_allocation != TrialAllocation::Never,
+            m_trial_allocation == TrialAllocation::Never || (learned && !needs_trials[r])};
         double vmax = 0;
         for (int kind = 0; kind < kKinds; ++kind)
-            if (kind == 0 ? with : without)
+            if (allowed[size_t(kind)])
                 for (double v : variance[r][size_t(kind)]) vmax = std::max(vmax, v);
         int best = -1, best_kind = 0;
         double best_cost = 0;
         for (int kind = 0; kind < kKinds; ++kind) {
-            if (!(kind == 0 ? with : without)) continue;
+            if (!allowed[size_t(kind)]) continue;
             for (int j = needs_mnee[r] ? 1 : 0; j < kCandidateCount; ++j) {
                 // Variance x work is the inverse efficiency; where the pilot saw no variance at
                 // all (a black region) the work alone decides.

@@ -28,6 +28,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "manifold/mnee_settings.h"
+
 namespace snell {
 
 /// The q a region chooses from: 0 (no walks) and powers of two down from 1.
@@ -72,10 +74,10 @@ public:
     /// The pilot renders at q_pilot. Pixels are the film window's (width x height at offset
     /// crop_x, crop_y of the full film); regions are `block` x `block` squares of the full film,
     /// so a crop's regions are the full render's where they lie wholly inside it.
-    /// `choose_trials`: regions also choose whether to run the surface trials (else they all do;
-    /// `trials_everywhere` false: none does).
+    /// `trials`: whether each region chooses to run the surface trials (Learned), or every region
+    /// runs them (Always) or none does (Never).
     ConnectionAllocation(int width, int height, int crop_x, int crop_y, int block, double q_pilot,
-                         bool choose_trials = false, bool trials_everywhere = true);
+                         TrialAllocation trials = TrialAllocation::Always);
 
     bool learning() const { return !m_fitted; }
     double q_pilot() const { return m_q_pilot; }
@@ -119,7 +121,7 @@ private:
     int m_width, m_height, m_crop_x, m_crop_y, m_block;
     int m_rx0, m_ry0, m_rw, m_rh;  ///< the regions that meet the window
     double m_q_pilot;
-    bool m_choose_trials, m_trials_everywhere;
+    TrialAllocation m_trial_allocation;
     bool m_fitted = false;
     std::vector<PixelStats> m_pixels;  ///< freed by fit()
     std::vector<int8_t> m_choice;      ///< per region

@@ -23,12 +23,10 @@ public:
         const MneeSettings& st = mnee.mnee_settings();
         if (!st.learned_allocation) return;
         m_pilot_spp = uint64_t(st.pilot_spp);
-        // Regions choose whether to run the surface trials where their solutions are weighed apart.
-        const bool split = st.splits_surface_solutions();
+        // Regions may do without the surface trials only where their solutions are weighed apart.
         m_allocation = std::make_unique<ConnectionAllocation>(
             film.out_width(), film.out_height(), film.crop_x, film.crop_y, st.allocation_block, st.connect_probability,
-            split && st.trial_allocation == TrialAllocation::Learned,
-            !(split && st.trial_allocation == TrialAllocation::Never));
+            st.splits_surface_solutions() ? st.trial_allocation : TrialAllocation::Always);
     }
 
     SampleEstimate li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
