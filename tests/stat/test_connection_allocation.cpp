@@ -110,6 +110,32 @@ TEST(ConnectionAllocation, RegionsChooseTheLeastVarianceTimesWork) {
     EXPECT_EQ(h[0], 1u);
 }
 
+// One pilot firefly in a region must not decide its q. Every pixel of the region sees light
+// only MNEE finds well (p_other = 10^-3: the walks pay, q = 1 is best), and one pixel also
+// draws one sample of 10^6 from elsewhere (a BSDF hit on a small light). Summed absolutely,
+// that pixel's variance made every candidate's alike and the region took the cheapest q: 0
+// here, 1/64 where the pilot saw light only MNEE produces (the pool's square blocks of speckle,
+// issue 26). Counted as a pixel 10 times the
+// region's median, it leaves the region walking (1/2 or 1); the region without it takes 1, and
+// the image's scale does not change the choice.
+TEST(ConnectionAllocation, OneFireflyDoesNotDecideARegion) {
+    for (double scale : {1.0, 1e-4, 1e4}) {
+        ConnectionAllocation a(32, 16, 0, 0, 16, 1.0);
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 32; ++x)
+                for (int i = 0; i < 4; ++i) {
+                    PilotSample s;
+                    s.add_connection(scale, 1.0, 1e-3, 1.0);
+                    s.work_connect = 2.0;
+                    const bool firefly = x == 3 && y == 5 && i == 2;
+                    a.add(x, y, s, firefly ? 1e6 * scale : scale * (1.0 + 0.5 * (i % 2)), s.work_connect + 1.0);
+                }
+        a.fit();
+        EXPECT_GE(a.q(3, 5), 0.5) << "the region with the firefly, scale " << scale;
+        EXPECT_EQ(a.q(20, 5), 1.0) << "the region without, scale " << scale;
+    }
+}
+
 namespace {
 
 // n pilot samples (q_pilot = 1) of pixel (x, y) whose connections walk the straight seed (a

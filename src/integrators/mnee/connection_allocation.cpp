@@ -3,9 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/vector.h"
+
 namespace snell {
 
 namespace {
+
+// How many times its region's median pixel mean a pixel may be before its variance counts
+// less in the region's choice (fit()).
+constexpr double kOutlierLevel = 10.0;
 
 int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
@@ -176,6 +182,28 @@ void ConnectionAllocation::fit() {
         for (auto& a : v) a.fill(0.0);
     for (auto& w : work)
         for (auto& a : w) a.fill(0.0);
+    // A pixel far brighter than its region counts as if it were only kOutlierLevel times the
+    // region's median pixel mean (its variance scaled by the square of the ratio). Summed
+    // absolutely, one pilot firefly (a pixel whose variance dwarfs its region's) made every
+    // candidate's variance alike, so the region took the cheapest q > 0 and its connections,
+    // counted 1 / q, turned every pixel of it into speckle (the pool's square blocks, issue 26).
+    // Every other pixel keeps its absolute weight: dividing each pixel's variance by its own
+    // squared mean (relMSE's weighting), from 4 pilot samples, raised relMSE on five of eight
+    // gallery cases (docs/experiments.md). The median is the region's own, so a crop chooses as
+    // the full film, and the rule does not depend on the light's units.
+    std::vector<std::vector<double>> means(regions);
+    for (int ly = 0; ly < m_height; ++ly)
+        for (int lx = 0; lx < m_width; ++lx) {
+            const PixelStats& p = m_pixels[size_t(ly) * size_t(m_width) + size_t(lx)];
+            if (p.n > 0 && p.sum > 0) means[size_t(region_of(lx + m_crop_x, ly + m_crop_y))].push_back(p.sum / p.n);
+        }
+    std::vector<double> level(regions, 0.0);  // above it a pixel is an outlier
+    for (size_t r = 0; r < regions; ++r) {
+        std::vector<double>& m = means[r];
+        if (m.empty()) continue;
+        std::nth_element(m.begin(), m.begin() + std::ptrdiff_t(m.size() / 2), m.end());
+        level[r] = kOutlierLevel * m[m.size() / 2];
+    }
     // Raster order: each region sums its own pixels row by row, in a crop as in the full film.
     for (int ly = 0; ly < m_height; ++ly)
         for (int lx = 0; lx < m_width; ++lx) {
@@ -188,12 +216,14 @@ void ConnectionAllocation::fit() {
             const double mean2 = p.n > 1 ? (p.sum * p.sum - p.sum2) / (n * (n - 1)) : 0.0;
             const double rest = (p.sum2 - p.m2_pilot) / n - mean2;
             const double work_rest = (p.work - p.work_connect - p.work_density) / n;
+            const double mean = p.sum / n;
+            const double weight = mean > level[r] && level[r] > 0 ? sqr(level[r] / mean) : 1.0;
             for (int kind = 0; kind < kKinds; ++kind) {
                 const auto& m2 = kind == 0 ? p.m2 : p.m2_no_trials;
                 const double connect = p.work_connect - (kind == 0 ? 0.0 : p.work_trials);
                 for (int j = 0; j < kCandidateCount; ++j) {
                     const double q = kConnectCandidates[size_t(j)];
-                    variance[r][size_t(kind)][size_t(j)] += rest + m2[size_t(j)] / n;
+                    variance[r][size_t(kind)][size_t(j)] += weight * (rest + m2[size_t(j)] / n);
                     work[r][size_t(kind)][size_t(j)] +=
                         work_rest + (q / m_q_pilot * connect + (q > 0 ? p.work_density : 0.0)) / n;
                 }
