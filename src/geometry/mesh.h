@@ -64,8 +64,8 @@ public:
     /// differential geometry (TriangleParams, 152 bytes a triangle: 152 MB at the limit)
     /// precomputed; larger ones recompute it at every hit rather than double their memory.
     /// A manifold walk builds an interaction at every projection, so recomputing cost the
-    /// 74k-triangle pool of the caustic gallery 7-9 % of its render time at the old limit of
-    /// 2^16 (issue 26, point 5).
+    /// 74k-triangle pool of the caustic gallery 6.6-8.6 % of its render time (perf) at the old
+    /// limit of 2^16 (issue 26, point 5).
     static constexpr size_t kMaxCachedTriangles = size_t(1) << 20;
 
 private:

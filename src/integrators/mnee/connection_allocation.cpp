@@ -185,8 +185,9 @@ void ConnectionAllocation::fit() {
     // A pixel far brighter than its region counts as if it were only kOutlierLevel times the
     // region's median pixel mean (its variance scaled by the square of the ratio). Summed
     // absolutely, one pilot firefly (a pixel whose variance dwarfs its region's) made every
-    // candidate's variance alike, so the region took the cheapest q > 0 and its connections,
-    // counted 1 / q, turned every pixel of it into speckle (the pool's square blocks, issue 26).
+    // candidate's variance alike, so the region took the cheapest candidate, 1/64 where light
+    // only MNEE produces rules out 0, and its connections, counted 64 times, turned every pixel
+    // of it into speckle (the pool's square blocks, issue 26).
     // Every other pixel keeps its absolute weight: dividing each pixel's variance by its own
     // squared mean (relMSE's weighting), from 4 pilot samples, raised relMSE on five of eight
     // gallery cases (docs/experiments.md). The median is the region's own, so a crop chooses as
