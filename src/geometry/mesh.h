@@ -43,6 +43,11 @@ public:
     /// with an Embree point query on this mesh's private scene; before attach() it falls back
     /// to visiting every triangle.
     bool closest_point(const Vec3& p, double radius, SurfaceInteraction* si) const override;
+    /// Where p projects into the interior of the triangle `near` lies on, that projection
+    /// (the closest point of the mesh wherever the mesh is convex towards p); elsewhere
+    /// closest_point().
+    bool closest_point_near(const SurfaceInteraction& near, const Vec3& p, double radius,
+                            SurfaceInteraction* si) const override;
     /// Triangle chosen proportionally to area, then uniform on it; pdf = 1/area. The normal is
     /// the geometric normal (on the shading side).
     ShapeSample sample_area(const Vec2& u) const override;

@@ -62,6 +62,14 @@ public:
     /// with full differential geometry. Spheres are exact; meshes use an Embree point query
     /// restricted to this shape. Returns false if none is found within `radius`.
     virtual bool closest_point(const Vec3& p, double radius, SurfaceInteraction* si) const = 0;
+    /// The same for a point displaced from `near`, a point on this shape: meshes first try the
+    /// primitive `near` lies on (the manifold walk's small steps mostly stay over it), and
+    /// query the whole shape only where p does not project into that primitive's interior.
+    virtual bool closest_point_near(const SurfaceInteraction& near, const Vec3& p, double radius,
+                                    SurfaceInteraction* si) const {
+        (void)near;
+        return closest_point(p, radius, si);
+    }
 
     /// Uniform sample in area measure (pdf = 1/area).
     virtual ShapeSample sample_area(const Vec2& u) const = 0;

@@ -56,7 +56,8 @@ bool project_vertex(const Scene* scene, const ManifoldVertex& from, const Vec3& 
     if (mode == Projection::ClosestPoint || !scene) {
         // Search radius: the step itself plus a margin; a projection further away than the
         // step cannot be the continuation of this vertex.
-        if (!from.shape->closest_point(displaced, 2.0 * step + 1e-9 * (length(displaced) + 1.0), &si)) return false;
+        if (!from.shape->closest_point_near(from.si, displaced, 2.0 * step + 1e-9 * (length(displaced) + 1.0), &si))
+            return false;
     } else {
         // Cast from the previous vertex through the displaced point; accept only hits on the
         // same shape near the displaced point.

@@ -188,6 +188,48 @@ TEST(GeometryMesh, ClosestPointMatchesBruteForceAndIntersection) {
     }
 }
 
+// The manifold walk's projection from a point on the mesh (closest_point_near) is the closest
+// point wherever the mesh is convex towards p: on a tessellated sphere, from outside, both for
+// steps that stay over the starting triangle (no BVH query) and for steps that leave it (the
+// query); the radius cuts off alike.
+TEST(GeometryMesh, ClosestPointNearMatchesClosestPointOnAConvexMesh) {
+    const MeshData d = test::make_uv_sphere({0, 0, 0}, 1.0, 32, 16);
+    auto m = std::make_shared<TriangleMesh>(d);
+    Scene scene;
+    scene.add_shape(m);
+    scene.build();
+    PCG32 rng(9, 4);
+    int stayed = 0, left = 0;
+    for (int k = 0; k < 2000; ++k) {
+        const uint32_t prim = std::min(uint32_t(rng.next_double() * double(m->triangle_count())),
+                                       uint32_t(m->triangle_count() - 1));
+        const auto& tri = m->triangle(prim);
+        const Vec3 a = m->vertex(tri[0]), b = m->vertex(tri[1]), c = m->vertex(tri[2]);
+        if (!(length(cross(b - a, c - a)) > 1e-12)) continue;  // the poles' collapsed triangles
+        Vec2 bc = next_2d(rng);
+        if (bc.x + bc.y > 1) bc = Vec2(1 - bc.x, 1 - bc.y);
+        SurfaceInteraction near;
+        m->interaction_at(prim, bc, &near);
+        // A tangent step of up to about one and a half triangles, lifted off the surface.
+        const Frame f = Frame::from_normal(near.ng);
+        const double phi = 2 * kPi * rng.next_double(), step = 0.15 * rng.next_double();
+        const Vec3 p = near.p + (f.s * std::cos(phi) + f.t * std::sin(phi)) * step + near.ng * (0.01 * rng.next_double());
+        SurfaceInteraction got, ref;
+        ASSERT_TRUE(m->closest_point(p, kInfinity, &ref));
+        ASSERT_TRUE(m->closest_point_near(near, p, kInfinity, &got));
+        EXPECT_EQ(got.prim, ref.prim);
+        EXPECT_LT(length(got.p - ref.p), 1e-12);
+        EXPECT_LT(length(got.n - ref.n), 1e-12);
+        EXPECT_EQ(got.shape, m.get());
+        (got.prim == prim ? stayed : left)++;
+        const double dist = length(ref.p - p);
+        EXPECT_FALSE(m->closest_point_near(near, p, dist * (1 - 1e-6), &got));
+        EXPECT_TRUE(m->closest_point_near(near, p, dist * (1 + 1e-9) + 1e-12, &got));
+    }
+    EXPECT_GT(stayed, 200);
+    EXPECT_GT(left, 200);
+}
+
 // Three triangles of unequal area tiling [0,2]x[0,1]: a uniform sampler fills equal grid
 // cells equally (chi-square, p > 1e-6).
 TEST(GeometryMesh, AreaSamplingIsUniform) {
