@@ -201,8 +201,8 @@ TEST(GeometryMesh, ClosestPointNearMatchesClosestPointOnAConvexMesh) {
     PCG32 rng(9, 4);
     int stayed = 0, left = 0;
     for (int k = 0; k < 2000; ++k) {
-        const uint32_t prim = std::min(uint32_t(rng.next_double() * double(m->triangle_count())),
-                                       uint32_t(m->triangle_count() - 1));
+        const uint32_t prim =
+            std::min(uint32_t(rng.next_double() * double(m->triangle_count())), uint32_t(m->triangle_count() - 1));
         const auto& tri = m->triangle(prim);
         const Vec3 a = m->vertex(tri[0]), b = m->vertex(tri[1]), c = m->vertex(tri[2]);
         if (!(length(cross(b - a, c - a)) > 1e-12)) continue;  // the poles' collapsed triangles
@@ -213,7 +213,8 @@ TEST(GeometryMesh, ClosestPointNearMatchesClosestPointOnAConvexMesh) {
         // A tangent step of up to about one and a half triangles, lifted off the surface.
         const Frame f = Frame::from_normal(near.ng);
         const double phi = 2 * kPi * rng.next_double(), step = 0.15 * rng.next_double();
-        const Vec3 p = near.p + (f.s * std::cos(phi) + f.t * std::sin(phi)) * step + near.ng * (0.01 * rng.next_double());
+        const Vec3 p =
+            near.p + (f.s * std::cos(phi) + f.t * std::sin(phi)) * step + near.ng * (0.01 * rng.next_double());
         SurfaceInteraction got, ref;
         ASSERT_TRUE(m->closest_point(p, kInfinity, &ref));
         ASSERT_TRUE(m->closest_point_near(near, p, kInfinity, &got));
