@@ -115,9 +115,8 @@ TEST(ConnectionAllocation, RegionsChooseTheLeastVarianceTimesWork) {
 // draws one sample of 10^6 from elsewhere (a BSDF hit on a small light). Summed absolutely,
 // that pixel's variance made every candidate's alike and the region took the cheapest q: 0
 // here, 1/64 where the pilot saw light only MNEE produces (the pool's square blocks of speckle,
-// issue 26). Counted as a pixel 10 times the
-// region's median, it leaves the region walking (1/2 or 1); the region without it takes 1, and
-// the image's scale does not change the choice.
+// issue 26). Counted as a pixel 10 times the region's median, it leaves the region walking (1/2
+// or 1); the region without it takes 1, and the image's scale does not change the choice.
 TEST(ConnectionAllocation, OneFireflyDoesNotDecideARegion) {
     for (double scale : {1.0, 1e-4, 1e4}) {
         ConnectionAllocation a(32, 16, 0, 0, 16, 1.0);

@@ -189,7 +189,7 @@ void ConnectionAllocation::fit() {
     // only MNEE produces rules out 0, and its connections, counted 64 times, turned every pixel
     // of it into speckle (the pool's square blocks, issue 26).
     // Every other pixel keeps its absolute weight: dividing each pixel's variance by its own
-    // squared mean (relMSE's weighting), from 4 pilot samples, raised relMSE on five of eight
+    // squared mean (relMSE's weighting), from 4 pilot samples, raised relMSE on six of eight
     // gallery cases (docs/experiments.md). The median is the region's own, so a crop chooses as
     // the full film, and the rule does not depend on the light's units.
     std::vector<std::vector<double>> means(regions);
