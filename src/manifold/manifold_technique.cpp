@@ -61,7 +61,9 @@ ManifoldConnection ManifoldTechnique::connect(const ManifoldQuery& query, Sample
 
     // Line 2: the seed path.
     std::vector<ManifoldVertex> seed;
+    const double w_seed = query.meter_work ? work_so_far() : 0.0;
     const SeedStatus status = trace_seed_path(scene, xb, lp.p, query.ctx.hero(), *m_settings, &seed);
+    if (query.meter_work) c.seed_work = work_so_far() - w_seed;
     switch (status) {
         case SeedStatus::Clear:
             // Nothing refracts in between: MNEE is NEE (same sample, same weight).
@@ -90,7 +92,7 @@ ManifoldConnection ManifoldTechnique::connect(const ManifoldQuery& query, Sample
     q.straight_seed = status == SeedStatus::Refractive;
     const double w0 = query.meter_work ? work_so_far() : 0.0;
     c.set = solve(q, *c.light, c.pmf, lp, seed, sampler, query.max_k);
-    if (query.meter_work) c.work = work_so_far() - w0;
+    if (query.meter_work) c.work = work_so_far() - w0 - c.set.probe_work;
     c.kind = ManifoldConnection::Kind::Manifold;
     return c;
 }
@@ -118,12 +120,11 @@ SolutionSet ManifoldTechnique::solve(const ManifoldQuery& q, const Light& light,
 
 double ManifoldTechnique::density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain,
                                   int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda,
-                                  bool surface_trials, bool* surface_path) const {
-    if (surface_path) *surface_path = false;
+                                  bool surface_trials, DensityDetail* detail) const {
     return with_estimator(*m_scene, *m_settings, [&](const auto& estimator) {
         // Only the multi-solution estimators weigh their surface solutions apart.
         if constexpr (std::is_base_of_v<MultiSolutionEstimator, std::decay_t<decltype(estimator)>>)
-            return estimator.density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, surface_trials, surface_path);
+            return estimator.density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, surface_trials, detail);
         else
             return estimator.density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
     });

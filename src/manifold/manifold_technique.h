@@ -45,6 +45,26 @@ struct ManifoldQuery {
     /// weighed apart: the straight seed's solution alone, and density() gives the trials' paths
     /// 0 for the same region).
     bool surface_trials = true;
+    /// The allocation's pilot: where surface solutions are weighed apart and the straight walk
+    /// fails beside a clear seed, the surface trials still run, as probes: what they find is
+    /// not counted (SolutionSet::probes), but tells the pilot the variance BSDF sampling alone
+    /// has for those paths, which it otherwise sees only in its own rare hits.
+    bool probes = false;
+};
+
+/// What ManifoldTechnique::density tells beside the density, for the MIS weights and the
+/// allocation's pilot (ConnectionAllocation).
+struct DensityDetail {
+    /// Where surface solutions are weighed apart: the path is one only the surface trials reach.
+    bool surface_path = false;
+    /// c = surface_weight where the density is c times the one the trials find the path with
+    /// (ManifoldSolution::weight), else 1.
+    double weight = 1;
+    /// With `want_probe`: where the technique's density is 0 because the straight walk did not
+    /// converge beside a clear seed (the trials do not run there), the density with which the
+    /// pilot's probes (ManifoldQuery::probes) find the path; else 0.
+    bool want_probe = false;
+    double probe = 0;
 };
 
 /// One light connection from x_b (ManifoldTechnique::connect).
@@ -64,6 +84,8 @@ struct ManifoldConnection {
     double q = 1;
     SolutionSet set;  ///< Kind::Manifold: the admissible paths, each f / p of Alg. 1's last line
     double work = 0;  ///< with ManifoldQuery::meter_work: the work of the walks (work_meter.h)
+    /// ... and of tracing the seed path, where there is one (q > 0)
+    double seed_work = 0;
 };
 
 class ManifoldTechnique {
@@ -102,10 +124,10 @@ public:
     /// interface is the straight seed's alone: Alg. 2 whenever the straight seed is walked.
     /// Where surface solutions are weighed apart (MneeSettings::splits_surface_solutions),
     /// `surface_trials` false (a region without them) gives the paths only the trials reach 0,
-    /// and `surface_path` tells whether the path is one of those.
+    /// and `detail` tells whether the path is one of those, and more (DensityDetail).
     double density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain, int k,
                    const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda,
-                   bool surface_trials = true, bool* surface_path = nullptr) const;
+                   bool surface_trials = true, DensityDetail* detail = nullptr) const;
 
 private:
     const Scene* m_scene;

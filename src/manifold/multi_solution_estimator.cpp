@@ -24,10 +24,6 @@ void MultiSolutionEstimator::solve(const ManifoldQuery& q, const BSDFContext& ct
     // point that density() repeats with Alg. 2's walk. Where it fails (mostly receivers with no
     // solution at all: a shadow), the trials would only fail too, at the cost of full walks.
     const bool weighted = q.straight_seed && weighs_surface_solutions();
-    if (weighted && !straight_converged) return;
-    // A region without surface trials (ConnectionAllocation) leaves their paths to BSDF sampling:
-    // density() gives them 0 there, as it is told.
-    if (!q.surface_trials && weighs_surface_solutions()) return;
     // There, too, only the paths Alg. 2 can tell apart are the technique's: those crossing the
     // straight seed's shapes in its order, refracting at each (density() gives the others 0,
     // BSDF sampling's). A trial that finds another one has failed.
@@ -38,25 +34,62 @@ void MultiSolutionEstimator::solve(const ManifoldQuery& q, const BSDFContext& ct
             if (chain[i].shape != seed[i].shape || chain[i].reflect) return true;
         return false;
     };
-    PCG32 rng = trial_stream(sampler);
+    const auto run_trials = [&](size_t first, SolutionSet& into) {
+        PCG32 rng = trial_stream(sampler);
+        for (const Shape* caster : manifold_casters(*m_scene, ctx.hero()))
+            trials_on(q, ctx, slot, light, pmf, lp, *caster, rng, draws, max_k, foreign, first, into);
+    };
+    if (weighted && !straight_converged) {
+        // The pilot's probes: the paths found here stay BSDF sampling's (density() gives them 0),
+        // but the pilot judges BSDF sampling's variance for them from these finds
+        // (ConnectionAllocation); their work is no part of a connection's.
+        if (q.probes) {
+            const double w0 = work_so_far();
+            SolutionSet probes;
+            run_trials(0, probes);
+            for (ManifoldSolution& s : probes.solutions) out.probes.push_back(std::move(s));
+            out.probe_work += work_so_far() - w0;
+        }
+        return;
+    }
+    // A region without surface trials (ConnectionAllocation) leaves their paths to BSDF sampling:
+    // density() gives them 0 there, as it is told.
+    if (!q.surface_trials && weighs_surface_solutions()) return;
     const double w0 = q.meter_work ? work_so_far() : 0.0;
-    for (const Shape* caster : manifold_casters(*m_scene, ctx.hero()))
-        trials_on(q, ctx, slot, light, pmf, lp, *caster, rng, draws, max_k, foreign, before, out);
+    run_trials(before, out);
     if (q.meter_work) out.trial_work += work_so_far() - w0;
     // The solutions the straight seed does not walk to (all found by surface seeds; the straight
     // seed's own is never added twice) weigh c times their density in MIS, as density() answers
     // for their BSDF-sampled copies.
     if (weighted)
         for (size_t i = before; i < out.solutions.size(); ++i)
-            if (out.solutions[i].from_surface) out.solutions[i].density *= m_settings->surface_weight;
+            if (out.solutions[i].from_surface) {
+                out.solutions[i].density *= m_settings->surface_weight;
+                out.solutions[i].weight = m_settings->surface_weight;
+            }
     walk_counters::solutions_per_connection.add(uint32_t(out.solutions.size() - before));
 }
+
+namespace {
+// Whether the path x_1..x_k crosses the straight seed's shapes in its order (what a trial beside
+// a clear straight seed may find: solve()'s `foreign`).
+bool crosses_as_the_seed(const SurfaceInteraction* chain, int k, const std::vector<ManifoldVertex>& seed) {
+    if (size_t(k) != seed.size()) return false;
+    for (size_t i = 0; i < seed.size(); ++i)
+        if (chain[i].shape != seed[i].shape) return false;
+    return true;
+}
+}  // namespace
 
 double MultiSolutionEstimator::density(const SurfaceInteraction& xb, const BSDF& bsdf_b,
                                        const SurfaceInteraction* chain, int k, const Light& light, double pmf,
                                        const Vec3& xc, const Vec3& nc, double lambda, bool surface_trials,
-                                       bool* surface_path) const {
-    if (surface_path) *surface_path = false;
+                                       DensityDetail* detail) const {
+    DensityDetail none;
+    DensityDetail& d = detail ? *detail : none;
+    d.surface_path = false;
+    d.weight = 1;
+    d.probe = 0;
     // With surface seeds alone, a path through an emissive interface is no one's: the solution
     // density gives 0.
     if (walks_straight_seed() && passes_emitter(chain, k))
@@ -70,13 +103,21 @@ double MultiSolutionEstimator::density(const SurfaceInteraction& xb, const BSDF&
     // walk that reaches another path) are theirs: 0 where the region runs none.
     const StraightSeed seed = trace_straight_seed(*m_scene, xb, xc, lambda, *m_settings);
     if (seed.status != SeedStatus::Refractive) {
-        if (surface_path) *surface_path = true;
+        d.surface_path = true;
         return surface_trials ? every_solution_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed) : 0.0;
     }
     bool converged = false;
     const double reached = alg2_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed, &converged);
-    if (reached > 0 || !converged) return reached;
-    if (surface_path) *surface_path = true;
+    if (reached > 0) return reached;
+    if (!converged) {
+        // The pilot's probes walk the trials here too (solve()): the density they find it with,
+        // for the paths the trials may find (the straight seed's shapes in its order).
+        if (d.want_probe && crosses_as_the_seed(chain, k, seed.chain))
+            d.probe = every_solution_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
+        return 0.0;
+    }
+    d.surface_path = true;
+    d.weight = m_settings->surface_weight;
     if (!surface_trials) return 0.0;
     return m_settings->surface_weight * every_solution_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
 }

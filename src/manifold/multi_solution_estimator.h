@@ -21,10 +21,10 @@ public:
     /// the straight seed's alone (Alg. 2) whenever the straight seed is walked. With surface
     /// solutions weighed apart, `surface_trials` false gives the surface trials' paths 0 (a
     /// region without them, ManifoldQuery::surface_trials) and `surface_path` tells whether the
-    /// path is theirs.
+    /// path is theirs, with the rest of DensityDetail.
     double density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain, int k,
                    const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda,
-                   bool surface_trials = true, bool* surface_path = nullptr) const;
+                   bool surface_trials = true, DensityDetail* detail = nullptr) const;
 
 protected:
     /// The estimator's use of the surface trials on one caster.

@@ -24,6 +24,10 @@ struct ManifoldSolution {
     double pdf_bsdf = 0;        ///< BSDF sampling of the same path from x_b
     double pdf_nee_last = 0;    ///< NEE from x_k (0 unless x_k is rough)
     bool from_surface = false;  ///< walked from a seed sampled on a caster (else the straight seed)
+    /// c = surface_weight where `density` is c times the density with which the trials find the
+    /// solution (a technique apart in MIS), 1 elsewhere: the pilot of ConnectionAllocation needs
+    /// both, one for the MIS weights, the other for how often the solution is drawn.
+    double weight = 1;
 };
 
 /// What one light connection yields.
@@ -32,6 +36,10 @@ struct SolutionSet {
     /// With ManifoldQuery::meter_work: the work of the surface trials among the walks (what a
     /// region without them saves; work_meter.h).
     double trial_work = 0;
+    /// With ManifoldQuery::probes: the paths the pilot's probes found (not counted), and their
+    /// work (no part of ManifoldConnection::work).
+    std::vector<ManifoldSolution> probes;
+    double probe_work = 0;
 };
 
 /// Tolerance of same_solution, relative to the segments next to each vertex.

@@ -20,17 +20,26 @@ using namespace snell::test;
 
 namespace {
 
-// A one-dimensional path space [0, 1] with f(x) = x^2 + 0.05 and two techniques: "MNEE" with
-// density 2x, made with probability q, and "BSDF" with density 1. Under the balance heuristic
-// with n_mnee = q the estimator's second moment is int f^2 / (q p_m + p_b) (Veach's result for
-// the balance heuristic: each technique's share q p_m f^2 / (q p_m + p_b)^2 and p_b f^2 / (...)^2).
+// A one-dimensional path space [0, 1] with f(x) = x^2 + 0.05 and two techniques: "MNEE", made
+// with probability q, draws x with density p_s = 2x, finds it with probability `find` and then
+// counts it N times (N geometric with mean 1 / find, as the 1 / p estimate of the surface
+// trials: E[N 1{found}] = 1), and weighs it in MIS by the density c p_s (c = surface_weight);
+// "BSDF" draws x with density 1. Under the power heuristic each technique's share of the
+// second moment is the integral of its weighted contribution squared over its draws:
+// MNEE's find E[N^2 | found] w_m^2 f^2 / (q p_s), BSDF's w_b^2 f^2 (Veach's estimator, one
+// sample of each).
+struct Toy {
+    double c, find;
+};
 double f_toy(double x) { return x * x + 0.05; }
-double second_moment(double q) {
+double second_moment(const Toy& t, double q) {
     const int n = 200000;
+    const double n2 = (2 - t.find) / (t.find * t.find);  // E[N^2 | found]
     double s = 0;
     for (int i = 0; i < n; ++i) {
-        const double x = (i + 0.5) / n;
-        s += sqr(f_toy(x)) / (q * 2 * x + 1);
+        const double x = (i + 0.5) / n, p_s = 2 * x, a = q * t.c * p_s, sum = a * a + 1;
+        if (q > 0) s += t.find * n2 * sqr(a * a / sum) * sqr(f_toy(x)) / (q * p_s);
+        s += sqr(1 / sum) * sqr(f_toy(x));
     }
     return s / n;
 }
@@ -38,33 +47,72 @@ double second_moment(double q) {
 }  // namespace
 
 // The pilot at q = 1/2 records, from its own samples, the second moment the estimator has at
-// every other q: the mean of what PilotSample adds agrees with the integral within its error.
+// every other q: the mean of what PilotSample adds agrees with the integral within its error;
+// with MNEE's density weighed apart in MIS (c < 1) and its paths counted N times too, so that
+// the 1 / p estimate's noise is judged, and BSDF sampling's share where c makes it large is
+// judged from MNEE's frequent draws (each counted N times, its mean).
 TEST(ConnectionAllocation, PilotSecondMomentsMatchTheirIntegrals) {
-    const double q_pilot = 0.5;
-    std::mt19937_64 rng(7);
+    for (const Toy toy : {Toy{1.0, 1.0}, Toy{0.25, 0.6}}) {
+        const double q_pilot = 0.5;
+        std::mt19937_64 rng(7);
+        std::uniform_real_distribution<double> u(0, 1);
+        const int n = 400000;
+        std::array<double, kCandidateCount> sum{}, sum2{};
+        for (int i = 0; i < n; ++i) {
+            PilotSample s;
+            if (u(rng) < q_pilot && u(rng) < toy.find) {  // the connection is made and finds x
+                const double x = std::sqrt(u(rng));
+                double count = 1;
+                while (!(u(rng) < toy.find)) ++count;
+                s.add_connection(count * f_toy(x) / (2 * x), count, toy.c * 2 * x, toy.c, 1.0, q_pilot);
+            }
+            const double y = u(rng);
+            s.add_other(f_toy(y), 1.0, toy.c * 2 * y, toy.c, 1.0, q_pilot);
+            for (int j = 0; j < kCandidateCount; ++j) {
+                sum[size_t(j)] += s.m2[size_t(j)];
+                sum2[size_t(j)] += sqr(s.m2[size_t(j)]);
+            }
+        }
+        // q = 0 included: BSDF sampling alone, int f^2 / p_b.
+        for (int j = 0; j < kCandidateCount; ++j) {
+            const double q = kConnectCandidates[size_t(j)];
+            const double mean = sum[size_t(j)] / n;
+            const double se = std::sqrt((sum2[size_t(j)] / n - mean * mean) / n);
+            EXPECT_NEAR(mean, second_moment(toy, q), 4 * se + 1e-9) << "q = " << q << ", c = " << toy.c;
+        }
+    }
+}
+
+// Paths no candidate gives to MNEE (its straight walk fails beside them, so the trials do not
+// run and density() gives 0) are BSDF sampling's under every q; the pilot's probes find them
+// anyway (draws of density p_s = 2x, found with probability 0.6, counted N times, not counted in
+// the image) and judge BSDF sampling's second moment there, int f^2 / p_b, together with BSDF
+// sampling's own hits, whose weighted contributions leave the pilot's realized second moment.
+TEST(ConnectionAllocation, ProbesJudgeBsdfSamplingWhereTheStraightWalkFails) {
+    const double q_pilot = 0.5, find = 0.6;
+    std::mt19937_64 rng(11);
     std::uniform_real_distribution<double> u(0, 1);
     const int n = 400000;
-    std::array<double, kCandidateCount> sum{}, sum2{};
+    double sum = 0, sum2 = 0, realized = 0;
     for (int i = 0; i < n; ++i) {
         PilotSample s;
-        if (u(rng) < q_pilot) {  // the connection is made
+        if (u(rng) < q_pilot && u(rng) < find) {
             const double x = std::sqrt(u(rng));
-            s.add_connection(f_toy(x) / (2 * x), 2 * x, 1.0, q_pilot);
+            double count = 1;
+            while (!(u(rng) < find)) ++count;
+            s.add_probe(count * f_toy(x) / (2 * x), count, 2 * x, 1.0, q_pilot);
         }
         const double y = u(rng);
-        s.add_other(f_toy(y), 1.0, 2 * y, 1.0, q_pilot);
-        for (int j = 0; j < kCandidateCount; ++j) {
-            sum[size_t(j)] += s.m2[size_t(j)];
-            sum2[size_t(j)] += sqr(s.m2[size_t(j)]);
-        }
+        s.add_probe_other(f_toy(y), 1.0, 2 * y, 1.0, q_pilot);
+        for (int j = 1; j < kCandidateCount; ++j) ASSERT_EQ(s.m2[size_t(j)], s.m2[0]);
+        for (int j = 0; j < kCandidateCount; ++j) ASSERT_EQ(s.m2_no_trials[size_t(j)], s.m2[0]);
+        sum += s.m2[0];
+        sum2 += sqr(s.m2[0]);
+        realized += s.m2_pilot - sqr(f_toy(y));
     }
-    // q = 0 included: BSDF sampling alone, int f^2 / p_b.
-    for (int j = 0; j < kCandidateCount; ++j) {
-        const double q = kConnectCandidates[size_t(j)];
-        const double mean = sum[size_t(j)] / n;
-        const double se = std::sqrt((sum2[size_t(j)] / n - mean * mean) / n);
-        EXPECT_NEAR(mean, second_moment(q), 4 * se + 1e-9) << "q = " << q;
-    }
+    const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
+    EXPECT_NEAR(mean, second_moment(Toy{1.0, 1.0}, 0.0), 4 * se);
+    EXPECT_EQ(realized, 0.0);  // a BSDF hit at MNEE density 0 has weight 1; a probe's find is not counted
 }
 
 namespace {
@@ -78,8 +126,8 @@ void feed(ConnectionAllocation& a, int x, int y, int n, double p_other, bool onl
     const int every = std::max(1, int(std::lround(1 / p_other)));
     for (int i = 0; i < n; ++i) {
         PilotSample s;
-        s.add_connection(1.0, 1.0, only_mnee ? 0.0 : p_other, 1.0);
-        if (!only_mnee && clock++ % every == 0) s.add_other(1.0 / p_other, p_other, 1.0, p_other, 1.0);
+        s.add_connection(1.0, 1.0, 1.0, 1.0, only_mnee ? 0.0 : p_other, 1.0);
+        if (!only_mnee && clock++ % every == 0) s.add_other(1.0 / p_other, p_other, 1.0, 1.0, p_other, 1.0);
         s.work_connect = work_connect;
         a.add(x, y, s, 2.0 * (i % 2), work_connect + 2.0);
     }
@@ -124,7 +172,7 @@ TEST(ConnectionAllocation, OneFireflyDoesNotDecideARegion) {
             for (int x = 0; x < 32; ++x)
                 for (int i = 0; i < 4; ++i) {
                     PilotSample s;
-                    s.add_connection(scale, 1.0, 1e-3, 1.0);
+                    s.add_connection(scale, 1.0, 1.0, 1.0, 1e-3, 1.0);
                     s.work_connect = 2.0;
                     const bool firefly = x == 3 && y == 5 && i == 2;
                     a.add(x, y, s, firefly ? 1e6 * scale : scale * (1.0 + 0.5 * (i % 2)), s.work_connect + 1.0);
@@ -144,9 +192,9 @@ namespace {
 void feed_trials(ConnectionAllocation& a, int x, int y, int n, double p_surface, bool only_trials, double trial_work) {
     for (int i = 0; i < n; ++i) {
         PilotSample s;
-        s.add_connection(1.0, 1.0, 1e-3, 1.0);
+        s.add_connection(1.0, 1.0, 1.0, 1.0, 1e-3, 1.0);
         if (p_surface > 0 || only_trials)
-            s.add_connection(1.0, 1.0, only_trials ? 0.0 : p_surface, 1.0, /*surface=*/true);
+            s.add_connection(1.0, 1.0, 1.0, 1.0, only_trials ? 0.0 : p_surface, 1.0, /*surface=*/true);
         s.work_connect = 1.0 + trial_work;
         s.work_trials = trial_work;
         a.add(x, y, s, 1.0 + 0.5 * (i % 2), s.work_connect + 1.0);

@@ -351,10 +351,14 @@ TEST(ManifoldSolutions, SurfaceWeightScalesTheOtherSolutionsAlikeInSolveAndDensi
             EXPECT_NEAR(d, (s.from_surface ? 0.03 : 1.0) * d_full, 1e-9 * d_full);
             // A region without surface trials (ConnectionAllocation) gives their paths 0, and
             // density() says which paths are theirs.
-            bool surface_path = !s.from_surface;
+            DensityDetail detail;
+            detail.surface_path = !s.from_surface;
             const double d_none = technique.density(xb, *xb.bsdf(), path.data(), int(path.size()), *scene.lights()[0],
-                                                    1.0, lp.p, lp.n, 550, /*surface_trials=*/false, &surface_path);
-            EXPECT_EQ(surface_path, s.from_surface);
+                                                    1.0, lp.p, lp.n, 550, /*surface_trials=*/false, &detail);
+            EXPECT_EQ(detail.surface_path, s.from_surface);
+            // The pilot needs the density the trials draw a path with: c times less than its MIS density.
+            EXPECT_EQ(detail.weight, s.from_surface ? 0.03 : 1.0);
+            EXPECT_EQ(s.weight, s.from_surface ? 0.03 : 1.0);
             EXPECT_EQ(d_none, s.from_surface ? 0.0 : d);
             ++(s.from_surface ? surface : straight);
         }

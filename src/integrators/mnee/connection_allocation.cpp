@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/vector.h"
+#include "integrators/mis.h"
 
 namespace snell {
 
@@ -19,32 +20,68 @@ double finite_or_zero(double v) { return std::isfinite(v) ? v : 0.0; }
 
 }  // namespace
 
-void PilotSample::add_path(double f, double p_m, double p_other, double q_pilot, bool surface) {
-    if (!(f > 0) || !std::isfinite(f) || !(p_m > 0)) return;
+void PilotSample::add_path(double f, double n, double p_m, double p_s, double p_other, double q_pilot, bool surface,
+                           bool own, double realized) {
+    if (!(f > 0) || !std::isfinite(f) || !(p_m > 0) || !(p_s > 0)) return;
     if (!(p_other > 0)) needs_mnee = true;
-    // Every pilot sample of every technique estimates the integral of g over the refracted
-    // paths as g / (q_pilot p_m + p_other) (the balance heuristic's combination of the pilot's
-    // own techniques), so the techniques that find a path rarely are judged by the samples of
-    // those that find it often: with g = f^2 / (q p_m + p_other), the balance heuristic's
-    // second moment at q.
-    const double pilot = q_pilot * p_m + p_other;
+    // The power heuristic's second moment at q, technique by technique: MNEE's share
+    // w_m^2 f^2 / (q p_s) (it draws the path with density q p_s, counted N times, and weighs
+    // it by q p_m), the other techniques' w_o^2 f^2 / p_other. Every pilot sample, whichever
+    // technique drew it, estimates the other techniques' share over the pilot's own density
+    // q_pilot p_s + p_other, so that where BSDF sampling rarely finds a path its share is judged
+    // from MNEE's samples, which find it often. MNEE's own share comes from its own samples
+    // (its counts N are theirs).
+    const double pilot = q_pilot * p_s + p_other;
+    const auto second = [&](double q, double pm) {
+        const double a = q * pm, sum = a * a + p_other * p_other;
+        if (!(sum > 0)) return 0.0;
+        double m = n * f * f * p_other * p_other * p_other / (sum * sum * pilot);
+        if (own && a > 0) m += n * n * f * f * a * a * a * a / (sum * sum * q * p_s * q_pilot * p_s);
+        return finite_or_zero(m);
+    };
     for (int j = 0; j < kCandidateCount; ++j) {
-        const double mix = kConnectCandidates[size_t(j)] * p_m + p_other;
-        if (mix > 0) m2[size_t(j)] += finite_or_zero(f * f / (mix * pilot));
+        const double q = kConnectCandidates[size_t(j)];
+        m2[size_t(j)] += second(q, p_m);
         // Without surface trials their paths have MNEE density 0.
-        const double without = (surface ? 0.0 : kConnectCandidates[size_t(j)] * p_m) + p_other;
-        if (without > 0) m2_no_trials[size_t(j)] += finite_or_zero(f * f / (without * pilot));
+        m2_no_trials[size_t(j)] += second(q, surface ? 0.0 : p_m);
     }
     if (surface && !(p_other > 0)) needs_trials = true;
-    m2_pilot += finite_or_zero(f * f / (pilot * pilot));
+    m2_pilot += finite_or_zero(realized * realized);
 }
 
-void PilotSample::add_connection(double value, double p_m, double p_other, double q_pilot, bool surface) {
-    add_path(value * p_m, p_m, p_other, q_pilot, surface);
+void PilotSample::add_connection(double value, double count, double p_m, double weight, double p_other, double q_pilot,
+                                 bool surface) {
+    const double p_s = p_m / weight;
+    add_path(value / count * p_s, count, p_m, p_s, p_other, q_pilot, surface, /*own=*/true,
+             value * power_heuristic(q_pilot * p_m, {p_other}) / q_pilot);
 }
 
-void PilotSample::add_other(double value, double p_t, double p_m, double p_other, double q_pilot, bool surface) {
-    add_path(value * p_t, p_m, p_other, q_pilot, surface);
+void PilotSample::add_other(double value, double p_t, double p_m, double weight, double p_other, double q_pilot,
+                            bool surface) {
+    add_path(value * p_t, 1.0, p_m, p_m / weight, p_other, q_pilot, surface, /*own=*/false,
+             value * power_heuristic(p_t, {q_pilot * p_m, p_other - p_t}));
+}
+
+void PilotSample::add_common(double f, double n, double p_s, double p_other, double q_pilot, double realized) {
+    m2_pilot += finite_or_zero(realized * realized);
+    if (!(f > 0) || !std::isfinite(f) || !(p_s > 0) || !(p_other > 0)) return;
+    // BSDF sampling's share, f^2 / p_other, under every candidate, estimated over the pilot's
+    // density of the path (the probes' and the other techniques'): where BSDF sampling finds
+    // these paths rarely (near a fold, where the straight walk fails) its own hits are too few in
+    // a pilot to show their variance, and the region would take a costly q for nothing.
+    const double m = finite_or_zero(n * f * f / (p_other * (q_pilot * p_s + p_other)));
+    for (int j = 0; j < kCandidateCount; ++j) {
+        m2[size_t(j)] += m;
+        m2_no_trials[size_t(j)] += m;
+    }
+}
+
+void PilotSample::add_probe(double value, double count, double p_s, double p_other, double q_pilot) {
+    add_common(value / count * p_s, count, p_s, p_other, q_pilot, 0.0);
+}
+
+void PilotSample::add_probe_other(double value, double p_t, double p_s, double p_other, double q_pilot) {
+    add_common(value * p_t, 1.0, p_s, p_other, q_pilot, value * power_heuristic(p_t, {p_other - p_t}));
 }
 
 ConnectionAllocation::ConnectionAllocation(int width, int height, int crop_x, int crop_y, int block, double q_pilot,
@@ -105,6 +142,8 @@ void ConnectionAllocation::add(int x, int y, const PilotSample& s, double value,
     p.work_connect += s.work_connect;
     p.work_trials += s.work_trials;
     p.work_density += s.work_density;
+    p.work_seed += s.work_seed;
+    p.work_probe += s.work_probe;
     p.needs_mnee = p.needs_mnee || s.needs_mnee;
     p.needs_trials = p.needs_trials || s.needs_trials;
     ++p.n;
@@ -120,7 +159,7 @@ void ConnectionAllocation::widen_to_regions(int& x0, int& y0, int& x1, int& y1) 
 }
 
 namespace {
-constexpr size_t kPilotValues = 2 * kCandidateCount + 10;  // PixelStats as doubles
+constexpr size_t kPilotValues = 2 * kCandidateCount + 12;  // PixelStats as doubles
 }  // namespace
 
 std::vector<double> ConnectionAllocation::pilot_state() const {
@@ -143,6 +182,8 @@ std::vector<double> ConnectionAllocation::pilot_state() const {
         d[7] = p.needs_mnee ? 1.0 : 0.0;
         d[8] = p.work_trials;
         d[9] = p.needs_trials ? 1.0 : 0.0;
+        d[10] = p.work_seed;
+        d[11] = p.work_probe;
     }
     return v;
 }
@@ -167,6 +208,8 @@ void ConnectionAllocation::set_pilot_state(const std::vector<double>& v) {
         p.needs_mnee = d[7] > 0;
         p.work_trials = d[8];
         p.needs_trials = d[9] > 0;
+        p.work_seed = d[10];
+        p.work_probe = d[11];
     }
 }
 
@@ -216,7 +259,7 @@ void ConnectionAllocation::fit() {
             // share replaced by theirs under q, less the squared mean (unbiased estimate).
             const double mean2 = p.n > 1 ? (p.sum * p.sum - p.sum2) / (n * (n - 1)) : 0.0;
             const double rest = (p.sum2 - p.m2_pilot) / n - mean2;
-            const double work_rest = (p.work - p.work_connect - p.work_density) / n;
+            const double work_rest = (p.work - p.work_connect - p.work_density - p.work_probe) / n;
             const double mean = p.sum / n;
             const double weight = mean > level[r] && level[r] > 0 ? sqr(level[r] / mean) : 1.0;
             for (int kind = 0; kind < kKinds; ++kind) {
@@ -225,8 +268,9 @@ void ConnectionAllocation::fit() {
                 for (int j = 0; j < kCandidateCount; ++j) {
                     const double q = kConnectCandidates[size_t(j)];
                     variance[r][size_t(kind)][size_t(j)] += weight * (rest + m2[size_t(j)] / n);
+                    // At q = 0 a light sample makes one shadow ray instead of tracing its seed.
                     work[r][size_t(kind)][size_t(j)] +=
-                        work_rest + (q / m_q_pilot * connect + (q > 0 ? p.work_density : 0.0)) / n;
+                        work_rest + (q > 0 ? q / m_q_pilot * connect + p.work_density : -p.work_seed) / n;
                 }
             }
             needs_mnee[r] = needs_mnee[r] || p.needs_mnee;

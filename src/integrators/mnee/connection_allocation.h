@@ -48,25 +48,46 @@ struct PilotSample {
     std::array<double, kCandidateCount> m2{};
     /// The same without surface trials: the surface trials' paths at MNEE density 0.
     std::array<double, kCandidateCount> m2_no_trials{};
-    double m2_pilot = 0;        ///< the squares of the paths' contributions under the pilot's q
-    double work_connect = 0;    ///< work of the MNEE connections made (at the pilot's q)
-    double work_trials = 0;     ///< ... of which their surface trials
-    double work_density = 0;    ///< work of MNEE's densities for the other techniques' MIS weights
+    double m2_pilot = 0;      ///< the squares of the paths' contributions under the pilot's q
+    double work_connect = 0;  ///< work of the MNEE connections made (at the pilot's q)
+    double work_trials = 0;   ///< ... of which their surface trials
+    double work_density = 0;  ///< work of MNEE's densities for the other techniques' MIS weights
+    /// work of tracing the straight seeds beyond the one shadow ray each that q = 0 makes instead
+    double work_seed = 0;
+    double work_probe = 0;      ///< work of the pilot's probes (no candidate makes them)
     bool needs_mnee = false;    ///< light that only MNEE produces here: q = 0 would lose it
     bool needs_trials = false;  ///< light that only the surface trials produce here
 
     /// A connection made with probability q_pilot: `value` its contribution before MIS and 1 / q
-    /// (mean over wavelengths, path throughput included), p_m MNEE's density of the path and
-    /// p_other the sum of the other techniques' densities of it; `surface`: a path only the
-    /// surface trials reach.
-    void add_connection(double value, double p_m, double p_other, double q_pilot, bool surface = false);
+    /// (mean over wavelengths, path throughput included), `count` the estimator's count of the
+    /// solution (N of the 1 / p estimate; 1 for the straight seed's), p_m MNEE's density of the
+    /// path in MIS, `weight` the c by which p_m is scaled from the density MNEE draws the path
+    /// with (ManifoldSolution::weight), p_other the sum of the other techniques' densities of it;
+    /// `surface`: a path only the surface trials reach.
+    void add_connection(double value, double count, double p_m, double weight, double p_other, double q_pilot,
+                        bool surface = false);
     /// A path sampled by another technique with density p_t: `value` its contribution before
-    /// MIS; p_m, p_other and `surface` as above (p_other includes p_t).
-    void add_other(double value, double p_t, double p_m, double p_other, double q_pilot, bool surface = false);
+    /// MIS; p_m, weight, p_other and `surface` as above (p_other includes p_t).
+    void add_other(double value, double p_t, double p_m, double weight, double p_other, double q_pilot,
+                   bool surface = false);
+
+    /// A path the pilot's probes found beside a straight walk that did not converge
+    /// (ManifoldQuery::probes): not counted in the image, and BSDF sampling's alone under every
+    /// candidate. `value`, `count` as for a connection, p_s the density the probes find it with.
+    void add_probe(double value, double count, double p_s, double p_other, double q_pilot);
+    /// The same kind of path sampled by another technique with density p_t (counted, at MNEE
+    /// density 0): p_s the density the probes would find it with (DensityDetail::probe).
+    void add_probe_other(double value, double p_t, double p_s, double p_other, double q_pilot);
 
 private:
-    /// A path of integrand f (path throughput included) found by any technique.
-    void add_path(double f, double p_m, double p_other, double q_pilot, bool surface);
+    /// A path of integrand f drawn by MNEE (`own`, counted n times) or another technique (n = 1);
+    /// p_m its MNEE density in MIS, p_s the one MNEE draws it with; `realized` its weighted
+    /// contribution to the pilot's sample.
+    void add_path(double f, double n, double p_m, double p_s, double p_other, double q_pilot, bool surface, bool own,
+                  double realized);
+    /// A path of integrand f that no candidate gives to MNEE, drawn by the probes (counted n
+    /// times) or another technique (n = 1), which the probes find with density p_s.
+    void add_common(double f, double n, double p_s, double p_other, double q_pilot, double realized);
 };
 
 class ConnectionAllocation {
@@ -112,7 +133,7 @@ private:
         std::array<double, kCandidateCount> m2{}, m2_no_trials{};
         double m2_pilot = 0;
         double sum = 0, sum2 = 0;  ///< the samples' values and squares
-        double work = 0, work_connect = 0, work_trials = 0, work_density = 0;
+        double work = 0, work_connect = 0, work_trials = 0, work_density = 0, work_seed = 0, work_probe = 0;
         uint32_t n = 0;
         bool needs_mnee = false, needs_trials = false;
     };

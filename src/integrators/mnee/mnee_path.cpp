@@ -96,8 +96,11 @@ void MneePath::connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSD
     query.connect_probability = m_q >= 0 ? m_q : m_mnee->connect_probability;
     query.max_k = m_path->max_depth >= 0 ? m_path->max_depth - m_walk.depth - 2 : -1;
     query.meter_work = m_pilot != nullptr;
+    query.probes = m_pilot != nullptr;
     query.surface_trials = m_surface_trials;
     const ManifoldConnection c = m_technique.connect(query, sampler);
+    // q = 0 would have made one shadow ray in place of the seed (ManifoldTechnique::connect).
+    if (m_pilot && c.light && !c.light->is_delta() && c.seed_work > 0) m_pilot->work_seed += c.seed_work - 1.0;
     switch (c.kind) {
         case ManifoldConnection::Kind::None:
             return;
@@ -116,8 +119,12 @@ void MneePath::connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSD
         // The surface trials' solutions are the paths only they reach (the straight seed's own
         // is never added twice).
         for (const ManifoldSolution& sol : c.set.solutions)
-            m_pilot->add_connection((beta * sol.value * sol.count).average(), sol.density,
+            m_pilot->add_connection((beta * sol.value * sol.count).average(), sol.count, sol.density, sol.weight,
                                     sol.pdf_bsdf + sol.pdf_nee_last, c.q, sol.from_surface);
+        m_pilot->work_probe += c.set.probe_work;
+        for (const ManifoldSolution& sol : c.set.probes)
+            m_pilot->add_probe((beta * sol.value * sol.count).average(), sol.count, sol.density,
+                               sol.pdf_bsdf + sol.pdf_nee_last, c.q);
     }
     // Each solution weighed against the techniques that produce the same path: the connection was
     // made with probability q, so it counts 1 / q and its density is q p_mnee (BSDF sampling's
@@ -151,13 +158,13 @@ SampledSpectrum MneePath::connect_at_interface(const SurfaceInteraction& si, con
                  : s.p_prefix * bsdf.pdf(sctx, wo, wi) * std::abs(dot(lp.n, ls->wi)) / length_squared(lp.p - si.p);
     const bool refracts = dot(si.wo, si.ng) * dot(ls->wi, si.ng) < 0;
     const double q = connect_probability(*light);
-    bool surface = false;
-    const double p_m = mnee_density(refracts, *light, pmf, lp.p, lp.n, q, &surface);
+    DensityDetail detail;
+    const double p_m = mnee_density(refracts, *light, pmf, lp.p, lp.n, q, &detail);
     const double p_mnee = q * p_m;
     if (m_mnee->biased && covers(refracts) && !(p_mnee > 0)) return {};
     const SampledSpectrum unweighted = nee_estimate(si, bsdf, sctx, m_walk.media, *ls, f, pmf, 1.0);
-    if (m_pilot && p_m > 0 && !light->is_delta())
-        m_pilot->add_other((m_walk.tp.beta * unweighted).average(), p_nee, p_m, p_nee + p_bsdf, q, surface);
+    if (m_pilot && !light->is_delta())
+        record_other((m_walk.tp.beta * unweighted).average(), p_nee, p_m, detail, p_nee + p_bsdf, q);
     return unweighted * power_heuristic(p_nee, {p_bsdf, p_mnee});
 }
 
@@ -172,12 +179,12 @@ double MneePath::emitter_weight(const Light& light, const Vec3& p, const Vec3& n
     const size_t last = size_t(s.k - 1);
     const double p_bsdf = s.p_prefix * s.q_last * std::abs(dot(lp.n, d)) / length_squared(lp.p - s.chain[last].p);
     const double q = connect_probability(light);
-    bool surface = false;
-    const double p_m = mnee_density(true, light, pmf, lp.p, lp.n, q, &surface);
+    DensityDetail detail;
+    const double p_m = mnee_density(true, light, pmf, lp.p, lp.n, q, &detail);
     const double p_mnee = q * p_m;
     const double p_nee =
         s.specular[last] ? 0.0 : s.p_prefix * pmf * light_point_pdf(scene, light, s.chain[last].p, lp.p, lp.n);
-    if (m_pilot && p_m > 0) m_pilot->add_other(value.average(), p_bsdf, p_m, p_bsdf + p_nee, q, surface);
+    if (m_pilot) record_other(value.average(), p_bsdf, p_m, detail, p_bsdf + p_nee, q);
     // Sec. 3.5: outlier removal drops the light that BSDF sampling finds through interfaces after
     // x_b but MNEE cannot: transmissive suffixes its walks do not reach, and suffixes with an
     // internal reflection (rare, bright hits through the glass: fireflies that no sample count
@@ -215,27 +222,32 @@ void MneePath::scattered(const SurfaceInteraction& si, const BSDF& bsdf, const B
         s.q_last = vertex_bsdf_density(v, si.wo, bs.wi, m_ctx.at(si));
     } else if (bsdf.is_smooth_sampled() && !bs.is_delta()) {
         // A new x_b: MNEE connected from here.
-        s = RefractiveSuffix();
-        s.has_xb = true;
-        s.xb = si;
-        s.xb_media = media_before;
-        s.q_last = bs.pdf;
+        s.start(si, media_before, bs.pdf);
     } else {
         s.has_xb = false;
     }
 }
 
 double MneePath::mnee_density(bool last_refracts, const Light& light, double pmf, const Vec3& p, const Vec3& n,
-                              double q, bool* surface_path) const {
-    *surface_path = false;
+                              double q, DensityDetail* detail) const {
+    *detail = DensityDetail();
+    detail->want_probe = m_pilot != nullptr;
     const RefractiveSuffix& s = m_suffix;
     // q = 0: the region leaves these paths to BSDF sampling, and MIS needs no density (nor its walk).
     if (!covers(last_refracts) || !(q > 0)) return 0.0;
     const double w0 = m_pilot ? work_so_far() : 0.0;
     const double d = m_technique.density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light, pmf, p, n, m_ctx.hero(),
-                                         m_surface_trials, surface_path);
+                                         m_surface_trials, detail);
     if (m_pilot) m_pilot->work_density += work_so_far() - w0;
     return d;
+}
+
+void MneePath::record_other(double value, double p_t, double p_m, const DensityDetail& detail, double p_other,
+                            double q) const {
+    if (p_m > 0)
+        m_pilot->add_other(value, p_t, p_m, detail.weight, p_other, q, detail.surface_path);
+    else if (detail.probe > 0)
+        m_pilot->add_probe_other(value, p_t, detail.probe, p_other, q);
 }
 
 double MneePath::connect_probability(const Light& light) const {

@@ -51,10 +51,14 @@ private:
     /// its surface seeds also reflect (solutions other than one, with reflections).
     bool covers(bool last_refracts) const;
     /// MNEE's density of the BSDF-sampled suffix ending at the light point (p, n), or 0 when the
-    /// technique cannot produce it or q is 0; its work goes to the pilot's record, and
-    /// `surface_path` tells whether only the surface trials reach it.
+    /// technique cannot produce it or q is 0; its work goes to the pilot's record, and `detail`
+    /// tells whether only the surface trials reach it, and the rest of DensityDetail (the probe's
+    /// density in the pilot).
     double mnee_density(bool last_refracts, const Light& light, double pmf, const Vec3& p, const Vec3& n, double q,
-                        bool* surface_path) const;
+                        DensityDetail* detail) const;
+    /// The pilot's record of a path another technique sampled with density p_t (ConnectionAllocation).
+    void record_other(double value, double p_t, double p_m, const DensityDetail& detail, double p_other,
+                      double q) const;
 
     const Scene* m_scene;
     const PathSettings* m_path;

@@ -24,6 +24,18 @@ struct RefractiveSuffix {
     bool transmissions_only = true;  ///< all recorded vertices refract (MNEE can only produce those)
     double p_prefix = 1;             ///< area density of BSDF sampling x_1..x_k given x_b
     double q_last = 0;               ///< density of the last sampled direction (solid angle, deltas factored)
+
+    /// A new x_b, reached in `media` and left by a direction of density q: the suffix starts
+    /// empty. Only the fields read before they are written are reset (the chain is ~5 KB).
+    void start(const SurfaceInteraction& x, const MediumStack& media, double q) {
+        has_xb = true;
+        xb = x;
+        xb_media = media;
+        k = 0;
+        transmissions_only = true;
+        p_prefix = 1;
+        q_last = q;
+    }
 };
 
 }  // namespace snell
