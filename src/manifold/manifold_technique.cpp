@@ -50,9 +50,11 @@ ManifoldConnection ManifoldTechnique::connect(const ManifoldQuery& query, Sample
     c.q = c.light->is_delta() ? 1.0 : query.connect_probability;
     // x_b's BSDF towards the sample, for the case the connection turns out to be NEE's.
     const auto f_b = [&] { return query.bsdf_b->eval(query.ctx.at(xb), xb.to_local(xb.wo), xb.to_local(ls->wi)); };
-    if (!(c.q > 0)) {
-        // The region leaves the refracted light to BSDF sampling: what is left of the connection
-        // is NEE's, one shadow ray (a seed that meets glass gives 0).
+    // The connection is made with probability q (and counted 1 / q by the caller); the coin
+    // comes first, so that a region at small q does not trace a seed it will not walk. Without
+    // the connection the region leaves the refracted light to BSDF sampling: what is left is
+    // NEE's, one shadow ray (a segment that meets glass gives 0), the same sample as a clear seed.
+    if (!(c.q > 0) || (c.q < 1 && !(sampler.next_1d() < c.q))) {
         c.f_b = f_b();
         if (c.f_b.is_nonzero() && light_visible(scene, xb, *ls)) c.kind = ManifoldConnection::Kind::Direct;
         return c;
@@ -85,8 +87,6 @@ ManifoldConnection ManifoldTechnique::connect(const ManifoldQuery& query, Sample
             break;
     }
     if (m_settings->solutions == MneeSolutions::One && query.max_k >= 0 && int(seed.size()) > query.max_k) return c;
-    // The connection is made with probability q (and counted 1 / q by the caller).
-    if (c.q < 1 && !(sampler.next_1d() < c.q)) return c;
     // Lines 3-5 (half vectors, walk, measurement) for every solution the estimator finds.
     ManifoldQuery q = query;
     q.straight_seed = status == SeedStatus::Refractive;

@@ -268,9 +268,12 @@ void ConnectionAllocation::fit() {
                 for (int j = 0; j < kCandidateCount; ++j) {
                     const double q = kConnectCandidates[size_t(j)];
                     variance[r][size_t(kind)][size_t(j)] += weight * (rest + m2[size_t(j)] / n);
-                    // At q = 0 a light sample makes one shadow ray instead of tracing its seed.
+                    // A light sample traces its seed with probability q (ManifoldTechnique::connect),
+                    // else it makes one shadow ray; work_seed is the seeds' work beyond that ray.
                     work[r][size_t(kind)][size_t(j)] +=
-                        work_rest + (q > 0 ? q / m_q_pilot * connect + p.work_density : -p.work_seed) / n;
+                        work_rest +
+                        ((q / m_q_pilot - 1) * p.work_seed + q / m_q_pilot * connect + (q > 0 ? p.work_density : 0.0)) /
+                            n;
                 }
             }
             needs_mnee[r] = needs_mnee[r] || p.needs_mnee;
