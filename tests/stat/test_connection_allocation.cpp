@@ -120,16 +120,18 @@ namespace {
 // n pilot samples (q_pilot = 1) of pixel (x, y) on a path space with f = 1: each makes one MNEE
 // connection (p_m = 1, value 1) and BSDF sampling finds the path with density p_other, in
 // expectation: every 1 / p_other-th sample (counted by `clock`) with value 1 / p_other. The
-// samples' values alternate 0 and 2 (variance from elsewhere in the pixel).
-void feed(ConnectionAllocation& a, int x, int y, int n, double p_other, bool only_mnee, double work_connect,
-          int& clock) {
+// samples' values alternate 0 and 2 (variance from elsewhere in the pixel). `seed_work`: the work
+// of tracing the connection's seed beyond the shadow ray a sample makes without it.
+void feed(ConnectionAllocation& a, int x, int y, int n, double p_other, bool only_mnee, double work_connect, int& clock,
+          double seed_work = 0) {
     const int every = std::max(1, int(std::lround(1 / p_other)));
     for (int i = 0; i < n; ++i) {
         PilotSample s;
         s.add_connection(1.0, 1.0, 1.0, 1.0, only_mnee ? 0.0 : p_other, 1.0);
         if (!only_mnee && clock++ % every == 0) s.add_other(1.0 / p_other, p_other, 1.0, 1.0, p_other, 1.0);
         s.work_connect = work_connect;
-        a.add(x, y, s, 2.0 * (i % 2), work_connect + 2.0);
+        s.work_seed = seed_work;
+        a.add(x, y, s, 2.0 * (i % 2), work_connect + seed_work + 2.0);
     }
 }
 
@@ -156,6 +158,20 @@ TEST(ConnectionAllocation, RegionsChooseTheLeastVarianceTimesWork) {
     EXPECT_GT(a.q(40, 5), 0.0);
     const auto h = a.histogram();
     EXPECT_EQ(h[0], 1u);
+}
+
+// A connection's seed is traced only when the connection is made (ManifoldTechnique::connect
+// draws the coin first), so its work scales with q like the walks'. With a seed 10 times as
+// dear as the walks (work 2 + 220 q against variance about 1 / q + 0.83) the region takes
+// q = 1/8. Charged to every sample at any q > 0 (as before the coin came first), or at every q
+// alike, the seed made small q look dear and the region took 1.
+TEST(ConnectionAllocation, SeedWorkScalesWithQ) {
+    ConnectionAllocation a(16, 16, 0, 0, 16, 1.0);
+    int clock = 0;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) feed(a, x, y, 4, 1e-3, false, 20, clock, 200);
+    a.fit();
+    EXPECT_EQ(a.q(5, 5), 0.125);
 }
 
 // One pilot firefly in a region must not decide its q. Every pixel of the region sees light
