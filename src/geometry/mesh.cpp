@@ -1,6 +1,8 @@
 #include "geometry/mesh.h"
 
+#include <algorithm>
 #include <cfloat>
+#include <cstring>
 #include <stdexcept>
 
 #include "core/warp.h"
@@ -75,6 +77,47 @@ TriangleMesh::TriangleMesh(MeshData data, bool face_normals, bool flip_normals, 
     if (m_tris.size() <= kMaxCachedTriangles) {
         m_params.resize(m_tris.size());
         for (uint32_t i = 0; i < m_tris.size(); ++i) m_params[i] = triangle_params(i);
+    }
+    build_neighbours();
+}
+
+void TriangleMesh::build_neighbours() {
+    // Weld vertices by position (their float bits), so a seam of split normals or uvs joins.
+    const size_t nv = vertex_count();
+    std::vector<uint32_t> order(nv), weld(nv);
+    for (uint32_t i = 0; i < nv; ++i) order[i] = i;
+    const auto key = [&](uint32_t i) {
+        std::array<uint32_t, 3> k;
+        std::memcpy(k.data(), &m_pos[i], sizeof(k));
+        return k;
+    };
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
+    for (size_t i = 0; i < nv; ++i)
+        weld[order[i]] = i > 0 && key(order[i]) == key(order[i - 1]) ? weld[order[i - 1]] : order[i];
+    // Every edge as (welded ends, triangle, edge index); edges met exactly twice join two triangles.
+    struct Edge {
+        uint64_t ends;
+        uint32_t tri;
+        uint32_t e;
+    };
+    std::vector<Edge> edges;
+    edges.reserve(3 * m_tris.size());
+    for (uint32_t t = 0; t < m_tris.size(); ++t)
+        for (uint32_t e = 0; e < 3; ++e) {
+            const uint32_t a = weld[m_tris[t][(e + 1) % 3]], b = weld[m_tris[t][(e + 2) % 3]];
+            if (a == b) continue;  // a collapsed edge joins nothing
+            edges.push_back({uint64_t(std::min(a, b)) << 32 | std::max(a, b), t, e});
+        }
+    std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.ends < y.ends; });
+    m_neighbours.assign(m_tris.size(), {kNoNeighbour, kNoNeighbour, kNoNeighbour});
+    for (size_t i = 0; i < edges.size();) {
+        size_t j = i + 1;
+        while (j < edges.size() && edges[j].ends == edges[i].ends) ++j;
+        if (j - i == 2) {
+            m_neighbours[edges[i].tri][edges[i].e] = edges[i + 1].tri;
+            m_neighbours[edges[i + 1].tri][edges[i + 1].e] = edges[i].tri;
+        }
+        i = j;
     }
 }
 
@@ -332,13 +375,33 @@ bool TriangleMesh::closest_point_near(const SurfaceInteraction& near, const Vec3
     // The walk's steps near convergence are far smaller than a triangle, so the BVH query is
     // needed only when p leaves the triangle's prism: on the gallery's pool, mesh ball and bunny
     // the images stayed bit-identical and a sample cost 5-13 % less (issue 26, point 5).
+    // Where it does, the projection crosses to the neighbour past the edge p lies furthest
+    // beyond, as a point location walk does, so a walk's first steps (a few triangles of a
+    // fine mesh) need no query either: the pool's point queries had been 15-20 % of its time.
     if (near.shape == this && near.prim < m_tris.size()) {
-        const auto& t = m_tris[near.prim];
-        const Vec3 a = vertex(t[0]), b = vertex(t[1]), c = vertex(t[2]);
-        const Vec2 bc = closest_point_on_triangle(p, a, b, c);
-        if (bc.x > 0 && bc.y > 0 && bc.x + bc.y < 1 &&
-            length_squared(a + (b - a) * bc.x + (c - a) * bc.y - p) <= radius * radius) {
-            interaction_at(near.prim, bc, si);
+        uint32_t prim = near.prim;
+        for (int hop = 0; hop <= kMaxProjectionHops; ++hop) {
+            const auto& t = m_tris[prim];
+            const Vec3 a = vertex(t[0]), b = vertex(t[1]), c = vertex(t[2]);
+            // Barycentrics of p's projection onto the triangle's plane.
+            const Vec3 e1 = b - a, e2 = c - a, d = p - a;
+            const double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
+            const double det = d11 * d22 - d12 * d12;
+            if (!(det > 1e-12 * d11 * d22)) break;  // a sliver: let the BVH decide
+            const double w1 = (d22 * dot(d, e1) - d12 * dot(d, e2)) / det;
+            const double w2 = (d11 * dot(d, e2) - d12 * dot(d, e1)) / det;
+            const double w[3] = {1 - w1 - w2, w1, w2};
+            const int e = int(std::min_element(w, w + 3) - w);
+            if (w[e] < 0) {
+                // Beyond the edge opposite the most negative one: cross it.
+                prim = m_neighbours[prim][size_t(e)];
+                if (prim == kNoNeighbour) break;
+                continue;
+            }
+            const Vec2 bc = closest_point_on_triangle(p, a, b, c);
+            if (!(bc.x > 0 && bc.y > 0 && bc.x + bc.y < 1)) break;  // on an edge: the BVH decides
+            if (!(length_squared(a + e1 * bc.x + e2 * bc.y - p) <= radius * radius)) break;
+            interaction_at(prim, bc, si);
             si->wo = Vec3();
             return true;
         }

@@ -16,8 +16,13 @@ void MultiSolutionEstimator::solve(const ManifoldQuery& q, const BSDFContext& ct
     const size_t before = out.solutions.size();
     HalfVectorDraws draws(sampler);
     bool straight_converged = false;
+    // The straight solution is polished (for same_solution) only where trials may refind it:
+    // elsewhere the polish is a second walk that changes nothing the image sees (its value is
+    // the unpolished chain's), 7 % of the height-field pool's time (issue 26, point 5).
+    const bool trials_follow =
+        m_settings->seeding != MneeSeeding::Straight && (q.surface_trials || !weighs_surface_solutions());
     if (q.straight_seed && walks_straight_seed())
-        add_solution(q, ctx, slot, light, pmf, lp, seed, draws, max_k, false, true, out, &straight_converged);
+        add_solution(q, ctx, slot, light, pmf, lp, seed, draws, max_k, false, trials_follow, out, &straight_converged);
     if (m_settings->seeding == MneeSeeding::Straight) return;  // settings made in code: no surface seeds
     // surface_weight: beside a clear straight seed, surface solutions count only where the
     // straight walk converged (to another one, or its own): a function of x_b and the light

@@ -190,8 +190,8 @@ TEST(GeometryMesh, ClosestPointMatchesBruteForceAndIntersection) {
 
 // The manifold walk's projection from a point on the mesh (closest_point_near) is the closest
 // point wherever the mesh is convex towards p: on a tessellated sphere, from outside, both for
-// steps that stay over the starting triangle (no BVH query) and for steps that leave it (the
-// query); the radius cuts off alike.
+// steps that stay over the starting triangle and for steps of up to several triangles that
+// leave it (crossing edges, or the query where too many lie between); the radius cuts off alike.
 TEST(GeometryMesh, ClosestPointNearMatchesClosestPointOnAConvexMesh) {
     const MeshData d = test::make_uv_sphere({0, 0, 0}, 1.0, 32, 16);
     auto m = std::make_shared<TriangleMesh>(d);
@@ -212,7 +212,7 @@ TEST(GeometryMesh, ClosestPointNearMatchesClosestPointOnAConvexMesh) {
         m->interaction_at(prim, bc, &near);
         // A tangent step of up to about one and a half triangles, lifted off the surface.
         const Frame f = Frame::from_normal(near.ng);
-        const double phi = 2 * kPi * rng.next_double(), step = 0.15 * rng.next_double();
+        const double phi = 2 * kPi * rng.next_double(), step = 0.6 * std::pow(rng.next_double(), 2.0);
         const Vec3 p =
             near.p + (f.s * std::cos(phi) + f.t * std::sin(phi)) * step + near.ng * (0.01 * rng.next_double());
         SurfaceInteraction got, ref;
@@ -227,8 +227,74 @@ TEST(GeometryMesh, ClosestPointNearMatchesClosestPointOnAConvexMesh) {
         EXPECT_FALSE(m->closest_point_near(near, p, dist * (1 - 1e-6), &got));
         EXPECT_TRUE(m->closest_point_near(near, p, dist * (1 + 1e-9) + 1e-12, &got));
     }
-    EXPECT_GT(stayed, 200);
-    EXPECT_GT(left, 200);
+    EXPECT_GT(stayed, 300);
+    EXPECT_GT(left, 1000);
+}
+
+// Edges join the triangles that share them, both ways, also across a seam whose vertices are
+// duplicated (the uv sphere's meridian seam, a mesh split at its normals); a boundary edge joins
+// none.
+TEST(GeometryMesh, NeighboursShareAnEdgeBothWaysAndAcrossSeams) {
+    const MeshData d = test::make_uv_sphere({0, 0, 0}, 1.0, 32, 16);
+    TriangleMesh m(d);
+    int joined = 0;
+    for (uint32_t t = 0; t < m.triangle_count(); ++t)
+        for (int e = 0; e < 3; ++e) {
+            const uint32_t n = m.neighbour(t, e);
+            if (n == TriangleMesh::kNoNeighbour) continue;
+            ++joined;
+            // The edge's ends (by position) are two of the neighbour's corners, and it points back.
+            const auto& tri = m.triangle(t);
+            int shared = 0;
+            for (int k = 1; k <= 2; ++k)
+                for (uint32_t v : m.triangle(n)) shared += m.vertex(v) == m.vertex(tri[size_t((e + k) % 3)]);
+            EXPECT_EQ(shared, 2) << t << " " << e;
+            bool back = false;
+            for (int f = 0; f < 3; ++f) back |= m.neighbour(n, f) == t;
+            EXPECT_TRUE(back) << t << " " << e;
+        }
+    // Every edge but the poles' collapsed ones (3 per pole triangle: one collapsed, two shared).
+    EXPECT_GT(joined, int(3 * m.triangle_count()) - 4 * 32);
+
+    MeshData sheet;
+    sheet.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+    sheet.triangles = {{0, 1, 2}, {2, 1, 3}};
+    TriangleMesh two(sheet);
+    EXPECT_EQ(two.neighbour(0, 0), 1u);  // edge (1, 2), opposite vertex 0
+    EXPECT_EQ(two.neighbour(1, 2), 0u);  // edge (2, 1), opposite vertex 3
+    EXPECT_EQ(two.neighbour(0, 1), TriangleMesh::kNoNeighbour);
+}
+
+// A projection stays on the sheet its vertex walks on: two parallel sheets of one mesh, not
+// joined by any edge, the point above the first one several triangles from the start but
+// nearer the second. The BVH's closest point is on the second; the walk's continuation on the
+// first (asking the BVH, as before the edges were crossed, would jump to the other interface).
+TEST(GeometryMesh, ClosestPointNearStaysOnTheSheetItWalksOn) {
+    MeshData d;
+    const int n = 10;
+    for (int sheet = 0; sheet < 2; ++sheet) {
+        const uint32_t base = uint32_t(d.positions.size());
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) d.positions.push_back({0.1 * i, 0.1 * j, 0.1 * sheet});
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const uint32_t v = base + uint32_t(j * (n + 1) + i);
+                d.triangles.push_back({v, v + 1, v + uint32_t(n + 1)});
+                d.triangles.push_back({v + uint32_t(n + 1), v + 1, v + uint32_t(n + 2)});
+            }
+    }
+    auto m = std::make_shared<TriangleMesh>(d);
+    Scene scene;
+    scene.add_shape(m);
+    scene.build();
+    SurfaceInteraction near, got, ref;
+    m->interaction_at(0, {0.25, 0.25}, &near);  // on the first sheet, at (0.025, 0.025, 0)
+    const Vec3 p(0.53, 0.47, 0.08);
+    ASSERT_TRUE(m->closest_point(p, kInfinity, &ref));
+    EXPECT_NEAR(ref.p.z, 0.1, 1e-6);
+    ASSERT_TRUE(m->closest_point_near(near, p, 1.0, &got));
+    EXPECT_LT(length(got.p - Vec3(0.53, 0.47, 0)), 1e-9);
+    EXPECT_NE(got.prim, near.prim);
 }
 
 // Three triangles of unequal area tiling [0,2]x[0,1]: a uniform sampler fills equal grid
