@@ -78,10 +78,14 @@ TriangleMesh::TriangleMesh(MeshData data, bool face_normals, bool flip_normals, 
         m_params.resize(m_tris.size());
         for (uint32_t i = 0; i < m_tris.size(); ++i) m_params[i] = triangle_params(i);
     }
-    build_neighbours();
 }
 
-void TriangleMesh::build_neighbours() {
+const std::vector<std::array<uint32_t, 3>>& TriangleMesh::neighbours() const {
+    std::call_once(m_neighbours_built, [this] { build_neighbours(); });
+    return m_neighbours;
+}
+
+void TriangleMesh::build_neighbours() const {
     // Weld vertices by position (their float bits), so a seam of split normals or uvs joins.
     const size_t nv = vertex_count();
     std::vector<uint32_t> order(nv), weld(nv);
@@ -379,6 +383,7 @@ bool TriangleMesh::closest_point_near(const SurfaceInteraction& near, const Vec3
     // beyond, as a point location walk does, so a walk's first steps (a few triangles of a
     // fine mesh) need no query either: the pool's point queries had been 15-20 % of its time.
     if (near.shape == this && near.prim < m_tris.size()) {
+        const std::vector<std::array<uint32_t, 3>>& across = neighbours();
         uint32_t prim = near.prim;
         for (int hop = 0; hop <= kMaxProjectionHops; ++hop) {
             const auto& t = m_tris[prim];
@@ -394,7 +399,7 @@ bool TriangleMesh::closest_point_near(const SurfaceInteraction& near, const Vec3
             const int e = int(std::min_element(w, w + 3) - w);
             if (w[e] < 0) {
                 // Beyond the edge opposite the most negative one: cross it.
-                prim = m_neighbours[prim][size_t(e)];
+                prim = across[prim][size_t(e)];
                 if (prim == kNoNeighbour) break;
                 continue;
             }

@@ -1,5 +1,6 @@
 #pragma once
 #include <array>
+#include <mutex>
 #include <vector>
 
 #include "core/distribution.h"
@@ -82,8 +83,9 @@ public:
     /// The triangle across edge e of triangle `prim` (the edge opposite its vertex e), or
     /// kNoNeighbour at a boundary or an edge shared by more than two triangles. Vertices at the
     /// same position count as one, so a mesh split at a seam of its normals or uvs is still
-    /// connected across it.
-    uint32_t neighbour(uint32_t prim, int e) const { return m_neighbours[prim][size_t(e)]; }
+    /// connected across it. Built on first use (only the meshes a walk projects onto pay
+    /// for them: 12 bytes a triangle, and 48 while building).
+    uint32_t neighbour(uint32_t prim, int e) const { return neighbours()[prim][size_t(e)]; }
     static constexpr uint32_t kNoNeighbour = ~uint32_t(0);
 
 private:
@@ -100,7 +102,8 @@ private:
         bool flat_s_valid = false;
     };
     TriangleParams triangle_params(uint32_t prim) const;
-    void build_neighbours();
+    const std::vector<std::array<uint32_t, 3>>& neighbours() const;
+    void build_neighbours() const;
     RTCGeometry make_geometry(RTCDevice device) const;
 
     std::vector<Vec3f> m_pos;  ///< one extra padding element: Embree reads 16 bytes per vertex
@@ -113,8 +116,9 @@ private:
     Bounds3 m_bounds;
     double m_area = 0;
     Distribution1D m_tri_dist;
-    std::vector<TriangleParams> m_params;               ///< per triangle, empty above kMaxCachedTriangles
-    std::vector<std::array<uint32_t, 3>> m_neighbours;  ///< per triangle, across each edge
+    std::vector<TriangleParams> m_params;  ///< per triangle, empty above kMaxCachedTriangles
+    mutable std::once_flag m_neighbours_built;
+    mutable std::vector<std::array<uint32_t, 3>> m_neighbours;  ///< per triangle, across each edge
     RTCScene m_query_scene = nullptr;
 };
 
