@@ -33,7 +33,8 @@ droplet mnee '<boolean name="biased" value="true"/>' > "$TMP/biased.xml"
 droplet bdpt > "$TMP/bdpt.xml"
 droplet pssmlt > "$TMP/pssmlt.xml"
 droplet erpt > "$TMP/erpt.xml"
-for s in path mnee biased bdpt pssmlt erpt; do
+droplet hslt > "$TMP/hslt.xml"
+for s in path mnee biased bdpt pssmlt erpt hslt; do
   check "$s scene renders" "'$SNELL' render '$TMP/$s.xml' --spp 8 -t 2 -q -o '$TMP/$s.exr'"
 done
 
@@ -78,6 +79,8 @@ check "a crop outside the film is an error" "[ $rc -eq 1 ] && echo \"\$out\" | g
 
 out=$("$SNELL" render "$TMP/pssmlt.xml" --spp 8 -q --crop 0,0,24,18 -o "$TMP/x.exr" 2>&1); rc=$?
 check "pssmlt refuses a crop (its chains roam the film)" "[ $rc -eq 1 ] && echo \"\$out\" | grep -q 'pssmlt renders the whole film'"
+out=$("$SNELL" render "$TMP/hslt.xml" --spp 8 -q --crop 0,0,24,18 -o "$TMP/x.exr" 2>&1); rc=$?
+check "hslt refuses a crop too" "[ $rc -eq 1 ] && echo \"\$out\" | grep -q 'hslt renders the whole film'"
 
 # 3. Frame numbers in the output name.
 "$SNELL" render "$TMP/path.xml" --spp 1 -q -D frame=7 -o "$TMP/anim/frame_%04d.exr" --mkdir; rc=$?
@@ -104,9 +107,9 @@ if [ "$MPI" != "mpi" ]; then
   exit $fail
 fi
 
-# 5. mpirun -n 1, 2, 3: bit-identical to one process (the chains of pssmlt and erpt split over
-#    the ranks, their bootstraps computed once over them).
-for s in path mnee biased bdpt pssmlt erpt; do
+# 5. mpirun -n 1, 2, 3: bit-identical to one process (the chains of pssmlt, erpt and hslt split
+#    over the ranks, their bootstraps computed once over them).
+for s in path mnee biased bdpt pssmlt erpt hslt; do
   for n in 1 2 3; do
     $MPIRUN -n $n "$SNELL" render "$TMP/$s.xml" --spp 8 -t 1 -q -o "$TMP/${s}_np$n.exr"; rc=$?
     check "$s: mpirun -n $n is bit-identical to one process" "[ $rc -eq 0 ] && same '$TMP/${s}_np$n.exr' '$TMP/$s.exr'"
