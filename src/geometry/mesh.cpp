@@ -376,12 +376,11 @@ bool TriangleMesh::closest_point(const Vec3& p, double radius, SurfaceInteractio
 
 bool TriangleMesh::closest_point_near(const SurfaceInteraction& near, const Vec3& p, double radius,
                                       SurfaceInteraction* si) const {
-    // The walk's steps near convergence are far smaller than a triangle, so the BVH query is
-    // needed only when p leaves the triangle's prism: on the gallery's pool, mesh ball and bunny
-    // the images stayed bit-identical and a sample cost 5-13 % less (issue 26, point 5).
-    // Where it does, the projection crosses to the neighbour past the edge p lies furthest
-    // beyond, as a point location walk does, so a walk's first steps (a few triangles of a
-    // fine mesh) need no query either: the pool's point queries had been 15-20 % of its time.
+    // A point location walk from the vertex's triangle: while p lies beyond an edge, cross to
+    // the neighbour past the one it lies furthest beyond. A walk's last steps stay on one
+    // triangle and its first cross tens of a fine mesh's; the BVH's point queries they replace
+    // had been 15-20 % of the pool's time (issue 26, point 5). The BVH answers only at a
+    // boundary, a sliver, an edge point, or after kMaxProjectionHops crossings.
     if (near.shape == this && near.prim < m_tris.size()) {
         const std::vector<std::array<uint32_t, 3>>& across = neighbours();
         uint32_t prim = near.prim;

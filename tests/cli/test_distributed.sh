@@ -153,8 +153,12 @@ check "a scene missing on one rank: the message names the rank and the file" \
   "echo \"\$out\" | grep -q 'rank 1 of 2.*missing.xml'"
 timeout 60 $MPIRUN -n 2 "$SNELL" render "$TMP/path.xml" --spp 100000000 -q -o "$TMP/k.exr" > /dev/null 2>&1 &
 job=$!
-sleep 3
-pkill -9 -f "snell render $TMP/path.xml --spp 100000000" -n
+# Kill one rank once both run (a fixed sleep raced their start on a loaded machine: nothing was
+# killed and the job timed out). The pattern is anchored so that it matches the ranks alone.
+ranks="^$SNELL render $TMP/path.xml --spp 100000000"
+for _ in $(seq 1 100); do [ "$(pgrep -f "$ranks" | wc -l)" -ge 2 ] && break; sleep 0.3; done
+sleep 1
+pkill -9 -f "$ranks" -n
 wait $job; rc=$?
 check "a killed rank: non-zero exit, no hang" "[ $rc -ne 0 ] && [ $rc -ne 124 ]"
 
