@@ -89,6 +89,19 @@ void Film::set_splat(int layer, int x, int y, const ExactSum3& sum) {
     s[size_t(y) * m_w + x] = sum;
 }
 
+void Film::fold_splat_layer(int layer, double scale) {
+    if (!has_splats(layer) || layer == 0) return;
+    for (int y = 0; y < m_h; ++y)
+        for (int x = 0; x < m_w; ++x) {
+            const Vec3 v = value(m_splats[size_t(layer)][size_t(y) * m_w + x]) * scale;
+            if (v.x != 0 || v.y != 0 || v.z != 0) add_splat(x, y, v);
+        }
+    if (size_t(layer) + 1 == m_splats.size())
+        m_splats.pop_back();
+    else
+        m_splats[size_t(layer)].clear();
+}
+
 std::vector<float> Film::to_linear_srgb(int layer) const {
     std::vector<float> rgb(size_t(m_w) * m_h * 3);
     for (int y = 0; y < m_h; ++y) {

@@ -105,6 +105,11 @@ public:
     /// Sets a pixel's accumulated values (a partial film read back).
     void set_pixel(int x, int y, const ExactSum3& sum, uint64_t count, const Vec3& largest, int technique);
     void set_splat(int layer, int x, int y, const ExactSum3& sum);
+    /// Adds `scale` times splat layer `layer` (>= 1) to layer 0, pixel by pixel, and removes the
+    /// layer: a part of the splats whose scale is known only when every sample is in (hslt's
+    /// chain splats, scaled by the refined normalisation). Deterministic: the same exact sums
+    /// give the same image.
+    void fold_splat_layer(int layer, double scale);
 
     /// The outlier clamp the film's value is shown with (camera/outlier_clamp.h computes it, as
     /// a post-process of the finished film; the samples are not changed).

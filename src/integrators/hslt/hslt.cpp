@@ -45,11 +45,17 @@ HsltSettings HsltSettings::from_props(const Props& props) {
         return x;
     };
     HsltMutationSettings& m = s.mutation;
+    m.footprint = props.get_float("footprint", m.footprint);
+    if (!(m.footprint >= 0) || !std::isfinite(m.footprint))
+        props.raise_param("footprint", "hslt: footprint must be >= 0 (pixels; 0: fixed widths)");
     m.width = positive("perturbation_width", m.width);
     m.rough_width = positive("rough_width", m.rough_width);
     m.lens_width = positive("lens_width", m.lens_width);
     m.light_width = positive("light_width", m.light_width);
     m.walk = WalkSettings::from_props(props);
+    s.b_rate = props.get_float("b_rate", s.b_rate);
+    if (!(s.b_rate >= 0 && s.b_rate <= 16))
+        props.raise_param("b_rate", "hslt: b_rate must lie in [0, 16] (MNEE paths per mutation refining b)");
     return s;
 }
 
@@ -85,7 +91,11 @@ RenderResult render_hslt(const Scene& scene, const HsltSettings& st, int spectra
                          const RenderOptions& opt, const std::atomic<bool>* cancel) {
     check_scene(scene);
     const PerspectiveCamera& camera = *scene.camera()->pinhole();
-    MetropolisLoop loop(spec, opt, cancel, st.chains, st.mutations_per_pixel, "hslt");
+    // An equal-time render leaves the MNEE paths that refine b (b_rate per mutation, about as
+    // costly each as a mutation) their share of the budget.
+    RenderOptions chain_opt = opt;
+    if (chain_opt.time_limit > 0) chain_opt.time_limit = opt.time_limit / (1 + st.b_rate);
+    MetropolisLoop loop(spec, chain_opt, cancel, st.chains, st.mutations_per_pixel, "hslt");
     const HsltContext ctx{&scene, &camera, &spec, length(scene.bounds().extent())};
 
     // Bootstrap, in two rounds over the team: first with every length equally likely, to learn
@@ -129,14 +139,18 @@ RenderResult render_hslt(const Scene& scene, const HsltSettings& st, int spectra
     inner_path.hide_emitters = st.hide_emitters;
     const MneeIntegrator inner(inner_path, MneeSettings{});
     const IndependentSampler prototype(mix_bits(opt.seed ^ 0x48534c5462ULL));
-    const std::vector<double> energy = team_bootstrap(loop.team(), loop.arena(), n_boot, [&](size_t i) {
-        auto sampler = prototype.clone();
-        sampler->start_pixel_sample(-1, -1, i);  // no pixel of the film uses (-1, -1)
-        return evaluate(scene, camera, inner, spectral_samples, spec, *sampler).target();
-    });
-    double b = 0;
-    for (double y : energy) b += y;  // fixed order: deterministic
-    b /= double(n_boot);
+    const auto mnee_energy = [&](size_t first, size_t count) {
+        const std::vector<double> y = team_bootstrap(loop.team(), loop.arena(), count, [&](size_t i) {
+            auto sampler = prototype.clone();
+            sampler->start_pixel_sample(-1, -1, first + i);  // no pixel of the film uses (-1, -1)
+            return evaluate(scene, camera, inner, spectral_samples, spec, *sampler).target();
+        });
+        double sum = 0;
+        for (double v : y) sum += v;  // fixed order: deterministic
+        return sum;
+    };
+    const double boot_energy = mnee_energy(0, n_boot);
+    const double b = boot_energy / double(n_boot);
     double boot_sum = 0;
     for (double y : boot_y) boot_sum += y;
     // No large step found light (or there is none): no chain can start.
@@ -151,7 +165,18 @@ RenderResult render_hslt(const Scene& scene, const HsltSettings& st, int spectra
         HsltPath current, proposal;
     };
     std::vector<std::unique_ptr<Chain>> chains(size_t(loop.chains()));
-    return loop.run([&](int c, uint64_t quota, std::vector<Vec3>& film) {
+    // b weighs the splats (Kelemen's (1 - a) / (Y / b + p_large)) and scales the chains' part of
+    // the image (their states have density Y / b_true). A fixed bootstrap leaves b's error in
+    // the image however long the chains run (the glass sphere's b spread 0.86-1.16 over seeds at
+    // 400,000 paths), so the chains' part is rescaled at the end by b refined with b_rate more
+    // MNEE paths per mutation: the image converges as the render grows.
+    const auto refined_scale = [&](uint64_t mutations) {
+        const size_t extra = size_t(std::llround(double(mutations) * st.b_rate));
+        if (extra == 0) return 1.0;
+        const double refined = (boot_energy + mnee_energy(n_boot, extra)) / double(n_boot + extra);
+        return refined / b;
+    };
+    const auto chain_step = [&](int c, uint64_t quota, MetropolisLoop::ChainFilms& films) {
         std::unique_ptr<Chain>& chain = chains[size_t(c)];
         if (!chain) {
             chain = std::make_unique<Chain>();
@@ -190,17 +215,30 @@ RenderResult render_hslt(const Scene& scene, const HsltSettings& st, int spectra
             // (Kelemen et al. 2002, Sec. 4), as pssmlt does.
             const bool large = kind == HsltMutation::Large;
             const double fc = current.target(), fp = proposal.target();
+            // The chain's part (its states' expected values) and the large step's own sample.
             const double wc = (1 - a) / (fc / b + pk);
-            const double wp = (a + (st.kelemen_weights && large ? 1.0 : 0.0)) / (fp / b + pk);
-            if (wc > 0) loop.deposit(film, current.raster, current.xyz * wc);
-            if (wp > 0 && fp > 0) loop.deposit(film, proposal.raster, proposal.xyz * wp);
+            const double wp = a / (fp / b + pk);
+            const double wl = st.kelemen_weights && large ? 1.0 / (fp / b + pk) : 0.0;
+            if (wc > 0) loop.deposit(films.metropolis, current.raster, current.xyz * wc);
+            if (fp > 0 && wp > 0) loop.deposit(films.metropolis, proposal.raster, proposal.xyz * wp);
+            if (fp > 0 && wl > 0)
+                loop.deposit(st.b_rate > 0 ? films.independent : films.metropolis, proposal.raster, proposal.xyz * wl);
             if (rng.next_double() < a) {
                 std::swap(current, proposal);
                 ++accepted[int(kind)];
             }
         }
         return m;
-    });
+    };
+    if (!(st.b_rate > 0))
+        return loop.run([&](int c, uint64_t quota, std::vector<Vec3>& film) {
+            MetropolisLoop::ChainFilms films;
+            films.metropolis.swap(film);
+            const uint64_t m = chain_step(c, quota, films);
+            film.swap(films.metropolis);
+            return m;
+        });
+    return loop.run_parts(chain_step, refined_scale);
 }
 
 }  // namespace snell

@@ -26,6 +26,9 @@ struct HsltSettings {
     int64_t mutations_per_pixel = 0;  ///< (mutations_per_pixel) 0: the render options' spp
     /// (bootstrap_samples) MNEE paths estimating b, and large-step paths the chains start from.
     int64_t bootstrap_samples = 400000;
+    /// (b_rate) MNEE paths per mutation that refine b when the chains are done, so that b's error
+    /// falls as the render grows (0: b from the bootstrap alone).
+    double b_rate = 0.25;
     int chains = 0;  ///< (chains) 0: 64, as pssmlt
     /// Longest path in segments (max_depth; HSLT needs a bound: 16 when the scene gives none).
     int max_depth = 16;

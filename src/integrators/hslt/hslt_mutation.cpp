@@ -7,6 +7,7 @@
 #include "core/stats.h"
 #include "geometry/sphere.h"
 #include "light/light.h"
+#include "manifold/block_tridiagonal.h"
 #include "manifold/mnee.h"
 #include "scene/scene.h"
 
@@ -94,26 +95,67 @@ double half_vector_width(const ManifoldVertex& v, const SampledWavelengths& wl, 
     return st.width;
 }
 
+std::vector<double> half_vector_widths(const HsltContext& ctx, const HsltPath& path, const HsltMutationSettings& st) {
+    const size_t n = path.chain.size();
+    std::vector<double> sigma(n, 0.0);
+    size_t perturbed = 0;
+    for (size_t i = 0; i < n; ++i)
+        if (!path.specular[i]) {
+            sigma[i] = half_vector_width(path.chain[i], path.wl, st);
+            ++perturbed;
+        }
+    if (!(st.footprint > 0) || perturbed == 0) return sigma;
+    // d(film)/du_1: the pinhole's projection of x_1 moved along its tangent basis (central
+    // differences; the projection is smooth and its scale is the distance to the pinhole).
+    const ManifoldVertex& v1 = path.chain[0];
+    const double e = 1e-6 * length(v1.p - path.x0);
+    const Vec2 no_margin(1e30, 1e30);
+    Vec2 r[4];
+    double cos_theta;
+    const Vec3 dirs[4] = {v1.dp_ds * e, v1.dp_ds * -e, v1.dp_dt * e, v1.dp_dt * -e};
+    for (int k = 0; k < 4; ++k)
+        if (!ctx.camera->raster_of(v1.p + dirs[k], &r[k], &cos_theta, no_margin)) return sigma;
+    const Mat2 film_du = Mat2::from_columns((r[0] - r[1]) / (2 * e), (r[2] - r[3]) / (2 * e));
+    // du_1/dh_j: block (1, j) of (dH/dX)^-1, the columns of M X = E_j.
+    BlockTridiagonal m;
+    std::vector<Vec2> c;
+    if (!build_constraints(path.x0, path.chain, path.light_basis(), &m, &c)) return sigma;
+    BlockLU lu;
+    if (!lu.factor(m)) return sigma;
+    const double per_vertex = st.footprint / std::sqrt(double(perturbed));
+    for (size_t j = 0; j < n; ++j) {
+        if (path.specular[j]) continue;
+        std::vector<Mat2> unit(n, Mat2());
+        unit[j] = Mat2::identity();
+        const Mat2 g = film_du * lu.solve(unit)[0];
+        // Root mean square of its singular values: pixels per unit of h_j, over directions.
+        const double gain = std::sqrt(0.5 * (g.a * g.a + g.b * g.b + g.c * g.c + g.d * g.d));
+        if (gain > 0 && std::isfinite(gain)) sigma[j] = std::min(sigma[j], per_vertex / gain);
+    }
+    return sigma;
+}
+
 HsltProposal perturb_half_vectors(const HsltContext& ctx, const HsltPath& x, const HsltMutationSettings& st, PCG32& rng,
                                   HsltPath* y) {
     HsltProposal out;
     if (!(x.F > 0)) return out;
     *y = x;
-    std::vector<double> sigma_x(x.chain.size(), 0);
+    const std::vector<double> sigma_x = half_vector_widths(ctx, x, st);
     for (size_t i = 0; i < x.chain.size(); ++i) {
         if (x.specular[i]) continue;
-        sigma_x[i] = half_vector_width(x.chain[i], x.wl, st);
         const Vec2 h = x.chain[i].h_target + gaussian2(rng) * sigma_x[i];
         if (!(h.x * h.x + h.y * h.y < 1)) return out;
         y->chain[i].h_target = h;
     }
     if (!walk(ctx, x.x0, y->chain, x.light_basis(), st) || !finish_proposal(ctx, x, 0, x.x0, st, y)) return out;
-    // The Gaussians' widths follow the roughness where each vertex lies: T(y -> x) / T(x -> y).
+    // The widths depend on the path (its footprint, the roughness where each vertex lies):
+    // T(y -> x) / T(x -> y).
+    const std::vector<double> sigma_y = half_vector_widths(ctx, *y, st);
     double q = 1;
     for (size_t i = 0; i < x.chain.size(); ++i) {
         if (x.specular[i]) continue;
         const Vec2 d = y->chain[i].h_target - x.chain[i].h_target;
-        q *= gaussian_density(d, half_vector_width(y->chain[i], y->wl, st)) / gaussian_density(d, sigma_x[i]);
+        q *= gaussian_density(d, sigma_y[i]) / gaussian_density(d, sigma_x[i]);
     }
     out.valid = true;
     out.ratio = y->F / x.F * q;
@@ -171,21 +213,50 @@ HsltProposal perturb_lens(const HsltContext& ctx, const HsltPath& x, const HsltM
     return out;
 }
 
+namespace {
+
+// x_k moved on a spherical light: a Gaussian step in the tangent plane at x_k, projected
+// radially onto the sphere. The new point's density depends on the angle between the two
+// points alone, so the proposal is symmetric.
+bool move_on_sphere(const Sphere& sphere, const SurfaceInteraction& xk, double width, PCG32& rng,
+                    SurfaceInteraction* out) {
+    const Vec3 c = sphere.center();
+    const double r = sphere.radius();
+    const Frame f = Frame::from_normal(normalize(xk.p - c));
+    const Vec2 g = gaussian2(rng) * (width * r);
+    const Vec3 p = c + normalize(xk.p + f.s * g.x + f.t * g.y - c) * r;
+    return sphere.closest_point(p, 1e-6 * r + 1e-9 * length(p), out);
+}
+
+// x_k moved on any other emitting shape by a Gaussian step in its plane, of `width` times the
+// radius of a disc of the shape's area. Kept only where the new point lies on the shape in the
+// same plane (a rectangle, a disc, the flat part of a mesh): there the step is a translation
+// within one plane, the same from either end, so the proposal is symmetric in area measure. A
+// step off the shape, or onto a facet of another plane, is no proposal (curved meshes move
+// within their flat facets only).
+bool move_in_plane(const Shape& shape, const SurfaceInteraction& xk, double width, PCG32& rng,
+                   SurfaceInteraction* out) {
+    const double r = std::sqrt(shape.area() / kPi);
+    const Frame f = Frame::from_normal(xk.ng);
+    const Vec2 g = gaussian2(rng) * (width * r);
+    const Vec3 p = xk.p + f.s * g.x + f.t * g.y;
+    const double tol = 1e-6 * r + 1e-9 * length(p);
+    if (!shape.closest_point(p, tol, out) || !(length(out->p - p) <= tol)) return false;
+    return dot(out->ng, xk.ng) >= 1 - 1e-9;
+}
+
+}  // namespace
+
 HsltProposal perturb_light(const HsltContext& ctx, const HsltPath& x, const HsltMutationSettings& st, PCG32& rng,
                            HsltPath* y) {
     HsltProposal out;
     if (!(x.F > 0) || !x.light || !x.light->shape()) return out;
-    const auto* sphere = dynamic_cast<const Sphere*>(x.light->shape());
-    if (!sphere) return out;
-    // A Gaussian step in the tangent plane at x_k, projected radially onto the sphere: the
-    // density of the new point depends on the angle between the two alone (symmetric).
-    const Vec3 c = sphere->center();
-    const double r = sphere->radius();
-    const Frame f = Frame::from_normal(normalize(x.xk.p - c));
-    const Vec2 g = gaussian2(rng) * (st.light_width * r);
-    const Vec3 p = c + normalize(x.xk.p + f.s * g.x + f.t * g.y - c) * r;
+    const Shape& shape = *x.light->shape();
     SurfaceInteraction si;
-    if (!sphere->closest_point(p, 1e-6 * r + 1e-9 * length(p), &si)) return out;
+    const auto* sphere = dynamic_cast<const Sphere*>(&shape);
+    if (!(sphere ? move_on_sphere(*sphere, x.xk, st.light_width, rng, &si)
+                 : move_in_plane(shape, x.xk, st.light_width, rng, &si)))
+        return out;
     *y = x;
     y->xk = si;
     y->xk.wo = Vec3();

@@ -95,18 +95,32 @@ RenderResult MetropolisLoop::black() {
 }
 
 RenderResult MetropolisLoop::run(const std::function<uint64_t(int c, uint64_t quota, std::vector<Vec3>& film)>& chain) {
+    return run_parts([&](int c, uint64_t quota, ChainFilms& films) { return chain(c, quota, films.metropolis); },
+                     nullptr);
+}
+
+RenderResult MetropolisLoop::run_parts(const PartsChain& chain,
+                                       const std::function<double(uint64_t mutations)>& metropolis_scale) {
     const int w = m_spec.out_width(), h = m_spec.out_height();
     const size_t pixels = size_t(w) * size_t(h);
     RenderResult result;
     result.film = Film(w, h);
-    // One film per thread for the chain it runs; a finished chain's film is added to the film's
-    // splats exactly (ExactSum), so the image depends on neither the order the chains finish
-    // in nor the process that ran them.
-    std::vector<std::vector<Vec3>> films(static_cast<size_t>(m_threads));
+    // With a scale to come, the Metropolis part waits in splat layer 1 (reduced over the team
+    // with the rest) and is folded into the image at the end.
+    const int metropolis_layer = metropolis_scale ? 1 : 0;
+    // One pair of films per thread for the chain it runs; a finished chain's films are added to
+    // the film's splats exactly (ExactSum), so the image depends on neither the order the chains
+    // finish in nor the process that ran them.
+    std::vector<ChainFilms> films(static_cast<size_t>(m_threads));
     std::mutex film_mutex;
     std::atomic<uint64_t> mutations{0};
     m_bar = render_progress(m_opt, *m_team, m_label, m_total);
     const uint64_t n = uint64_t(m_chains);
+    const auto add = [&](const std::vector<Vec3>& film, int layer) {
+        for (size_t p = 0; p < film.size(); ++p)
+            if (film[p].x != 0 || film[p].y != 0 || film[p].z != 0)
+                result.film.add_splat(int(p % size_t(w)), int(p / size_t(w)), film[p], layer);
+    };
     // A fixed-length render runs each chain once, to its share of the mutations. An equal-time
     // render runs every chain in rounds of growing length until the budget is spent: with one
     // chain per thread (as before), a chain that found a rare bright path (a caustic path tracing
@@ -117,14 +131,14 @@ RenderResult MetropolisLoop::run(const std::function<uint64_t(int c, uint64_t qu
         const PassOutcome pass = run_team_pass(
             *m_team, m_arena, m_threads, m_chains, [&] { return m_stopping.requested(); }, SIZE_MAX,
             [&](int64_t c, int slot) {
-                std::vector<Vec3>& film = films[size_t(slot)];
-                film.assign(pixels, Vec3());
+                ChainFilms& f = films[size_t(slot)];
+                f.metropolis.assign(pixels, Vec3());
+                f.independent.assign(metropolis_scale ? pixels : 0, Vec3());
                 const uint64_t quota = m_timed ? round : m_total / n + (uint64_t(c) < m_total % n ? 1 : 0);
-                mutations += chain(int(c), quota, film);
+                mutations += chain(int(c), quota, f);
                 const std::lock_guard<std::mutex> lock(film_mutex);
-                for (size_t p = 0; p < pixels; ++p)
-                    if (film[p].x != 0 || film[p].y != 0 || film[p].z != 0)
-                        result.film.add_splat(int(p % size_t(w)), int(p / size_t(w)), film[p]);
+                add(f.metropolis, metropolis_layer);
+                add(f.independent, 0);
                 return !m_stopping.cancelled();
             });
         if (!m_timed || pass.stop || !pass.complete) break;
@@ -136,8 +150,10 @@ RenderResult MetropolisLoop::run(const std::function<uint64_t(int c, uint64_t qu
     std::vector<double> all{double(mutations.load())};
     m_team->sum_exactly(all);  // integers below 2^53: exact in any order
     const uint64_t done = uint64_t(all[0]);
+    const double scale = metropolis_scale ? metropolis_scale(done) : 1.0;
     const Vec2 extent = m_spec.sample_extent();
     result = finish(std::move(result), done > 0 ? extent.x * extent.y / double(done) : 0.0, done);
+    if (metropolis_scale) result.film.fold_splat_layer(metropolis_layer, scale);
     result.interrupted = m_team->any(m_stopping.cancelled()) && (m_timed || done < m_total);
     return result;
 }

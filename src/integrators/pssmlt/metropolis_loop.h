@@ -50,6 +50,18 @@ public:
     /// counts progress and reads the stop request.
     bool keep_going(uint64_t m, uint64_t quota) const;
 
+    /// A chain's films for run_parts: the expected-value splats of its states, which carry the
+    /// normalisation b, and the large steps' splats as independent samples, which do not.
+    struct ChainFilms {
+        std::vector<Vec3> metropolis, independent;
+    };
+    using PartsChain = std::function<uint64_t(int c, uint64_t quota, ChainFilms& films)>;
+    /// run() with the splats in two parts: when every chain is done, `metropolis_scale(mutations)`
+    /// (called on every process, with the team's mutation count; it may run a team bootstrap)
+    /// gives the factor the Metropolis part is scaled by (a refined b over the b in the weights),
+    /// and the image is the independent part plus the scaled Metropolis part.
+    RenderResult run_parts(const PartsChain& chain, const std::function<double(uint64_t mutations)>& metropolis_scale);
+
     /// Runs every chain: `chain(c, quota, film)` runs chain c on a cleared film (calling
     /// keep_going before each mutation) and returns the mutations it made. An equal-time render
     /// calls it once per round for every chain, with the round's quota: a chain keeps its state
