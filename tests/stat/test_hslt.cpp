@@ -303,7 +303,7 @@ TEST(Hslt, PerturbationsKeepTheTargetDistribution) {
     const Case cases[] = {
         {"rough plane, fixed widths", rough, perturb_half_vectors, 40, "0, 0.5, 1.6", kSphereBelow, 0.0, false, false,
          20000},
-        {"rough plane, footprint widths", rough, perturb_half_vectors, 200, "0, 0.3, 2.2", kSphereBelow, 2.0, true,
+        {"rough plane, footprint widths", rough, perturb_half_vectors, 100, "0, 0.3, 2.2", kSphereBelow, 2.0, true,
          false, 5000},
         {"rough plane, checkered roughness", checkered, perturb_half_vectors, 40, "0, 0.5, 1.6", kSphereBelow, 0.0,
          true, true, 20000},
