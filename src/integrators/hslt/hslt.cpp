@@ -167,8 +167,8 @@ RenderResult render_hslt(const Scene& scene, const HsltSettings& st, int spectra
     std::vector<std::unique_ptr<Chain>> chains(size_t(loop.chains()));
     // b weighs the splats (Kelemen's (1 - a) / (Y / b + p_large)) and scales the chains' part of
     // the image (their states have density Y / b_true). A fixed bootstrap leaves b's error in
-    // the image however long the chains run (the glass sphere's b spread 0.86-1.16 over seeds at
-    // 400,000 paths), so the chains' part is rescaled at the end by b refined with b_rate more
+    // the image however long the chains run (the glass sphere's image means spread 0.86-1.16 over
+    // seeds with 400,000 paths), so the chains' part is rescaled at the end by b refined with b_rate more
     // MNEE paths per mutation: the image converges as the render grows.
     const auto refined_scale = [&](uint64_t mutations) {
         const size_t extra = size_t(std::llround(double(mutations) * st.b_rate));

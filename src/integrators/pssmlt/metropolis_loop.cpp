@@ -150,7 +150,10 @@ RenderResult MetropolisLoop::run_parts(const PartsChain& chain,
     std::vector<double> all{double(mutations.load())};
     m_team->sum_exactly(all);  // integers below 2^53: exact in any order
     const uint64_t done = uint64_t(all[0]);
-    const double scale = metropolis_scale ? metropolis_scale(done) : 1.0;
+    // An interrupted render keeps the weights' scale: its image is wanted now (every process
+    // takes the same branch).
+    const bool cancelled = metropolis_scale && m_team->any(m_stopping.cancelled());
+    const double scale = metropolis_scale && !cancelled ? metropolis_scale(done) : 1.0;
     const Vec2 extent = m_spec.sample_extent();
     result = finish(std::move(result), done > 0 ? extent.x * extent.y / double(done) : 0.0, done);
     if (metropolis_scale) result.film.fold_splat_layer(metropolis_layer, scale);

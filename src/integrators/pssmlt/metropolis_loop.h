@@ -59,7 +59,8 @@ public:
     /// run() with the splats in two parts: when every chain is done, `metropolis_scale(mutations)`
     /// (called on every process, with the team's mutation count; it may run a team bootstrap)
     /// gives the factor the Metropolis part is scaled by (a refined b over the b in the weights),
-    /// and the image is the independent part plus the scaled Metropolis part.
+    /// and the image is the independent part plus the scaled Metropolis part (scale 1 when the
+    /// render was interrupted).
     RenderResult run_parts(const PartsChain& chain, const std::function<double(uint64_t mutations)>& metropolis_scale);
 
     /// Runs every chain: `chain(c, quota, film)` runs chain c on a cleared film (calling
