@@ -303,7 +303,7 @@ TEST(Hslt, PerturbationsKeepTheTargetDistribution) {
     const Case cases[] = {
         {"rough plane, fixed widths", rough, perturb_half_vectors, 40, "0, 0.5, 1.6", kSphereBelow, 0.0, false, false,
          20000},
-        {"rough plane, footprint widths", rough, perturb_half_vectors, 100, "0, 0.3, 2.2", kSphereBelow, 2.0, true,
+        {"rough plane, footprint widths", rough, perturb_half_vectors, 100, "0, 0.3, 2.2", kSphereBelow, 1.5, true,
          false, 5000},
         {"rough plane, checkered roughness", checkered, perturb_half_vectors, 40, "0, 0.5, 1.6", kSphereBelow, 0.0,
          true, true, 20000},
@@ -380,6 +380,14 @@ ReplicaStats brighter(ReplicaStats s) {
     return s;
 }
 
+// A light error scales the whole image: its mean alone is the test with the power to see it
+// (Welch, level 0.01; the blocks' Bonferroni correction is for finding where images differ).
+bool image_disagrees(const ReplicaStats& a, const ReplicaStats& b) {
+    const double p = welch_p_value(a.image, b.image);
+    std::printf("  against a 3 %% brighter reference: p = %.3g\n", p);
+    return p < 0.01;
+}
+
 // Agreement with nee in the box, and the power to see a 3 % error there.
 TEST(Hslt, AgreesWithNeeInABox) {
     LoadedScene ls = load_xml(kCornellBox, {{"integrator", "hslt"}, {"res", "16"}});
@@ -392,16 +400,16 @@ TEST(Hslt, AgreesWithNeeInABox) {
 
 // Caustics through smooth glass (light, glass, glass, floor, camera) and the glass seen from
 // the camera: specular chains held at h = 0 while the walk moves them. And the power to see 3 %
-// there: a replica's image mean spreads by 1.7 % at 8,192 mutations per pixel (2.8 % at
+// there: a replica's image mean spreads by about 1.9 % at 8,192 mutations per pixel (2.8 % at
 // 2,048, with a heavy upper tail: 16 replicas at 2,048 sat 2.4 % high for one seed set and
-// 0.3 % high over 48 others), so the whole-image test resolves 3 % with margin.
+// 0.3 % high over 48 others), so the whole image's mean resolves 3 % (image_disagrees).
 TEST(Hslt, AgreesWithBdptOnACaustic) {
     LoadedScene ls = load_xml(kGlassBall, {{"integrator", "hslt"}});
     LoadedScene bdpt = load_xml(kGlassBall, {{"integrator", "bdpt"}});
     const ReplicaStats mlt = hslt_replica_stats(ls, test_settings(ls, 8192), 500);
     const ReplicaStats ref = replica_stats(bdpt, 1024, kBlock, 600, kReplicas);
     expect_replicas_agree(mlt, ref, "hslt vs bdpt, glass ball");
-    EXPECT_GT(disagreements(mlt, brighter(ref), 0.01, false), 0) << "a 3 % error on the caustic went unseen";
+    EXPECT_TRUE(image_disagrees(mlt, brighter(ref))) << "a 3 % error on the caustic went unseen";
 }
 
 // The droplet: the same glass sunk into the floor (centre 0.3 below the ball's), so that the
@@ -413,7 +421,7 @@ TEST(Hslt, AgreesWithBdptOnADroplet) {
     const ReplicaStats mlt = hslt_replica_stats(ls, test_settings(ls, 8192), 700);
     const ReplicaStats ref = replica_stats(bdpt, 1024, kBlock, 800, kReplicas);
     expect_replicas_agree(mlt, ref, "hslt vs bdpt, droplet");
-    EXPECT_GT(disagreements(mlt, brighter(ref), 0.01, false), 0) << "a 3 % error on the droplet went unseen";
+    EXPECT_TRUE(image_disagrees(mlt, brighter(ref))) << "a 3 % error on the droplet went unseen";
 }
 
 TEST(Hslt, DeterministicForASeed) {

@@ -101,7 +101,7 @@ RenderResult render_hslt(const Scene& scene, const HsltSettings& st, int spectra
     // Bootstrap, in two rounds over the team: first with every length equally likely, to learn
     // how the light divides over the lengths; then with lengths drawn in those proportions (each
     // kept at a tenth of its uniform share at least, so every length stays reachable), for the
-    // normalisation b = E[Y] and the chain seeds.
+    // normalisation b = E[T] and the chain seeds.
     const size_t n_boot = size_t(st.bootstrap_samples);
     const size_t n_lengths = size_t(st.max_depth);
     std::vector<double> pmf(n_lengths, 1.0 / double(n_lengths));
@@ -130,7 +130,7 @@ RenderResult render_hslt(const Scene& scene, const HsltSettings& st, int spectra
         HsltPath p;
         return bootstrap_path(i, pmf, &p) ? p.target() : 0.0;
     });
-    // The normalisation b = E[Y] from MNEE (the paper's estimator) rather than from those paths:
+    // The normalisation b = E[T] from MNEE (the paper's estimator) rather than from those paths:
     // path tracing without light sampling is heavy-tailed wherever a small light lies behind
     // glass, and b scales the whole image. On the droplet, 400,000 of those paths gave b 0.0955
     // to 0.137 over seeds, MNEE's 0.1130 to 0.1138 (the reference image's mean: 0.1135).
@@ -143,7 +143,7 @@ RenderResult render_hslt(const Scene& scene, const HsltSettings& st, int spectra
         const std::vector<double> y = team_bootstrap(loop.team(), loop.arena(), count, [&](size_t i) {
             auto sampler = prototype.clone();
             sampler->start_pixel_sample(-1, -1, first + i);  // no pixel of the film uses (-1, -1)
-            return evaluate(scene, camera, inner, spectral_samples, spec, *sampler).target();
+            return hslt_importance(evaluate(scene, camera, inner, spectral_samples, spec, *sampler).xyz);
         });
         double sum = 0;
         for (double v : y) sum += v;  // fixed order: deterministic

@@ -198,15 +198,16 @@ bool evaluate_hslt_path(const Scene& scene, const PerspectiveCamera& camera, con
     }
     path->hero_only = hero_only;
     const Vec3 xyz = path->wl.to_xyz(C);
-    if (!(xyz.y > 0) || !std::isfinite(xyz.x) || !std::isfinite(xyz.y) || !std::isfinite(xyz.z)) return false;
+    if (!(hslt_importance(xyz) > 0) || !std::isfinite(xyz.x) || !std::isfinite(xyz.y) || !std::isfinite(xyz.z))
+        return false;
     path->C = C;
     path->xyz = xyz;
     // Half-vector coordinates exist with a vertex between the fixed ends.
     double det_m = 0, det_c = 0;
     if (!path->infinite && !path->chain.empty() && constraint_dets(*path, 0, &det_m, &det_c)) {
-        path->s_luminance = path->wl.to_xyz(S).y;
+        path->s_importance = hslt_importance(path->wl.to_xyz(S));
         path->det_c = det_c;
-        const double F = path->s_luminance * det_c / det_m;
+        const double F = path->s_importance * det_c / det_m;
         if (F > 0 && std::isfinite(F)) path->F = F;
     }
     return true;
@@ -215,12 +216,12 @@ bool evaluate_hslt_path(const Scene& scene, const PerspectiveCamera& camera, con
 double hslt_lens_density(const HsltPath& path) {
     // The lens perturbation's coordinates are the film position and the half vectors of
     // x_2 .. x_{k-1}: W G_0 |dx_1/d(film)| is constant for a pinhole, so the density is
-    // Y(S) / (W G_0) |det C| over the matrix of x_2 .. x_{k-1} between x_1 and x_k (x_1's block
+    // T(S) / (W G_0) |det C| over the matrix of x_2 .. x_{k-1} between x_1 and x_k (x_1's block
     // C_1 stays: rho_1 |det C_1| is f_r |cos| G of x_1's segment).
     if (path.chain.empty() || path.infinite || path.specular[0] || !(path.F > 0)) return 0;
     double det_m1 = 1, det_c1 = 1;
     if (path.chain.size() > 1 && !constraint_dets(path, 1, &det_m1, &det_c1)) return 0;
-    const double d = path.s_luminance / path.camera_factor * path.det_c / det_m1;
+    const double d = path.s_importance / path.camera_factor * path.det_c / det_m1;
     return d > 0 && std::isfinite(d) ? d : 0;
 }
 

@@ -29,6 +29,16 @@ class PerspectiveCamera;
 class Light;
 struct FilmSpec;
 
+/// The chains' target function T of a contribution in XYZ: the mean of its components. Every
+/// splat then carries at most 3 b per component (xyz / (T / b + p_large)), where luminance Y let a
+/// path of one wavelength near the spectrum's blue end (tiny Y, large Z) deposit its Z almost
+/// whole through a large step's weight: single pixels at relMSE 10 to 10,000 on the droplet,
+/// growing with the mutations (docs/experiments.md, "HSLT's step sizes and its normalisation").
+/// Linear, as Y is, so that b = E[T] is the same under MNEE's estimator (the bootstrap) and under
+/// path tracing's (the large steps): the largest component, tried first, is not, and MNEE's b left
+/// the droplet's image 10 % bright.
+inline double hslt_importance(const Vec3& xyz) { return (xyz.x + xyz.y + xyz.z) / 3; }
+
 struct HsltPath {
     SampledWavelengths wl;
     Vec2 raster;  ///< full-film raster position of x_0 -> x_1
@@ -46,13 +56,13 @@ struct HsltPath {
 
     SampledSpectrum C;         ///< f / p, pmf of the length included
     Vec3 xyz;                  ///< C in XYZ (the splat's colour)
-    double F = 0;              ///< luminance density in half-vector coordinates (0: not perturbable)
+    double F = 0;              ///< importance density in half-vector coordinates (0: not perturbable)
     double camera_factor = 1;  ///< W G_0 of x_0 -> x_1, up to a constant
-    double s_luminance = 0;    ///< Y(W G_0 L_e prod rho_i)
+    double s_importance = 0;   ///< T(W G_0 L_e prod rho_i)
     double det_c = 1;          ///< prod_i |det C_i|
 
     int length() const { return int(chain.size()) + 1; }
-    double target() const { return xyz.y; }
+    double target() const { return hslt_importance(xyz); }
     /// The tangent basis of x_k (the walk's fixed end).
     TangentBasis light_basis() const;
 };
