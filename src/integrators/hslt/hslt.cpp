@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -230,15 +231,8 @@ RenderResult render_hslt(const Scene& scene, const HsltSettings& st, int spectra
         }
         return m;
     };
-    if (!(st.b_rate > 0))
-        return loop.run([&](int c, uint64_t quota, std::vector<Vec3>& film) {
-            MetropolisLoop::ChainFilms films;
-            films.metropolis.swap(film);
-            const uint64_t m = chain_step(c, quota, films);
-            film.swap(films.metropolis);
-            return m;
-        });
-    return loop.run_parts(chain_step, refined_scale);
+    // Without refinement the large steps' samples join the chains' film (no scale to apply).
+    return loop.run_parts(chain_step, st.b_rate > 0 ? std::function<double(uint64_t)>(refined_scale) : nullptr);
 }
 
 }  // namespace snell
