@@ -41,7 +41,8 @@ MneePath::MneePath(const Scene& scene, const PathSettings& path, const MneeSetti
       m_walk(scene, path, wl, camera_ray, observer),
       m_q(q),
       m_pilot(pilot),
-      m_surface_trials(surface_trials) {
+      m_surface_trials(surface_trials),
+      m_weighs_mnee(q != 0) {
     m_prev.at = {camera_ray.o, Vec3()};
 }
 
@@ -145,7 +146,7 @@ SampledSpectrum MneePath::connect_at_interface(const SurfaceInteraction& si, con
     double pmf = 0;
     const auto ls = sample_light(scene, si, m_ctx.wl, sampler, &light, &pmf);
     if (!ls) return {};
-    if (!s.has_xb || s.k == 0) return nee_connect(scene, si, bsdf, sctx, m_walk.media, *ls, pmf);
+    if (!s.has_xb || s.k == 0 || !m_weighs_mnee) return nee_connect(scene, si, bsdf, sctx, m_walk.media, *ls, pmf);
     const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls->wi);
     const SampledSpectrum f = bsdf.eval(sctx, wo, wi);
     if (f.is_zero()) return {};
@@ -172,7 +173,7 @@ double MneePath::emitter_weight(const Light& light, const Vec3& p, const Vec3& n
                                 const SampledSpectrum& value) const {
     const Scene& scene = *m_scene;
     const RefractiveSuffix& s = m_suffix;
-    if (!s.has_xb || s.k == 0) return m_prev.emitter_weight(scene, light, p, n, d);
+    if (!s.has_xb || s.k == 0 || !m_weighs_mnee) return m_prev.emitter_weight(scene, light, p, n, d);
     // A BSDF-sampled path x_b, x_1..x_k (refractive), x_c: three techniques can produce it.
     const LightPoint lp = light_point_hit(scene, light, p, n, Vec2(), d, s.xb.p);  // densities only: no uv
     const double pmf = scene.light_sampler().pmf(&light);
@@ -205,9 +206,13 @@ void MneePath::arrive(const SurfaceInteraction& si) {
         s.has_xb = false;
         return;
     }
+    if (!m_weighs_mnee) {
+        ++s.k;
+        return;
+    }
     // Area density of reaching this vertex: solid-angle density times |cos| / d^2.
     s.p_prefix *= s.q_last * std::abs(dot(si.ng, m_walk.ray.d)) / (si.t * si.t);
-    s.chain[size_t(s.k++)] = si;
+    s.chain.set(size_t(s.k++), si);
 }
 
 void MneePath::scattered(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFSample& bs,
@@ -218,11 +223,15 @@ void MneePath::scattered(const SurfaceInteraction& si, const BSDF& bsdf, const B
         const size_t i = size_t(s.k - 1);
         s.specular[i] = bs.is_delta();
         if (!(bs.lobe & kTransmission)) s.transmissions_only = false;
+        if (!m_weighs_mnee) return;
         const ManifoldVertex v = ManifoldVertex::from_interaction(si, bsdf.eta(m_ctx.hero()));
         s.q_last = vertex_bsdf_density(v, si.wo, bs.wi, m_ctx.at(si));
     } else if (bsdf.is_smooth_sampled() && !bs.is_delta()) {
         // A new x_b: MNEE connected from here.
-        s.start(si, media_before, bs.pdf);
+        if (m_weighs_mnee)
+            s.start(si, media_before, bs.pdf);
+        else
+            s.restart();
     } else {
         s.has_xb = false;
     }
