@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <numeric>
 #include <random>
 #include <string>
 
@@ -273,15 +274,40 @@ namespace {
 
 // The droplet of test_mnee_agreement (smooth water) under a light of `light_size`, with regions
 // of 8 pixels so that its 24 x 18 film holds several, one pilot sample per pixel.
-std::string droplet(const std::string& extra, double light_size) {
-    return droplet_scene(
-        R"(<bsdf type="dielectric"><float name="int_ior" value="1.33"/><float name="ext_ior" value="1"/></bsdf>)",
-        extra, std::to_string(light_size));
+std::string droplet(
+    const std::string& extra, double light_size,
+    const std::string& bsdf =
+        R"(<bsdf type="dielectric"><float name="int_ior" value="1.33"/><float name="ext_ior" value="1"/></bsdf>)") {
+    return droplet_scene(bsdf, extra, std::to_string(light_size));
 }
 
 const char* kLearned = R"(<integer name="allocation_block" value="8"/><integer name="pilot_spp" value="2"/>)";
 
 }  // namespace
+
+// A region at q = 0 weighs its paths as the path tracer does and keeps no suffix (MneePath): on a
+// rough droplet that includes NEE at the interface's own vertices, weighed against BSDF sampling
+// alone. The learned allocation still agrees with nee per block, with regions at q = 0 and above.
+TEST(ConnectionAllocation, LearnedAllocationOnRoughGlassMatchesNee) {
+    const std::string rough =
+        R"(<bsdf type="roughdielectric"><float name="alpha" value="0.1"/><float name="int_ior" value="1.33"/>)"
+        R"(<float name="ext_ior" value="1"/></bsdf>)";
+    LoadedScene nee = load_xml(droplet("", 1.5, rough), {{"integrator", "nee"}});
+    LoadedScene mnee = load_xml(droplet(kLearned, 1.5, rough), {{"integrator", "mnee"}});
+    RenderOptions opt;
+    opt.spp = 4;
+    opt.progress = false;
+    const std::vector<uint64_t> regions =
+        render(*mnee.scene, *mnee.integrator, mnee.film, opt).counters.bins(walk_counters::allocation_regions);
+    std::string chosen;
+    for (uint64_t n : regions) chosen += " " + std::to_string(n);
+    std::cout << "[rough droplet] regions by q (0, 1/64 .. 1):" << chosen << "\n";
+    ASSERT_GE(regions.size(), 2u);
+    EXPECT_GT(regions[0], 0u) << "no region at q = 0: the test would not see its weights";
+    EXPECT_LT(regions[0], std::accumulate(regions.begin(), regions.end(), uint64_t(0))) << "every region at q = 0";
+    expect_agreement(block_estimates(nee, *nee.integrator, 512, 8, 6, 100),
+                     block_estimates(mnee, *mnee.integrator, 64, 8, 6, 200), 0.01, "rough droplet, learned");
+}
 
 // A pilot at q = 1/4 (connect_probability with the learned allocation) over a quarter of the
 // samples: its connections count 4 times and weigh a quarter in MIS, then the regions' q take
