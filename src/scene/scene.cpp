@@ -146,9 +146,11 @@ void Scene::build() {
     if (!(m_radius > 0)) m_radius = 1;
 
     m_infinite.clear();
+    m_has_delta_lights = false;
     for (const auto& l : m_lights) {
         l->preprocess(m_bounds);
         if (l->is_infinite()) m_infinite.push_back(l.get());
+        m_has_delta_lights = m_has_delta_lights || l->is_delta();
     }
     m_light_sampler = LightSampler(m_lights);
 }

@@ -87,6 +87,8 @@ public:
     const std::vector<std::shared_ptr<Light>>& lights() const { return m_lights; }
     /// Lights with a direction-only domain (envmap, constant, directional) reached by escaping rays.
     const std::vector<const Light*>& infinite_lights() const { return m_infinite; }
+    /// Whether any light is a delta light (point, spot, directional), which BSDF sampling cannot hit.
+    bool has_delta_lights() const { return m_has_delta_lights; }
     const LightSampler& light_sampler() const { return m_light_sampler; }
     const Camera* camera() const { return m_camera.get(); }
     RTCDevice device() const { return m_device; }
@@ -103,6 +105,7 @@ private:
     std::vector<const Transform*> m_inst_to_local;  // per instance geometry id (analytic shapes)
     std::vector<std::shared_ptr<Light>> m_lights;
     std::vector<const Light*> m_infinite;
+    bool m_has_delta_lights = false;
     LightSampler m_light_sampler;
     std::shared_ptr<Camera> m_camera;
     Bounds3 m_bounds;

@@ -287,26 +287,43 @@ const char* kLearned = R"(<integer name="allocation_block" value="8"/><integer n
 
 // A region at q = 0 weighs its paths as the path tracer does and keeps no suffix (MneePath): on a
 // rough droplet that includes NEE at the interface's own vertices, weighed against BSDF sampling
-// alone. The learned allocation still agrees with nee per block, with regions at q = 0 and above.
+// alone. A delta light keeps q = 1 in every region, so NEE at the interface is weighed against
+// MNEE there even at q = 0: under a point light alone (which the pilot does not record, so every
+// region takes the cheapest candidate, q = 0) forgetting that counts those paths twice. The
+// learned allocation agrees with nee per block under both lights.
 TEST(ConnectionAllocation, LearnedAllocationOnRoughGlassMatchesNee) {
     const std::string rough =
         R"(<bsdf type="roughdielectric"><float name="alpha" value="0.1"/><float name="int_ior" value="1.33"/>)"
         R"(<float name="ext_ior" value="1"/></bsdf>)";
-    LoadedScene nee = load_xml(droplet("", 1.5, rough), {{"integrator", "nee"}});
-    LoadedScene mnee = load_xml(droplet(kLearned, 1.5, rough), {{"integrator", "mnee"}});
-    RenderOptions opt;
-    opt.spp = 4;
-    opt.progress = false;
-    const std::vector<uint64_t> regions =
-        render(*mnee.scene, *mnee.integrator, mnee.film, opt).counters.bins(walk_counters::allocation_regions);
-    std::string chosen;
-    for (uint64_t n : regions) chosen += " " + std::to_string(n);
-    std::cout << "[rough droplet] regions by q (0, 1/64 .. 1):" << chosen << "\n";
-    ASSERT_GE(regions.size(), 2u);
-    EXPECT_GT(regions[0], 0u) << "no region at q = 0: the test would not see its weights";
-    EXPECT_LT(regions[0], std::accumulate(regions.begin(), regions.end(), uint64_t(0))) << "every region at q = 0";
-    expect_agreement(block_estimates(nee, *nee.integrator, 512, 8, 6, 100),
-                     block_estimates(mnee, *mnee.integrator, 64, 8, 6, 200), 0.01, "rough droplet, learned");
+    for (bool point : {false, true}) {
+        const auto scene = [&](const std::string& extra) {
+            std::string xml = droplet(extra, 1.5, rough);
+            if (point) {  // the rectangular light replaced by a point light
+                const size_t a = xml.rfind("<shape type=\"rectangle\">"), b = xml.find("</shape>", a) + 8;
+                xml.replace(a, b - a,
+                            R"(<emitter type="point"><point name="position" x="-0.6" y="3" z="-0.4"/>)"
+                            R"(<rgb name="intensity" value="8"/></emitter>)");
+            }
+            return xml;
+        };
+        const std::string what = point ? "rough droplet under a point light" : "rough droplet";
+        LoadedScene nee = load_xml(scene(""), {{"integrator", "nee"}});
+        LoadedScene mnee = load_xml(scene(kLearned), {{"integrator", "mnee"}});
+        RenderOptions opt;
+        opt.spp = 4;
+        opt.progress = false;
+        const std::vector<uint64_t> regions =
+            render(*mnee.scene, *mnee.integrator, mnee.film, opt).counters.bins(walk_counters::allocation_regions);
+        std::string chosen;
+        for (uint64_t n : regions) chosen += " " + std::to_string(n);
+        std::cout << "[" << what << "] regions by q (0, 1/64 .. 1):" << chosen << "\n";
+        ASSERT_GE(regions.size(), 2u);
+        const uint64_t all = std::accumulate(regions.begin(), regions.end(), uint64_t(0));
+        EXPECT_GT(regions[0], 0u) << what << ": no region at q = 0, the test would not see its weights";
+        if (!point) EXPECT_LT(regions[0], all) << what << ": every region at q = 0";
+        expect_agreement(block_estimates(nee, *nee.integrator, 512, 8, 6, 100),
+                         block_estimates(mnee, *mnee.integrator, 64, 8, 6, 200), 0.01, what.c_str());
+    }
 }
 
 // A pilot at q = 1/4 (connect_probability with the learned allocation) over a quarter of the

@@ -42,7 +42,9 @@ MneePath::MneePath(const Scene& scene, const PathSettings& path, const MneeSetti
       m_q(q),
       m_pilot(pilot),
       m_surface_trials(surface_trials),
-      m_weighs_mnee(q != 0) {
+      // Delta lights keep q = 1 in every region (ManifoldTechnique::connect), so NEE at a rough
+      // interface is weighed against MNEE for them even where q = 0.
+      m_weighs_mnee(q != 0 || scene.has_delta_lights()) {
     m_prev.at = {camera_ray.o, Vec3()};
 }
 

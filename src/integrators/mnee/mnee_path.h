@@ -71,10 +71,10 @@ private:
     double m_q;
     PilotSample* m_pilot;
     bool m_surface_trials;
-    /// Whether any MIS weight reads MNEE's density (q != 0). At q = 0 no connection competes
-    /// with BSDF sampling or with NEE at a rough interface, their weights are the path tracer's,
-    /// and the suffix keeps only its counters: copying every interface's interaction and its
-    /// density cost `mnee` 5-10 % over `nee` in the regions that make no connection.
+    /// Whether any MIS weight reads MNEE's density: q != 0, or a delta light in the scene. Where
+    /// neither, no connection competes with BSDF sampling or with NEE at a rough interface, their
+    /// weights are the path tracer's, and the suffix keeps only its counters (docs/experiments.md,
+    /// "What a region at q = 0 costs").
     bool m_weighs_mnee;
     SampleRadiance m_out;
 };

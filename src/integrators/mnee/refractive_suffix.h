@@ -19,9 +19,9 @@ namespace snell {
 struct RefractiveSuffix {
     static constexpr int kMaxVertices = kMaxChainVertices;
 
-    /// x_1..x_k, constructed as they are recorded: a camera sample makes one suffix, and
-    /// value-initialising all kMaxVertices interactions (~5 KB) was 5 % of `mnee`'s time on a
-    /// ball on a plane where most regions make no connection (issue 26, point 5).
+    /// x_1..x_k, constructed as they are recorded: every camera sample makes a suffix, and
+    /// value-initialising all kMaxVertices interactions showed in `mnee`'s profile where most
+    /// regions make no connection (docs/experiments.md, "What a region at q = 0 costs").
     class Chain {
     public:
         static_assert(std::is_trivially_copyable_v<SurfaceInteraction> &&
