@@ -15,6 +15,12 @@
 #   caustic_gallery.sh run LABEL [seconds=30]            results/gallery/LABEL/<case>/report.html
 #       for each case, then the table of every case LABEL holds (results/gallery/LABEL/table.md)
 #   caustic_gallery.sh table LABEL                       the table again from the reports
+#   caustic_gallery.sh seeds LABEL [N=4] [seconds=30]    `run` with seeds 1..N (LABEL/seed1 ...),
+#       then `seedtable`: one 30 s run is one draw of a heavy-tailed error, and its crop mean
+#       wanders by 1-2 % from seed to seed (docs/experiments.md, ninth measurement)
+#   caustic_gallery.sh seedtable LABEL                   per case and technique, over the runs in
+#       LABEL/seed*: relMSE and median error averaged, the crop mean's average, spread and worst
+#       seed, the runs whose mean lies within 2 % (LABEL/seeds.md)
 #   caustic_gallery.sh variant LABEL NAME 'XML' [seconds=30]   `mnee` with integrator parameters
 #       XML (e.g. '<float name="connect_probability" value="0.3"/>') on every case, scored on its
 #       crop like the table: results/gallery/LABEL/<case>_NAME.exr, a row each in variants.md
@@ -168,6 +174,50 @@ for r in rows:
     print("| %s | %s | %.4g | %.3f | %.3f | %.1f | %.0f | %.2f | %.3g |" % r)
 EOF
   ;;
+seeds)
+  LABEL=${2:?label}
+  N=${3:-4}
+  T=${4:-30}
+  for s in $(seq 1 "$N"); do
+    SEED=$s CASES="${CASES[*]}" "$0" run "$LABEL/seed$s" "$T" >/dev/null
+  done
+  CASES="${CASES[*]}" "$0" seedtable "$LABEL"
+  ;;
+seedtable)
+  LABEL=${2:?label}
+  python3 - "$OUT/$LABEL" "${CASES[@]}" <<'EOF' | tee "$OUT/$LABEL/seeds.md"
+import glob, json, math, os, sys
+root, cases = sys.argv[1], sys.argv[2:]
+runs = sorted(d for d in glob.glob(os.path.join(root, "seed*")) if os.path.isdir(d))
+print("Over %d runs (%s)." % (len(runs), ", ".join(os.path.basename(r) for r in runs)))
+print()
+print("| case | technique | runs | caustic relMSE (average) | median error | mean / reference: average (sd; worst) "
+      "| runs within 2 % | ms per spp | relMSE over nee's |")
+print("|---|---|---|---|---|---|---|---|---|")
+for c in cases:
+    by = {}
+    for r in runs:
+        p = os.path.join(r, c, "report.json")
+        if not os.path.exists(p):
+            continue
+        for it in json.load(open(p))["integrators"]:
+            m = it["metrics"][0]  # the reference window: the case's caustic crop
+            if not (m["mean_reference"] > 0 and it["spp_mean"] > 0):
+                continue
+            by.setdefault(it["name"], []).append((m["rel_mse"], m["median_rel_error"], m["mean"] / m["mean_reference"],
+                                                  it["seconds"] * 1000 / it["spp_mean"]))
+    avg = lambda xs: sum(xs) / len(xs)
+    nee = avg([x[0] for x in by["nee"]]) if "nee" in by else None
+    for name, xs in by.items():
+        rel, med, means, ms = (avg([x[i] for x in xs]) for i in range(4))
+        sd = math.sqrt(avg([(x[2] - means) ** 2 for x in xs]))
+        worst = max((x[2] for x in xs), key=lambda v: abs(v - 1))
+        within = sum(abs(x[2] - 1) <= 0.02 for x in xs)
+        print("| %s | %s | %d | %.4g | %.3f | %.3f (%.3f; %.3f) | %d of %d | %.0f | %s |" % (
+            c, name, len(xs), rel, med, means, sd, worst, within, len(xs), ms,
+            "%.2f" % (rel / nee) if nee else "-"))
+EOF
+  ;;
 variant)
   LABEL=${2:?label}
   NAME=${3:?variant name}
@@ -198,5 +248,5 @@ EOF
   done
   ;;
 *)
-  echo "caustic_gallery: unknown mode '$MODE' (reference, refcheck, run, table, variant)" >&2; exit 2 ;;
+  echo "caustic_gallery: unknown mode '$MODE' (reference, refcheck, refmean, run, table, seeds, seedtable, variant)" >&2; exit 2 ;;
 esac
