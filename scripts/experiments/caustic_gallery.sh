@@ -19,8 +19,9 @@
 #       then `seedtable`: one 30 s run is one draw of a heavy-tailed error, and its crop mean
 #       wanders by 1-2 % from seed to seed (docs/experiments.md, ninth measurement)
 #   caustic_gallery.sh seedtable LABEL                   per case and technique, over the runs in
-#       LABEL/seed*: relMSE and median error averaged, the crop mean's average, spread and worst
-#       seed, the runs whose mean lies within 2 % (LABEL/seeds.md)
+#       LABEL/seed*: relMSE and median error averaged, the crop mean's average, spread (standard
+#       deviation over the runs, divided by their number) and worst seed, the runs whose mean lies
+#       within 2 % (LABEL/seeds.md)
 #   caustic_gallery.sh variant LABEL NAME 'XML' [seconds=30]   `mnee` with integrator parameters
 #       XML (e.g. '<float name="connect_probability" value="0.3"/>') on every case, scored on its
 #       crop like the table: results/gallery/LABEL/<case>_NAME.exr, a row each in variants.md
@@ -185,6 +186,7 @@ seeds)
   ;;
 seedtable)
   LABEL=${2:?label}
+  mkdir -p "$OUT/$LABEL"
   python3 - "$OUT/$LABEL" "${CASES[@]}" <<'EOF' | tee "$OUT/$LABEL/seeds.md"
 import glob, json, math, os, sys
 root, cases = sys.argv[1], sys.argv[2:]
