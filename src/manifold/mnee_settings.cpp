@@ -105,6 +105,10 @@ MneeSettings MneeSettings::from_props(const Props& p) {
         p.raise_param("trial_allocation",
                       "trial_allocation needs allocation=learned and surface solutions weighed apart "
                       "(solutions=unbiased or all, seeding=straight+surface, surface_weight < 1)");
+    s.work_price =
+        p.get_choice("work_price", s.work_price, {{"image", WorkPrice::Image}, {"region", WorkPrice::Region}});
+    if (p.has("work_price") && !s.learned_allocation)
+        p.raise_param("work_price", "work_price needs allocation=learned");
     s.pilot_spp = int(p.get_int("pilot_spp", s.pilot_spp));
     if (s.pilot_spp < 1 || s.pilot_spp > 4096) p.raise_param("pilot_spp", "pilot_spp must lie in [1, 4096]");
     s.allocation_block = int(p.get_int("allocation_block", s.allocation_block));

@@ -36,6 +36,10 @@ enum class MneeSolutions { One, All, Unbiased, Fallback, Keyed };
 enum class SurfaceSide { Receiver, Light, Both };
 /// (trial_allocation) which image regions run the surface trials (MneeSettings).
 enum class TrialAllocation { Learned, Always, Never };
+/// (work_price) what a unit of work costs a region of the learned allocation in variance: the
+/// image's exchange rate (`image`: every region pays the same price, relative variance against
+/// the image's work) or its own (`region`: each region minimises its variance x work alone).
+enum class WorkPrice { Image, Region };
 
 struct MneeSettings {
     int max_vertices = 8;           ///< (max_vertices) refractive vertices collected on a seed path
@@ -110,6 +114,11 @@ struct MneeSettings {
     /// rarely find a solution the straight seed misses); `always`: every region runs them;
     /// `never`: none does (their paths are left to BSDF sampling, as Alg. 2 leaves them).
     TrialAllocation trial_allocation = TrialAllocation::Learned;
+    /// (work_price) `image`: at equal time every pixel pays for every region's walks, so a
+    /// region walks where the relative variance it saves beats what that work would buy the
+    /// image (one exchange rate, learned from a lattice of regions); `region`: each region
+    /// minimises its own variance x work (issue 26, docs/mnee.md "The image's price of work").
+    WorkPrice work_price = WorkPrice::Image;
     int pilot_spp = 4;          ///< (pilot_spp) samples per pixel the allocation learns from, at q
     int allocation_block = 16;  ///< (allocation_block) pixels on a side of a region
     WalkSettings walk;          ///< (max_iterations, threshold, allow_error_increase, projection, ...)

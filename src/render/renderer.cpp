@@ -81,7 +81,9 @@ RenderResult render_tiles(const Scene& scene, SampleTracer& tracer, int spectral
     // A learning tracer's pilot covers the pixels its choices for the crop depend on.
     PixelRect pilot = crop;
     tracer.pilot_window(pilot.x0, pilot.y0, pilot.x1, pilot.y1);
-    const std::vector<Tile> pilot_tiles = make_tiles(pilot, tile_size);
+    std::vector<Tile> pilot_tiles = make_tiles(pilot, tile_size);
+    for (const PixelRect& extra : tracer.pilot_extra(pilot))
+        for (const Tile& t : make_tiles(extra, tile_size)) pilot_tiles.push_back(t);
 
     RenderResult result;
     result.film = Film(w, h);

@@ -7,6 +7,7 @@
 #include "core/sampled_spectrum.h"
 #include "core/sampler.h"
 #include "core/vector.h"
+#include "render/pixel_rect.h"
 
 namespace snell {
 
@@ -82,6 +83,13 @@ public:
     virtual uint64_t pilot_samples() const { return 0; }
     /// The pixels (output window) whose pilot samples the estimator of `crop` depends on.
     virtual void pilot_window(int& x0, int& y0, int& x1, int& y1) const { (void)x0, (void)y0, (void)x1, (void)y1; }
+    /// Pixels outside `window` (the pilot window) whose pilot samples every part of the frame
+    /// depends on (MNEE's lattice of regions that learn the image's price of work): rendered in
+    /// the pilot and added to no film.
+    virtual std::vector<PixelRect> pilot_extra(const PixelRect& window) const {
+        (void)window;
+        return {};
+    }
     /// What the pilot recorded, as doubles that are zero for pixels this process did not render,
     /// so that summing over processes is exact; set_pilot_state() puts the sum back.
     virtual std::vector<double> pilot_state() const { return {}; }

@@ -270,6 +270,83 @@ TEST(ConnectionAllocation, ACropChoosesAsTheFullFilm) {
     EXPECT_GT(distinct, 0) << "the regions should not all choose alike";
 }
 
+// At equal time every pixel pays for every region's walks. One region whose walks pay by its own
+// variance x work (q = 1/2, as in RegionsChooseTheLeastVarianceTimesWork) beside three whose
+// relative variance is four times its own per unit of work, and which cannot walk: priced by the
+// image, its walks are dearer (the price lambda = sum of relative variances over sum of work is
+// about 1.3, not its own 0.24) and it takes q = 1/4; priced by itself it keeps 1/2. Beside quiet
+// regions (a constant value) the image's price is lower and it keeps walking.
+TEST(ConnectionAllocation, ThePriceOfWorkIsTheImages) {
+    for (bool noisy : {true, false})
+        for (WorkPrice price : {WorkPrice::Image, WorkPrice::Region}) {
+            ConnectionAllocation a(64, 16, 0, 0, 16, 1.0, TrialAllocation::Always, price);
+            int clock = 0;
+            for (int y = 0; y < 16; ++y)
+                for (int x = 0; x < 16; ++x) {
+                    feed(a, x, y, 4, 1e-3, false, 20, clock);
+                    for (int o = 16; o < 64; o += 16)
+                        for (int i = 0; i < 4; ++i)
+                            a.add(x + o, y, PilotSample(), noisy ? (i == 0 ? 4.0 : 0.0) : 1.0, 2.0);
+                }
+            a.fit();
+            const bool image = price == WorkPrice::Image;
+            EXPECT_EQ(a.q(5, 5), image && noisy ? 0.25 : 0.5) << "noisy " << noisy << ", image " << image;
+            EXPECT_EQ(a.q(20, 5), 0.0);
+        }
+}
+
+// With the image's price a crop (`--crop`, a farm task's part) renders the pilot of its own
+// regions and of the lattice the price is learned from (lattice_outside), and chooses as the
+// whole render in every region it holds, from those samples alone.
+TEST(ConnectionAllocation, ACropLearnsTheImagesPriceFromTheLattice) {
+    ConnectionAllocation full(256, 256, 0, 0, 16, 1.0, TrialAllocation::Always, WorkPrice::Image);
+    ConnectionAllocation crop(256, 256, 0, 0, 16, 1.0, TrialAllocation::Always, WorkPrice::Image);
+    int x0 = 40, y0 = 40, x1 = 100, y1 = 100;
+    const auto lattice = crop.lattice_outside(x0, y0, x1, y1);
+    crop.widen_to_regions(x0, y0, x1, y1);
+    EXPECT_EQ(x0, 32);
+    EXPECT_EQ(x1, 112);
+    size_t in_lattice = 0;
+    for (size_t r = 0; r < 256; ++r) in_lattice += crop.in_lattice(r);
+    EXPECT_EQ(in_lattice, ConnectionAllocation::kLatticeRegions);
+    EXPECT_GT(lattice.size(), 50u);
+    const auto rendered = [&](int x, int y) {
+        if (x >= x0 && x < x1 && y >= y0 && y < y1) return true;
+        for (const auto& r : lattice)
+            if (x >= r[0] && x < r[2] && y >= r[1] && y < r[3]) return true;
+        return false;
+    };
+    // How often BSDF sampling finds MNEE's paths varies across the film, the walks' work down it;
+    // each pixel's samples are its own (its clock starts from its position), whoever renders it.
+    const auto pixel = [](ConnectionAllocation& a, int x, int y) {
+        int clock = x + 7 * y;
+        feed(a, x, y, 4, std::pow(10.0, -4.0 + 4.0 * x / 255.0), false, std::pow(10.0, 3.0 * y / 255.0), clock);
+    };
+    for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x) {
+            pixel(full, x, y);
+            if (rendered(x, y)) pixel(crop, x, y);
+        }
+    full.fit();
+    crop.fit();
+    int distinct = 0;
+    for (int ry = 2; ry < 7; ++ry)
+        for (int rx = 2; rx < 7; ++rx) {
+            EXPECT_EQ(crop.choice(16 * rx, 16 * ry), full.choice(16 * rx, 16 * ry)) << rx << "," << ry;
+            distinct += full.choice(16 * rx, 16 * ry) != full.choice(32, 32);
+        }
+    EXPECT_GT(distinct, 0) << "the regions should not all choose alike";
+    // Without the lattice's samples the crop would learn another price.
+    ConnectionAllocation alone(256, 256, 0, 0, 16, 1.0, TrialAllocation::Always, WorkPrice::Image);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) pixel(alone, x, y);
+    alone.fit();
+    int differ = 0;
+    for (int ry = 2; ry < 7; ++ry)
+        for (int rx = 2; rx < 7; ++rx) differ += alone.choice(16 * rx, 16 * ry) != full.choice(16 * rx, 16 * ry);
+    EXPECT_GT(differ, 0) << "the test should see the lattice's part in the price";
+}
+
 namespace {
 
 // The droplet of test_mnee_agreement (smooth water) under a light of `light_size`, with regions
@@ -390,7 +467,25 @@ TEST(ConnectionAllocation, ImageIsIndependentOfThreadsTilesAndCrops) {
     ASSERT_EQ(a.size(), b.size());
     for (size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a[i], b[i]) << "pixel component " << i;
 
-    std::string cropped = xml;
+    // A part of the frame (`--crop`, a farm task's) gives the full render's pixels: its pilot
+    // covers its regions and the lattice the image's price of work is learned from.
+    RenderOptions part = opt;
+    part.crop = {8, 0, 24, 16};
+    const auto p = render(*ls.scene, *ls.integrator, ls.film, part).film.to_linear_srgb();
+    ASSERT_EQ(p.size(), a.size());
+    for (int y = 0; y < 16; ++y)
+        for (int x = 8; x < 24; ++x)
+            for (int k = 0; k < 3; ++k) {
+                const size_t i = (size_t(y) * 24 + size_t(x)) * 3 + size_t(k);
+                ASSERT_EQ(p[i], a[i]) << "part pixel " << x << "," << y;
+            }
+
+    // A scene's own crop window is the film whose work is priced: with each region's own price it
+    // too gives the full render's pixels in the regions it holds whole.
+    const std::string regional = droplet(std::string(kLearned) + R"(<string name="work_price" value="region"/>)", 1.5);
+    LoadedScene lr = load_xml(regional, {{"integrator", "mnee"}});
+    const auto f = render(*lr.scene, *lr.integrator, lr.film, opt).film.to_linear_srgb();
+    std::string cropped = regional;
     const std::string at = R"(<integer name="height" value="18"/>)";
     cropped.insert(cropped.find(at) + at.size(),
                    R"(<integer name="crop_offset_x" value="8"/><integer name="crop_offset_y" value="0"/>
@@ -402,7 +497,7 @@ TEST(ConnectionAllocation, ImageIsIndependentOfThreadsTilesAndCrops) {
         for (int x = 0; x < 16; ++x)
             for (int k = 0; k < 3; ++k)
                 ASSERT_EQ(c[(size_t(y) * 16 + size_t(x)) * 3 + size_t(k)],
-                          a[(size_t(y) * 24 + size_t(x + 8)) * 3 + size_t(k)])
+                          f[(size_t(y) * 24 + size_t(x + 8)) * 3 + size_t(k)])
                     << "crop pixel " << x << "," << y;
 }
 

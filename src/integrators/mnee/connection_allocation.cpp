@@ -13,6 +13,10 @@ namespace {
 // How many times its region's median pixel mean a pixel may be before its variance counts
 // less in the region's choice (fit()).
 constexpr double kOutlierLevel = 10.0;
+// The image's price of work: a region's median pixel mean counts as at least this fraction of
+// the lattice's mean of them, and the price is learned in at most kPriceRounds rounds.
+constexpr double kRelativeFloor = 0.1;
+constexpr int kPriceRounds = 20;
 
 int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
@@ -85,7 +89,7 @@ void PilotSample::add_probe_other(double value, double p_t, double p_s, double p
 }
 
 ConnectionAllocation::ConnectionAllocation(int width, int height, int crop_x, int crop_y, int block, double q_pilot,
-                                           TrialAllocation trials)
+                                           TrialAllocation trials, WorkPrice price)
     : m_width(width),
       m_height(height),
       m_crop_x(crop_x),
@@ -93,6 +97,7 @@ ConnectionAllocation::ConnectionAllocation(int width, int height, int crop_x, in
       m_block(std::max(1, block)),
       m_q_pilot(q_pilot),
       m_trial_allocation(trials),
+      m_price(price),
       m_pixels(size_t(std::max(0, width)) * size_t(std::max(0, height))) {
     m_rx0 = floor_div(crop_x, m_block);
     m_ry0 = floor_div(crop_y, m_block);
@@ -156,6 +161,27 @@ void ConnectionAllocation::widen_to_regions(int& x0, int& y0, int& x1, int& y1) 
     };
     widen(x0, x1, m_crop_x, m_width);
     widen(y0, y1, m_crop_y, m_height);
+}
+
+bool ConnectionAllocation::in_lattice(size_t r) const {
+    const size_t k = std::max<size_t>(1, m_choice.size() / kLatticeRegions);
+    return r % k == k / 2;
+}
+
+std::vector<std::array<int, 4>> ConnectionAllocation::lattice_outside(int x0, int y0, int x1, int y1) const {
+    std::vector<std::array<int, 4>> rects;
+    if (m_price != WorkPrice::Image) return rects;
+    widen_to_regions(x0, y0, x1, y1);
+    for (size_t r = 0; r < m_choice.size(); ++r) {
+        if (!in_lattice(r)) continue;
+        const int rx = int(r % size_t(m_rw)) + m_rx0, ry = int(r / size_t(m_rw)) + m_ry0;
+        const int a0 = std::max(0, rx * m_block - m_crop_x), a1 = std::min(m_width, (rx + 1) * m_block - m_crop_x);
+        const int b0 = std::max(0, ry * m_block - m_crop_y), b1 = std::min(m_height, (ry + 1) * m_block - m_crop_y);
+        // Regions are whole or absent in the widened rectangle.
+        if (a0 >= x0 && a1 <= x1 && b0 >= y0 && b1 <= y1) continue;
+        rects.push_back({a0, b0, a1, b1});
+    }
+    return rects;
 }
 
 namespace {
@@ -279,10 +305,12 @@ void ConnectionAllocation::fit() {
             needs_mnee[r] = needs_mnee[r] || p.needs_mnee;
             needs_trials[r] = needs_trials[r] || p.needs_trials;
         }
-    for (size_t r = 0; r < regions; ++r) {
-        // The kinds the region may choose: with trials unless told never; without where told so,
-        // or where it chooses and the pilot saw no light that only the trials produce.
-        const bool learned = m_trial_allocation == TrialAllocation::Learned;
+    // The kinds region r may choose: with trials unless told never; without where told so, or
+    // where it chooses and the pilot saw no light that only the trials produce. `cost` prices a
+    // candidate (kind, j) from its variance (floored: an unbiased estimate may dip below 0) and
+    // work; the first of least cost wins, so a tie keeps the trials and the smaller q.
+    const bool learned = m_trial_allocation == TrialAllocation::Learned;
+    const auto choose = [&](size_t r, auto cost) {
         const std::array<bool, kKinds> allowed = {
             m_trial_allocation != TrialAllocation::Never,
             m_trial_allocation == TrialAllocation::Never || (learned && !needs_trials[r])};
@@ -295,21 +323,68 @@ void ConnectionAllocation::fit() {
         for (int kind = 0; kind < kKinds; ++kind) {
             if (!allowed[size_t(kind)]) continue;
             for (int j = needs_mnee[r] ? 1 : 0; j < kCandidateCount; ++j) {
-                // Variance x work is the inverse efficiency; where the pilot saw no variance at
-                // all (a black region) the work alone decides.
                 const double v = variance[r][size_t(kind)][size_t(j)];
-                const double var = vmax > 0 ? std::max(v, 1e-9 * vmax) : 1.0;
-                const double cost = var * work[r][size_t(kind)][size_t(j)];
-                if (best < 0 || cost < best_cost) {
+                const double var = vmax > 0 ? std::max(v, 1e-9 * vmax) : 0.0;
+                const double c = cost(v, var, work[r][size_t(kind)][size_t(j)]);
+                if (best < 0 || c < best_cost) {
                     best = j;
                     best_kind = kind;
-                    best_cost = cost;
+                    best_cost = c;
                 }
             }
         }
+        const bool changed = m_choice[r] != best || m_trials[r] != int8_t(best_kind == 0 ? 1 : 0);
         m_choice[r] = int8_t(best);
         // q = 0 makes no connection: whether it would run trials does not matter.
         m_trials[r] = int8_t(best_kind == 0 ? 1 : 0);
+        return changed;
+    };
+    // Variance x work is a region's inverse efficiency; where the pilot saw no variance at all
+    // (a black region) the work alone decides.
+    for (size_t r = 0; r < regions; ++r)
+        choose(r, [](double, double var, double w) { return (var > 0 ? var : 1.0) * w; });
+    if (m_price == WorkPrice::Image) {
+        // The image's price of work (docs/mnee.md, "The image's price of work"). Every pixel
+        // takes the same samples, so at equal time each region's walks are paid by every pixel:
+        // the image's relMSE x time is (sum_r rho_r V_r)(sum_r W_r), with rho_r = 1 / m_r^2 the
+        // weight relMSE gives region r (m_r its median pixel mean, floored at kRelativeFloor times
+        // the lattice's mean, so that a near-black region's noise does not count without bound).
+        // At its minimum every region minimises rho_r V_r + lambda W_r, lambda = sum rho V /
+        // sum W: learned by fixed-point rounds on the lattice from the regions' own choices, then
+        // one price for every region. A crop, a sample range or an MPI rank learns it from the
+        // same lattice, so it chooses as the whole render.
+        double msum = 0;
+        size_t mcount = 0;
+        for (size_t r = 0; r < regions; ++r)
+            if (in_lattice(r) && level[r] > 0) {
+                msum += level[r] / kOutlierLevel;
+                ++mcount;
+            }
+        const double floor = mcount > 0 ? kRelativeFloor * msum / double(mcount) : 0.0;
+        if (floor > 0) {
+            std::vector<double> rho(regions);
+            for (size_t r = 0; r < regions; ++r) rho[r] = 1.0 / sqr(std::max(level[r] / kOutlierLevel, floor));
+            double lambda = 0;
+            // Region r's cost of a candidate at the price lambda: rho_r V + lambda W.
+            const auto priced = [&](size_t r) {
+                return [&, r](double v, double, double w) { return rho[r] * v + lambda * w; };
+            };
+            for (int round = 0; round < kPriceRounds; ++round) {
+                double sv = 0, sw = 0;
+                for (size_t r = 0; r < regions; ++r)
+                    if (in_lattice(r)) {
+                        const size_t kind = m_trials[r] ? 0 : 1, j = size_t(m_choice[r]);
+                        sv += rho[r] * variance[r][kind][j];
+                        sw += work[r][kind][j];
+                    }
+                lambda = sw > 0 ? sv / sw : 0.0;
+                bool changed = false;
+                for (size_t r = 0; r < regions; ++r)
+                    if (in_lattice(r)) changed = choose(r, priced(r)) || changed;
+                if (!changed) break;
+            }
+            for (size_t r = 0; r < regions; ++r) choose(r, priced(r));
+        }
     }
     m_fitted = true;
     m_pixels = {};

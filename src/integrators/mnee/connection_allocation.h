@@ -97,8 +97,10 @@ public:
     /// so a crop's regions are the full render's where they lie wholly inside it.
     /// `trials`: whether each region chooses to run the surface trials (Learned), or every region
     /// runs them (Always) or none does (Never).
+    /// `price`: whether each region pays the image's price for its work (Image) or its own
+    /// (Region: least variance x work, region by region).
     ConnectionAllocation(int width, int height, int crop_x, int crop_y, int block, double q_pilot,
-                         TrialAllocation trials = TrialAllocation::Always);
+                         TrialAllocation trials = TrialAllocation::Always, WorkPrice price = WorkPrice::Region);
 
     bool learning() const { return !m_fitted; }
     double q_pilot() const { return m_q_pilot; }
@@ -110,12 +112,23 @@ public:
     /// wavelengths) and its whole work. Only the thread rendering the pixel may call this.
     void add(int x, int y, const PilotSample& s, double value, double work);
     /// Ends the pilot: every region takes the candidate (q, and with or without trials) of least
-    /// variance x work.
+    /// variance x work (WorkPrice::Region), or of least relative variance plus the image's price
+    /// times work (WorkPrice::Image).
     void fit();
 
     /// Widens the window rectangle [x0, x1) x [y0, y1) (pixels of the film window) to the whole
     /// regions it meets, clipped to the window: the pixels a crop's choices depend on.
     void widen_to_regions(int& x0, int& y0, int& x1, int& y1) const;
+    /// The pixel rectangles {x0, y0, x1, y1} (of the film window) of the lattice regions that
+    /// lie outside the rectangle [x0, x1) x [y0, y1) (widened to regions): with the image's
+    /// price, every crop's choices depend on them too, so its pilot renders them.
+    std::vector<std::array<int, 4>> lattice_outside(int x0, int y0, int x1, int y1) const;
+    /// Whether region r (an index into the regions meeting the window, raster order) is one of
+    /// the lattice the image's price is learned from: every k-th region in raster order, k
+    /// chosen from the window alone so that about kLatticeRegions are, and a crop or an MPI
+    /// rank learns the price from the same pixels as the whole render.
+    bool in_lattice(size_t r) const;
+    static constexpr size_t kLatticeRegions = 64;
     /// The pilot's per-pixel records as doubles (zero for pixels without pilot samples, so that
     /// the records of MPI ranks that rendered different pixels sum exactly), and back.
     std::vector<double> pilot_state() const;
@@ -143,6 +156,7 @@ private:
     int m_rx0, m_ry0, m_rw, m_rh;  ///< the regions that meet the window
     double m_q_pilot;
     TrialAllocation m_trial_allocation;
+    WorkPrice m_price;
     bool m_fitted = false;
     std::vector<PixelStats> m_pixels;  ///< freed by fit()
     std::vector<int8_t> m_choice;      ///< per region

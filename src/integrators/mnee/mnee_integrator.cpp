@@ -26,7 +26,7 @@ public:
         // Regions may do without the surface trials only where their solutions are weighed apart.
         m_allocation = std::make_unique<ConnectionAllocation>(
             film.out_width(), film.out_height(), film.crop_x, film.crop_y, st.allocation_block, st.connect_probability,
-            st.splits_surface_solutions() ? st.trial_allocation : TrialAllocation::Always);
+            st.splits_surface_solutions() ? st.trial_allocation : TrialAllocation::Always, st.work_price);
     }
 
     SampleEstimate li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
@@ -54,6 +54,13 @@ public:
     uint64_t pilot_samples() const override { return m_allocation ? m_pilot_spp : 0; }
     void pilot_window(int& x0, int& y0, int& x1, int& y1) const override {
         if (m_allocation) m_allocation->widen_to_regions(x0, y0, x1, y1);
+    }
+    std::vector<PixelRect> pilot_extra(const PixelRect& window) const override {
+        std::vector<PixelRect> rects;
+        if (m_allocation)
+            for (const auto& r : m_allocation->lattice_outside(window.x0, window.y0, window.x1, window.y1))
+                rects.push_back({r[0], r[1], r[2], r[3]});
+        return rects;
     }
     std::vector<double> pilot_state() const override {
         return m_allocation ? m_allocation->pilot_state() : std::vector<double>{};
