@@ -469,16 +469,21 @@ TEST(ConnectionAllocation, ImageIsIndependentOfThreadsTilesAndCrops) {
 
     // A part of the frame (`--crop`, a farm task's) gives the full render's pixels: its pilot
     // covers its regions and the lattice the image's price of work is learned from.
-    RenderOptions part = opt;
-    part.crop = {8, 0, 24, 16};
-    const auto p = render(*ls.scene, *ls.integrator, ls.film, part).film.to_linear_srgb();
-    ASSERT_EQ(p.size(), a.size());
-    for (int y = 0; y < 16; ++y)
-        for (int x = 8; x < 24; ++x)
-            for (int k = 0; k < 3; ++k) {
-                const size_t i = (size_t(y) * 24 + size_t(x)) * 3 + size_t(k);
-                ASSERT_EQ(p[i], a[i]) << "part pixel " << x << "," << y;
-            }
+    // Single regions learn another price without the lattice's pilot (a region alone prices work
+    // at its own rate), so a part that skipped it would differ.
+    for (const PixelRect& rect : {PixelRect{8, 0, 24, 16}, PixelRect{0, 0, 8, 8}, PixelRect{8, 8, 16, 16},
+                                  PixelRect{16, 8, 24, 16}, PixelRect{0, 16, 8, 18}}) {
+        RenderOptions part = opt;
+        part.crop = rect;
+        const auto p = render(*ls.scene, *ls.integrator, ls.film, part).film.to_linear_srgb();
+        ASSERT_EQ(p.size(), a.size());
+        for (int y = rect.y0; y < rect.y1; ++y)
+            for (int x = rect.x0; x < rect.x1; ++x)
+                for (int k = 0; k < 3; ++k) {
+                    const size_t i = (size_t(y) * 24 + size_t(x)) * 3 + size_t(k);
+                    ASSERT_EQ(p[i], a[i]) << "part pixel " << x << "," << y;
+                }
+    }
 
     // A scene's own crop window is the film whose work is priced: with each region's own price it
     // too gives the full render's pixels in the regions it holds whole.
