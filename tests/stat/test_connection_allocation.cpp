@@ -11,6 +11,8 @@
 #include <random>
 #include <string>
 
+#include <unistd.h>
+
 #include "integrators/mnee/connection_allocation.h"
 #include "manifold/walk_counters.h"
 #include "stat/droplet_scene.h"
@@ -397,7 +399,9 @@ TEST(ConnectionAllocation, LearnedAllocationOnRoughGlassMatchesNee) {
         ASSERT_GE(regions.size(), 2u);
         const uint64_t all = std::accumulate(regions.begin(), regions.end(), uint64_t(0));
         EXPECT_GT(regions[0], 0u) << what << ": no region at q = 0, the test would not see its weights";
-        if (!point) EXPECT_LT(regions[0], all) << what << ": every region at q = 0";
+        if (!point) {
+            EXPECT_LT(regions[0], all) << what << ": every region at q = 0";
+        }
         expect_agreement(block_estimates(nee, *nee.integrator, 512, 8, 6, 100),
                          block_estimates(mnee, *mnee.integrator, 64, 8, 6, 200), 0.01, what.c_str());
     }
@@ -542,8 +546,14 @@ void expect_estimators_agree(SceneOf scene, const std::vector<std::pair<std::str
         EXPECT_GT(render(*mnee.scene, *mnee.integrator, mnee.film, opt).counters[walk_counters::walks_converged], 100u)
             << what << ": no walks";
         expect_agreement(a, block_estimates(mnee, *mnee.integrator, spp, 8, 6, 200), 0.01, what.c_str());
-        EXPECT_GE(count_disagreements(a, block_estimates(brighter, *brighter.integrator, spp, 8, 6, 200), 0.01), 1)
-            << what << ": a 3 % brighter light passes";
+        // The brighter light is judged on the whole image: per block, 8 replicas leave Welch's test
+        // too little power to see 3 % in every build (under water, clang's sanitizer build saw no
+        // block differ; gcc's saw 1 or 2 of 12), while the whole image sees it at t of about 9.
+        const Estimate whole = whole_image(a),
+                       whole_brighter = whole_image(block_estimates(brighter, *brighter.integrator, spp, 8, 6, 200));
+        EXPECT_LT(welch_p_value(whole, whole_brighter), 1e-3)
+            << what << ": a 3 % brighter light passes: " << whole.mean << " +- " << whole.stderr_ << " vs "
+            << whole_brighter.mean << " +- " << whole_brighter.stderr_;
     }
 }
 
@@ -578,7 +588,10 @@ namespace {
 // an OBJ, over the droplet's floor, under a large light: the floor beneath the water sees the
 // light only through it, often enough for nee (BSDF sampling through the water) to converge.
 std::string water_over_a_floor(const std::string& extra) {
-    const auto obj = std::filesystem::temp_directory_path() / "snell_test_water.obj";
+    // One file per process: ctest runs test binaries side by side, and another run of this test
+    // must not rewrite the mesh while this one loads it.
+    const auto obj =
+        std::filesystem::temp_directory_path() / ("snell_test_water_" + std::to_string(::getpid()) + ".obj");
     {
         std::ofstream out(obj);
         constexpr int n = 16;
