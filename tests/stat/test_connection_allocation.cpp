@@ -587,11 +587,14 @@ namespace {
 // grid of the surface y = 0.6 + 0.06 sin(3x) cos(2.5z) over [-1, 1]^2, smooth normals, written as
 // an OBJ, over the droplet's floor, under a large light: the floor beneath the water sees the
 // light only through it, often enough for nee (BSDF sampling through the water) to converge.
+// The water's OBJ, one file per process: ctest runs test binaries side by side, and another run
+// of this test must not rewrite the mesh while this one loads it.
+std::filesystem::path water_obj() {
+    return std::filesystem::temp_directory_path() / ("snell_test_water_" + std::to_string(::getpid()) + ".obj");
+}
+
 std::string water_over_a_floor(const std::string& extra) {
-    // One file per process: ctest runs test binaries side by side, and another run of this test
-    // must not rewrite the mesh while this one loads it.
-    const auto obj =
-        std::filesystem::temp_directory_path() / ("snell_test_water_" + std::to_string(::getpid()) + ".obj");
+    const auto obj = water_obj();
     {
         std::ofstream out(obj);
         constexpr int n = 16;
@@ -636,4 +639,5 @@ TEST(ConnectionAllocation, EveryEstimatorAgreesWithNeeUnderWater) {
             {"learned allocation", kLearned},
         },
         192);
+    std::filesystem::remove(water_obj());
 }
