@@ -11,7 +11,7 @@
 #       (seed 78) scored against it; with the first's time T its own relMSE is about the figure
 #       printed x SECONDS / (SECONDS + T)
 #   caustic_gallery.sh refmean [seconds=120]             each reference's crop mean against two
-#       path-traced renders of the crop (seeds 81, 82): the check of an mnee-all reference
+#       path-traced renders of the crop (seeds 81, 82): the check of an MNEE reference
 #   caustic_gallery.sh run LABEL [seconds=30]            results/gallery/LABEL/<case>/report.html
 #       for each case, then the table of every case LABEL holds (results/gallery/LABEL/table.md)
 #   caustic_gallery.sh table LABEL                       the table again from the reports
@@ -27,8 +27,8 @@
 #       crop like the table: results/gallery/LABEL/<case>_NAME.exr, a row each in variants.md
 # CASES="ball_plane pool" limits the cases; TECHNIQUES (nee,mnee-paper,mnee,mnee-biased) the
 # techniques compared; REF_INTEGRATOR overrides the manifest's reference technique (bdpt, pt,
-# or mnee-all where no path-space technique converges; gallery.tsv says why); THREADS (2); SEED
-# (1) the compared renders' seed; SNELL=path another build;
+# or mnee-paper / mnee-all where no path-space technique converges; gallery.tsv says why);
+# THREADS (2); SEED (1) the compared renders' seed; SNELL=path another build;
 # SNELL_LAUNCH="cmd" runs every snell under cmd.
 source "$(dirname "$0")/common.sh"
 MODE=${1:?reference, refcheck, run or table}
@@ -73,12 +73,15 @@ ref_key() {
   { cat "$scene" "${files[@]}" 2>/dev/null; echo "${DEFS[$c]} ${CROP[$c]} ${REF[$c]} $2"; } | sha256sum | cut -c1-16
 }
 # with_integrator FILE TECHNIQUE: the scene file made ready for TECHNIQUE (mnee-all: mnee with
-# every solution 16 surface trials find, walked everywhere); prints the integrator type to render
-# it with.
+# every solution 16 surface trials find, walked everywhere; mnee-paper: the paper's estimator,
+# solutions=one, walked everywhere); prints the integrator type to render it with.
 with_integrator() {
   case $2 in
     mnee-all)
       sed -i "s|<integer name=\"max_depth\" value=\"\$max_depth\"/>|&<string name=\"solutions\" value=\"all\"/><integer name=\"trials\" value=\"16\"/><string name=\"allocation\" value=\"fixed\"/>|" "$1"
+      echo mnee ;;
+    mnee-paper)
+      sed -i "s|<integer name=\"max_depth\" value=\"\$max_depth\"/>|&<string name=\"solutions\" value=\"one\"/>|" "$1"
       echo mnee ;;
     *) echo "$2" ;;
   esac
