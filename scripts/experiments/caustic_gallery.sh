@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The caustic gallery (issue 26): every case of scenes/caustics/gallery.tsv rendered at equal
 # time with `nee`, the paper's estimator (`mnee-paper`: solutions=one), the default `mnee` and
-# `mnee-biased`, each scored on its caustic crop against an independent reference (`bdpt` on the
-# crop, cached), as one `snell compare` report per case and one table for the gallery.
+# `mnee-biased`, each scored on its caustic crop against a reference (gallery.tsv's technique,
+# `bdpt` where it converges, on the crop, cached), as one `snell compare` report per case and one
+# table for the gallery.
 # Usage:
 #   caustic_gallery.sh reference [seconds per case=600]   results/gallery/ref/<case>.exr, cached:
 #       rendered again only when the scene file, its defines, the crop, the reference technique
