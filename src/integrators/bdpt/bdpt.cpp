@@ -112,10 +112,17 @@ SampleEstimate BdptTracer::li_splat(const CameraSample& cs, const Ray& ray, cons
 
     SampledSpectrum L;
     const int nc = int(cam.size()), nl = int(lig.size());
+    // s = 0 is the one strategy for a path C S+ L (every vertex between delta): hidden with
+    // hide_specular_emitters, which needs the camera vertices 1..t-2 all delta.
+    int specular_prefix = 1;  // camera vertices 1..specular_prefix-1 are all delta
+    while (specular_prefix < nc && cam[size_t(specular_prefix)].delta) ++specular_prefix;
+    const auto hidden = [&](int t) {
+        return t == 2 ? m_settings.hide_emitters : m_settings.hide_specular_emitters && t - 2 < specular_prefix;
+    };
     for (int t = 2; t <= nc; ++t) {
         const Vertex& z = cam[size_t(t - 1)];
         // s = 0: the camera subpath ends on an area light.
-        if (z.light && !(m_settings.hide_emitters && t == 2)) {
+        if (z.light && !hidden(t)) {
             const SampledSpectrum le = z.light->le(z.si.p, z.si.n, z.si.uv, z.si.wo, wl);
             if (le.is_nonzero()) {
                 const SampledSpectrum c = z.beta * le * mis_weight(scene, disk, cam, lig, 0, t, wl);
@@ -145,7 +152,7 @@ SampleEstimate BdptTracer::li_splat(const CameraSample& cs, const Ray& ray, cons
     }
     // s = 0 at infinity: the camera subpath escaped; its end is a vertex at infinity on each
     // light there, weighted against every strategy that could have built the same path.
-    if (esc.escaped && !(m_settings.hide_emitters && nc == 1)) {
+    if (esc.escaped && !hidden(nc + 1)) {
         Vertex end;
         end.type = VertexType::Surface;
         end.infinite = true;

@@ -19,6 +19,7 @@ DirectSettings DirectSettings::from_props(const Props& props) {
     const int64_t shading = props.get_int("shading_samples", 1);
     const int64_t e = props.get_int("emitter_samples", shading), b = props.get_int("bsdf_samples", shading);
     s.hide_emitters = props.get_bool("hide_emitters", false);
+    s.hide_specular_emitters = props.get_bool("hide_specular_emitters", false);
     const auto check = [&](const char* name, int64_t v) {
         if (v < 0 || v > 4096) props.raise_param(name, std::string(name) + " must lie in [0, 4096]");
     };
@@ -36,6 +37,7 @@ PathSettings one_bounce(const DirectSettings& s) {
     PathSettings p;
     p.max_depth = 2;
     p.hide_emitters = s.hide_emitters;
+    p.hide_specular_emitters = s.hide_specular_emitters;
     return p;
 }
 }  // namespace
@@ -78,6 +80,7 @@ SampleEstimate DirectIntegrator::radiance(const Ray& ray, const Scene& scene, Sa
     for (int j = 0; j < nb; ++j) {
         const auto bs = bsdf->sample(ctx.at(si), wo, sampler.next_1d(), sampler.next_2d());
         if (!bs || bs->weight.is_zero()) continue;
+        if (bs->is_delta() && m_direct.hide_specular_emitters) continue;  // camera, delta lobe, emitter
         Throughput tp;
         tp.scatter(*bs, wl, TransportMode::Radiance);
         const Vec3 d = si.to_world(bs->wi);

@@ -27,6 +27,7 @@ std::optional<BSDFSample> CameraWalk::scatter(const SurfaceInteraction& si, cons
     BSDFSample world = *bs;
     world.wi = si.to_world(bs->wi);
     tp.scatter(*bs, m_wl, TransportMode::Radiance);
+    if (!bs->is_delta()) m_specular_prefix = false;
     if (crosses_interior(bsdf, world)) cross_interface(media, si, bsdf);
     ray = m_scene->spawn_ray(si, world.wi);
     if (depth + 1 >= m_settings->rr_depth && !tp.survives_roulette(sampler.next_1d())) return std::nullopt;

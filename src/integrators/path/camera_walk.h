@@ -64,8 +64,12 @@ public:
     /// Traces `ray` to its next vertex `si`, attenuated by the medium it crossed (Beer-Lambert),
     /// and tells the observer. False when the ray escapes.
     bool trace(SurfaceInteraction* si);
-    /// Whether emitters count at this vertex: hide_emitters hides them from the camera alone.
-    bool emitters_visible() const { return !(m_settings->hide_emitters && depth == 0); }
+    /// Whether emitters count at this vertex: hide_emitters hides them from the camera alone,
+    /// hide_specular_emitters where every vertex before this one scattered by a delta lobe.
+    bool emitters_visible() const {
+        if (depth == 0) return !m_settings->hide_emitters;
+        return !(m_settings->hide_specular_emitters && m_specular_prefix);
+    }
     /// Adds emitted radiance `le` reaching the current vertex with MIS weight `weight()`: to
     /// Technique::Emitted at the camera's own vertex, else to `by` (the technique that sampled
     /// the last direction).
@@ -91,6 +95,7 @@ private:
     const PathSettings* m_settings;
     SampledWavelengths m_wl;
     PathObserver* m_observer;
+    bool m_specular_prefix = true;  ///< every vertex so far scattered by a delta lobe
 };
 
 }  // namespace snell

@@ -9,6 +9,7 @@ PathSettings PathSettings::from_props(const Props& props) {
     s.max_depth = int(props.get_int("max_depth", -1));
     s.rr_depth = int(props.get_int("rr_depth", 5));
     s.hide_emitters = props.get_bool("hide_emitters", false);
+    s.hide_specular_emitters = props.get_bool("hide_specular_emitters", false);
     if (s.max_depth < -1 || s.max_depth == 0) props.raise_param("max_depth", "must be -1 (unbounded) or >= 1");
     if (s.rr_depth < 1) props.raise_param("rr_depth", "must be >= 1");
     return s;

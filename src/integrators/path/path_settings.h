@@ -9,6 +9,12 @@ struct PathSettings {
     int max_depth = -1;          ///< longest path in segments; -1: unbounded; 1: visible emitters only
     int rr_depth = 5;            ///< Russian roulette starts at this depth
     bool hide_emitters = false;  ///< directly visible emitters are black
+    /// (hide_specular_emitters) emitters the camera sees through smooth specular vertices alone
+    /// (paths C S+ L: a light's mirror images, a water surface's glints) are black. They are no
+    /// caustic, and no technique at a diffuse vertex changes their noise, so a caustic's error
+    /// can be scored without them (docs/experiments.md, thirteenth measurement). Only one
+    /// technique produces such a path (BSDF sampling; BDPT's s = 0), so no MIS weight changes.
+    bool hide_specular_emitters = false;
     /// (max_sample_share) the film's outlier clamp (apply_outlier_clamp, camera/outlier_clamp.h): a pixel's
     /// largest sample carries at most this share of it. Biased; 0 (default): off. mnee's
     /// `biased` mode defaults it to 0.5 (MneeIntegrator::path_settings_from_props).
