@@ -123,10 +123,11 @@ TEST(HideSpecularEmitters, HidesTheLightsMirrorImageAlone) {
             for (size_t c = i; c < i + 3; ++c) EXPECT_EQ(black[c], 0.0f) << "pixel " << i / 3;
         }
         std::printf("%s: the mirror image covers %zu pixels\n", integ, image_px);
-        EXPECT_GT(image_px, 10u);  // the check above is not vacuous
+        EXPECT_GT(image_px, 10u);                    // the check above is not vacuous
         if (std::string(integ) == "bdpt") continue;  // its light subpaths die on the black wall
         const auto shown = render_rgb(load_xml(xml, {{"integrator", integ}, {"albedo", "0.5"}}), 16, 3);
-        const auto hidden = render_rgb(load_xml(xml, {{"integrator", integ}, {"albedo", "0.5"}, {"hide", "true"}}), 16, 3);
+        const auto hidden =
+            render_rgb(load_xml(xml, {{"integrator", integ}, {"albedo", "0.5"}, {"hide", "true"}}), 16, 3);
         size_t lit_px = 0;
         for (size_t i = 0; i < image.size(); i += 3) {
             const bool sees_image = image[i] != 0 || image[i + 1] != 0 || image[i + 2] != 0;

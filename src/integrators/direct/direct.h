@@ -8,9 +8,9 @@
 namespace snell {
 
 struct DirectSettings {
-    int emitter_samples = 1;     ///< (emitter_samples; shading_samples sets both)
-    int bsdf_samples = 1;        ///< (bsdf_samples)
-    bool hide_emitters = false;  ///< (hide_emitters)
+    int emitter_samples = 1;              ///< (emitter_samples; shading_samples sets both)
+    int bsdf_samples = 1;                 ///< (bsdf_samples)
+    bool hide_emitters = false;           ///< (hide_emitters)
     bool hide_specular_emitters = false;  ///< (hide_specular_emitters) emitters seen through a delta lobe
     static DirectSettings from_props(const Props& props);
 };

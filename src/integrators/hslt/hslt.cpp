@@ -42,7 +42,8 @@ HsltSettings HsltSettings::from_props(const Props& props) {
     // Read so that scenes written for the path family load; HSLT mutates whole paths and has no
     // switch for the camera's specular-only prefix.
     if (props.get_bool("hide_specular_emitters", false))
-        props.raise_param("hide_specular_emitters", "hslt: not supported (render the caustic alone with pt, nee, mnee or bdpt)");
+        props.raise_param("hide_specular_emitters",
+                          "hslt: not supported (render the caustic alone with pt, nee, mnee or bdpt)");
     props.get_int("rr_depth", 5);  // accepted for scenes written for the path tracers; no roulette here
     const auto positive = [&](const char* name, double v) {
         const double x = props.get_float(name, v);
