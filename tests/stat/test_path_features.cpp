@@ -123,7 +123,7 @@ TEST(HideSpecularEmitters, HidesTheLightsMirrorImageAlone) {
             for (size_t c = i; c < i + 3; ++c) EXPECT_EQ(black[c], 0.0f) << "pixel " << i / 3;
         }
         std::printf("%s: the mirror image covers %zu pixels\n", integ, image_px);
-        EXPECT_GT(image_px, 10u);                    // the check above is not vacuous
+        EXPECT_GT(image_px, 10u);  // the check above is not vacuous
         const auto shown = render_rgb(load_xml(xml, {{"integrator", integ}, {"albedo", "0.5"}}), 16, 3);
         const auto hidden =
             render_rgb(load_xml(xml, {{"integrator", integ}, {"albedo", "0.5"}, {"hide", "true"}}), 16, 3);
