@@ -45,6 +45,7 @@ snell_test(test_mitsuba_references SOURCES tests/stat/test_mitsuba_references.cp
 snell_test(test_hero_wavelengths SOURCES tests/stat/test_hero_wavelengths.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_dispersion SOURCES tests/stat/test_dispersion.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_connection_allocation SOURCES tests/stat/test_connection_allocation.cpp LIBS ${SNELL_ALL_LIBS})
+snell_test(test_caster_sampling SOURCES tests/stat/test_caster_sampling.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_sampler_images SOURCES tests/stat/test_sampler_images.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_pssmlt SOURCES tests/stat/test_pssmlt.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_hslt SOURCES tests/stat/test_hslt.cpp LIBS ${SNELL_ALL_LIBS})

@@ -4,8 +4,9 @@
 snell_library(snell_scene
   src/scene/scene.cpp
   src/scene/light_choice.cpp
+  src/scene/caster_sampling.cpp
 )
-target_link_libraries(snell_scene PUBLIC snell_geometry snell_light snell_camera snell_core embree)
+target_link_libraries(snell_scene PUBLIC snell_geometry snell_bsdf snell_light snell_camera snell_core embree)
 
 # The shape tests trace rays through a Scene, so they are registered here rather than beside
 # snell_geometry.

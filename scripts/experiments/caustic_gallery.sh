@@ -23,7 +23,7 @@
 #       LABEL/seed*: relMSE and median error averaged, the crop mean's average, spread (standard
 #       deviation over the runs, divided by their number) and worst seed, the runs whose mean lies
 #       within 2 % (LABEL/seeds.md)
-#   caustic_gallery.sh variant LABEL NAME 'XML' [seconds=30]   `mnee` with integrator parameters
+#   caustic_gallery.sh variant LABEL NAME 'XML' [seconds=30]   `mnee` (VARIANT_OF=nee: `nee`) with integrator parameters
 #       XML (e.g. '<float name="connect_probability" value="0.3"/>') on every case, scored on its
 #       crop like the table: results/gallery/LABEL/<case>_NAME.exr, a row each in variants.md
 # CASES="ball_plane pool" limits the cases; TECHNIQUES (nee,mnee-paper,mnee,mnee-biased) the
@@ -36,6 +36,7 @@ MODE=${1:?reference, refcheck, run or table}
 THREADS=${THREADS:-2}
 SEED=${SEED:-1}
 TECHNIQUES=${TECHNIQUES:-nee,mnee-paper,mnee,mnee-biased}
+VARIANT_OF=${VARIANT_OF:-mnee}  # the integrator a variant changes
 GALLERY=scenes/caustics
 OUT=results/gallery
 mkdir -p "$OUT/ref"
@@ -238,17 +239,17 @@ variant)
     scene="$(dirname "${SCENE[$c]}")/.variant_$$.xml"
     sed "s|<integer name=\"max_depth\" value=\"\$max_depth\"/>|&$XML|" "${SCENE[$c]}" >"$scene"
     # shellcheck disable=SC2046
-    "${LAUNCH[@]}" "$SNELL" render "$scene" $(defines_of "$c") -D integrator=mnee --time "$T" -t "$THREADS" -q \
+    "${LAUNCH[@]}" "$SNELL" render "$scene" $(defines_of "$c") -D integrator="$VARIANT_OF" --time "$T" -t "$THREADS" -q \
       --seed "$SEED" -o "$OUT/$LABEL/${c}_$NAME.exr" || { rm -f "$scene"; exit 1; }
     rm -f "$scene"
-    python3 - "$SNELL" "$OUT/$LABEL/${c}_$NAME.exr" "$OUT/ref/$c.exr" "$x,$y" "$x,$y,$w,$h" "$c" "$NAME" <<'EOF' | tee -a "$OUT/$LABEL/variants.md"
+    python3 - "$SNELL" "$OUT/$LABEL/${c}_$NAME.exr" "$OUT/ref/$c.exr" "$x,$y" "$x,$y,$w,$h" "$c" "$NAME" "$VARIANT_OF" <<'EOF' | tee -a "$OUT/$LABEL/variants.md"
 import json, subprocess, sys
-snell, img, ref, off, crop, case, name = sys.argv[1:]
+snell, img, ref, off, crop, case, name, integ = sys.argv[1:]
 m = json.loads(subprocess.check_output([snell, "diff", img, ref, "--reference-offset", off, "--crop", crop, "--json"]))[1]
 st = json.load(open(img[:-4] + ".json"))
 spp = st.get("spp_mean", st.get("spp_reached"))
 ms = st["seconds"] * 1000 / spp if spp else float("nan")
-print("| %s | mnee %s | %.4g | %.3f | %.3f | %.1f | %.0f |" % (case, name, m["rel_mse"], m["median_rel_error"],
+print("| %s | %s %s | %.4g | %.3f | %.3f | %.1f | %.0f |" % (case, integ, name, m["rel_mse"], m["median_rel_error"],
       m["mean"] / m["mean_reference"], spp, ms))
 EOF
   done

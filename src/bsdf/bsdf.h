@@ -76,6 +76,11 @@ public:
     bool is_transmissive() const { return (flags() & kTransmission) != 0; }
     /// Non-delta lobes exist (light sampling is worthwhile).
     bool is_smooth_sampled() const { return (flags() & (kDiffuse | kGlossy)) != 0; }
+    /// A refractive interface at `lambda`: transmissive, smooth or microfacet, eta != 1 (the
+    /// surfaces a manifold chain lies on, and the casters of caster sampling).
+    bool is_refractive_interface(double lambda) const {
+        return is_transmissive() && (has_delta() || has_microfacet()) && eta(lambda) != 1.0;
+    }
 
     /// Paper Eq. 9: the value kappa of a delta lobe in delta-half-vector measure for a pair
     /// (wo, wi) that obeys the specular law -- Fresnel R for reflection, (1 - F) with the

@@ -49,6 +49,8 @@ TriangleMesh::TriangleMesh(MeshData data, bool face_normals, bool flip_normals, 
         m_pos.emplace_back(p);
         m_bounds.expand(m_pos.back().to_double());
     }
+    for (const auto& p : m_pos)
+        m_bounding_radius = std::max(m_bounding_radius, length(p.to_double() - m_bounds.center()));
     m_pos.emplace_back(0.f, 0.f, 0.f);  // padding read by Embree's vector loads
     m_tris = std::move(data.triangles);
     m_uvs = std::move(data.uvs);

@@ -35,6 +35,8 @@ public:
     /// for closest-point queries.
     unsigned attach(RTCDevice device, RTCScene scene) override;
     Bounds3 bounds() const override { return m_bounds; }
+    /// Centred on the box, through the farthest vertex.
+    BoundingSphere bounding_sphere() const override { return {m_bounds.center(), m_bounding_radius}; }
     double area() const override { return m_area; }
     /// From the hit triangle's vertices (pbrt-v4 bounds a triangle point by its barycentric
     /// sum of |p_i|; the largest vertex magnitude bounds that sum).
@@ -114,6 +116,7 @@ private:
     bool m_flip;
     std::string m_name;
     Bounds3 m_bounds;
+    double m_bounding_radius = 0;
     double m_area = 0;
     Distribution1D m_tri_dist;
     std::vector<TriangleParams> m_params;  ///< per triangle, empty above kMaxCachedTriangles

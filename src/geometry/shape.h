@@ -33,6 +33,12 @@ struct ShapeSample {
     double p_error = -1;
 };
 
+/// A sphere that holds a shape (caster sampling's cones, scene/caster_sampling.h).
+struct BoundingSphere {
+    Vec3 center;
+    double radius = 0;
+};
+
 /// Interface of a geometric primitive (sphere, triangle mesh). Shapes own their BSDF and,
 /// if emissive, their area light.
 class Shape : public Object {
@@ -40,6 +46,12 @@ public:
     /// Registers the primitive with the Embree scene, returns its geometry id.
     virtual unsigned attach(RTCDevice device, RTCScene scene) = 0;
     virtual Bounds3 bounds() const = 0;
+    /// A sphere holding the shape. Default: the one through the corners of bounds(); spheres
+    /// and meshes give tighter ones.
+    virtual BoundingSphere bounding_sphere() const {
+        const Bounds3 b = bounds();
+        return {b.center(), 0.5 * length(b.extent())};
+    }
     virtual double area() const = 0;
     /// Distance within which the computed position of `si` (a point of this shape) may lie
     /// off the true surface, as Embree sees it. Default: shape_position_error(); meshes use

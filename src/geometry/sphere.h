@@ -17,6 +17,7 @@ public:
     double nearest_root(const Ray& ray, double tnear, double tfar) const override;
     Vec3 hit_normal(const Ray& ray, double t) const override;
     Bounds3 bounds() const override;
+    BoundingSphere bounding_sphere() const override { return {m_center, m_radius}; }
     double area() const override { return 4 * kPi * m_radius * m_radius; }
     void compute_interaction(const Ray& ray, double t, uint32_t prim, const Vec2& uv,
                              SurfaceInteraction* si) const override;

@@ -7,6 +7,7 @@
 #include "integrators/mis.h"
 #include "integrators/scatter.h"
 #include "light/light.h"
+#include "scene/caster_sampling.h"
 #include "scene/scene.h"
 
 namespace snell {
@@ -22,20 +23,36 @@ SampledSpectrum nee_estimate(const SurfaceInteraction& si, const BSDF& bsdf, con
 }
 
 double nee_weight(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx, const LightSample& ls,
-                  double pmf, double light_share, double bsdf_share) {
+                  double pmf, double light_share, double bsdf_share, const CasterSampling* directions) {
     // Delta lights cannot be hit by BSDF sampling.
     if (ls.delta) return 1.0;
-    return power_heuristic(light_share * pmf * ls.pdf,
-                           bsdf_share * bsdf.pdf(ctx.at(si), si.to_local(si.wo), si.to_local(ls.wi)));
+    const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls.wi);
+    const double p_bsdf = directions ? directions->pdf(si, bsdf, ctx.at(si), wo, wi) : bsdf.pdf(ctx.at(si), wo, wi);
+    return power_heuristic(light_share * pmf * ls.pdf, bsdf_share * p_bsdf);
 }
+
+namespace {
+SampledSpectrum connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
+                        const MediumStack& media, const LightSample& ls, double pmf, double light_share,
+                        double bsdf_share, const CasterSampling* directions) {
+    const SampledSpectrum f = bsdf.eval(ctx.at(si), si.to_local(si.wo), si.to_local(ls.wi));
+    if (f.is_zero()) return {};
+    if (!light_visible(scene, si, ls)) return {};
+    return nee_estimate(si, bsdf, ctx, media, ls, f, pmf,
+                        nee_weight(si, bsdf, ctx, ls, pmf, light_share, bsdf_share, directions));
+}
+}  // namespace
 
 SampledSpectrum nee_connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
                             const MediumStack& media, const LightSample& ls, double pmf, double light_share,
                             double bsdf_share) {
-    const SampledSpectrum f = bsdf.eval(ctx.at(si), si.to_local(si.wo), si.to_local(ls.wi));
-    if (f.is_zero()) return {};
-    if (!light_visible(scene, si, ls)) return {};
-    return nee_estimate(si, bsdf, ctx, media, ls, f, pmf, nee_weight(si, bsdf, ctx, ls, pmf, light_share, bsdf_share));
+    return connect(scene, si, bsdf, ctx, media, ls, pmf, light_share, bsdf_share, nullptr);
+}
+
+SampledSpectrum nee_connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
+                            const MediumStack& media, const LightSample& ls, double pmf,
+                            const CasterSampling& directions) {
+    return connect(scene, si, bsdf, ctx, media, ls, pmf, 1, 1, &directions);
 }
 
 }  // namespace snell

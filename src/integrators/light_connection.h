@@ -13,6 +13,7 @@ namespace snell {
 class Scene;
 class Sampler;
 class BSDF;
+class CasterSampling;
 class Light;
 struct BSDFContext;
 struct LightSample;
@@ -25,10 +26,18 @@ SampledSpectrum nee_connect(const Scene& scene, const SurfaceInteraction& si, co
                             const MediumStack& media, const LightSample& ls, double pmf, double light_share = 1,
                             double bsdf_share = 1);
 
+/// The same for the path-tracing family, whose walk samples directions with `directions`
+/// (BSDF sampling mixed with caster sampling): its density is the one NEE is weighed against.
+SampledSpectrum nee_connect(const Scene& scene, const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
+                            const MediumStack& media, const LightSample& ls, double pmf,
+                            const CasterSampling& directions);
+
 /// MIS weight of NEE against BSDF sampling (power heuristic, solid angle, with the sample
-/// shares as for nee_connect); 1 for delta lights.
+/// shares as for nee_connect); 1 for delta lights. With `directions`, BSDF sampling's density
+/// is theirs (CasterSampling::pdf).
 double nee_weight(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx, const LightSample& ls,
-                  double pmf, double light_share = 1, double bsdf_share = 1);
+                  double pmf, double light_share = 1, double bsdf_share = 1,
+                  const CasterSampling* directions = nullptr);
 
 /// NEE estimate for a visible light sample with BSDF value `f` (towards ls.wi) and MIS weight
 /// `w`: f |cos| Tr Le w / (pmf pdf).

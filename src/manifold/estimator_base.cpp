@@ -6,6 +6,7 @@
 #include "manifold/seed_path.h"
 #include "manifold/surface_seed.h"
 #include "manifold/walk_counters.h"
+#include "scene/caster_sampling.h"
 
 namespace snell {
 
@@ -37,6 +38,7 @@ int EstimatorBase::add_solution(const ManifoldQuery& q, const BSDFContext& ctx, 
         mnee_connect(*m_scene, *m_settings, *q.xb, *q.bsdf_b, ctx, q.media, light, pmf, lp, chain, draws);
     if (walk_converged) *walk_converged = c.walk_converged;
     if (c.outcome != MneeOutcome::Success) return -1;
+    const Vec3 first_vertex = chain[0].p;
     if (dedupe) {
         // Distinct paths only: compare polished chains (solution_set.h).
         std::vector<ManifoldVertex> polished = chain;
@@ -59,6 +61,15 @@ int EstimatorBase::add_solution(const ManifoldQuery& q, const BSDFContext& ctx, 
     s.density = c.pdf_mnee;
     s.pdf_bsdf = c.pdf_bsdf;
     s.pdf_nee_last = c.pdf_nee_last;
+    // The path samples x_b's direction with its own density (caster sampling): it replaces
+    // BSDF sampling's in both (the direction the walk solved for, before any polish).
+    if (q.directions && c.pdf_xb_direction > 0) {
+        const Vec3 o_b = normalize(first_vertex - q.xb->p);
+        const double p =
+            q.directions->pdf(*q.xb, *q.bsdf_b, ctx.at(*q.xb), q.xb->to_local(q.xb->wo), q.xb->to_local(o_b));
+        s.pdf_bsdf *= p / c.pdf_xb_direction;
+        s.pdf_nee_last *= p / c.pdf_xb_direction;
+    }
     s.from_surface = from_surface;
     out.solutions.push_back(std::move(s));
     return int(out.solutions.size()) - 1;

@@ -20,6 +20,7 @@
 
 namespace snell {
 
+class CasterSampling;
 class Scene;
 class Shape;
 
@@ -50,6 +51,9 @@ struct ManifoldQuery {
     /// not counted (SolutionSet::probes), but tells the pilot the variance BSDF sampling alone
     /// has for those paths, which it otherwise sees only in its own rare hits.
     bool probes = false;
+    /// How the path samples x_b's next direction (BSDF sampling mixed with caster sampling);
+    /// null: BSDF sampling alone. Alg. 2's BSDF densities read it.
+    const CasterSampling* directions = nullptr;
 };
 
 /// What ManifoldTechnique::density tells beside the density, for the MIS weights and the

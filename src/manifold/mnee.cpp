@@ -237,8 +237,8 @@ MneeConnection mnee_connect(const Scene& scene, const MneeSettings& st, const Su
     MediumStack m = media;
     SampledSpectrum tr = m.transmittance(length(chain[0].p - xb.p), ctx.wl);
     // BSDF-sampling density of the same path (area measure), and its prefix up to x_k.
-    double p_bsdf =
-        bsdf_b.pdf(ctx.at(xb), wo_b, o_b_l) * std::abs(dot(chain[0].ng, o_b)) / length_squared(chain[0].p - xb.p);
+    out.pdf_xb_direction = bsdf_b.pdf(ctx.at(xb), wo_b, o_b_l);
+    double p_bsdf = out.pdf_xb_direction * std::abs(dot(chain[0].ng, o_b)) / length_squared(chain[0].p - xb.p);
     double p_prefix_k = p_bsdf;
     for (size_t i = 0; i < k; ++i) {
         Vec3 wi, wo;

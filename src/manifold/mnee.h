@@ -50,6 +50,10 @@ struct MneeConnection {
     double pdf_mnee = 0;      ///< area density of this technique (Eq. 7 with Eq. 8)
     double pdf_bsdf = 0;      ///< area density of BSDF sampling x_1..x_k, x_c from x_b
     double pdf_nee_last = 0;  ///< area density of NEE from x_k (0 unless x_k is rough)
+    /// BSDF sampling's solid-angle density of x_b's direction towards x_1 (BSDF::pdf), the first
+    /// factor of pdf_bsdf and pdf_nee_last: a path tracer that samples that direction otherwise
+    /// (caster sampling) puts its own density in its place.
+    double pdf_xb_direction = 0;
     /// Focusing ratio r = |do_b/dx_c| |x_c - x_b|^2 / |cos theta_c| (1 through free space;
     /// MneeSettings::max_geometry clamps it). `value` is already clamped.
     double focusing = 0;

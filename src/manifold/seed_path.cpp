@@ -5,9 +5,7 @@
 
 namespace snell {
 
-bool is_manifold_interface(const BSDF* bsdf, double lambda) {
-    return bsdf && bsdf->is_transmissive() && (bsdf->has_delta() || bsdf->has_microfacet()) && bsdf->eta(lambda) != 1.0;
-}
+bool is_manifold_interface(const BSDF* bsdf, double lambda) { return bsdf && bsdf->is_refractive_interface(lambda); }
 
 SeedStatus trace_seed_path(const Scene& scene, const SurfaceInteraction& xb, const Vec3& xc, double lambda,
                            const MneeSettings& settings, std::vector<ManifoldVertex>* chain) {

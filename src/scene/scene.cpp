@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "bsdf/bsdf.h"
 #include "geometry/embree_context.h"
 
 namespace snell {
@@ -153,6 +154,10 @@ void Scene::build() {
         m_has_delta_lights = m_has_delta_lights || l->is_delta();
     }
     m_light_sampler = LightSampler(m_lights);
+    m_refractive_casters.clear();
+    for (const auto& s : m_shapes)
+        if (!s->emitter() && s->bsdf() && s->bsdf()->is_refractive_interface(550.0))
+            m_refractive_casters.push_back(s->bounding_sphere());
 }
 
 bool Scene::intersect(const Ray& ray, SurfaceInteraction* si) const {

@@ -89,6 +89,9 @@ public:
     const std::vector<const Light*>& infinite_lights() const { return m_infinite; }
     /// Whether any light is a delta light (point, spot, directional), which BSDF sampling cannot hit.
     bool has_delta_lights() const { return m_has_delta_lights; }
+    /// Spheres holding the shapes that refract light (BSDF::is_refractive_interface at 550 nm,
+    /// emitters excluded): caster sampling's cones (scene/caster_sampling.h).
+    const std::vector<BoundingSphere>& refractive_casters() const { return m_refractive_casters; }
     const LightSampler& light_sampler() const { return m_light_sampler; }
     const Camera* camera() const { return m_camera.get(); }
     RTCDevice device() const { return m_device; }
@@ -106,6 +109,7 @@ private:
     std::vector<std::shared_ptr<Light>> m_lights;
     std::vector<const Light*> m_infinite;
     bool m_has_delta_lights = false;
+    std::vector<BoundingSphere> m_refractive_casters;
     LightSampler m_light_sampler;
     std::shared_ptr<Camera> m_camera;
     Bounds3 m_bounds;

@@ -99,6 +99,9 @@ PathSettings MneeIntegrator::path_settings_from_props(const Props& p) {
     PathSettings s = PathSettings::tracer_from_props(p);
     if (p.get_bool("biased", false) && !p.has("max_sample_share")) s.max_sample_share = kBiasedMaxSampleShare;
     if (p.get_bool("biased", false) && !p.has("clamp_spread")) s.clamp_spread = kBiasedClampSpread;
+    // The paper's estimator (solutions=one) keeps the paper's BSDF sampling.
+    if (!p.has("caster_probability") && p.get_string("solutions", "") != "one")
+        s.caster_probability = kMneeCasterProbability;
     return s;
 }
 

@@ -101,6 +101,7 @@ void MneePath::connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSD
     query.meter_work = m_pilot != nullptr;
     query.probes = m_pilot != nullptr;
     query.surface_trials = m_surface_trials;
+    query.directions = &m_walk.directions();
     const ManifoldConnection c = m_technique.connect(query, sampler);
     // q = 0 would have made one shadow ray in place of the seed (ManifoldTechnique::connect).
     if (m_pilot && c.light && !c.light->is_delta() && c.seed_work > 0) m_pilot->work_seed += c.seed_work - 1.0;
@@ -109,8 +110,9 @@ void MneePath::connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSD
             return;
         case ManifoldConnection::Kind::Direct:
             // NEE's sample, with NEE's weight.
-            m_out.add(Technique::Nee, beta * nee_estimate(si, bsdf, sctx, m_walk.media, c.ls, c.f_b, c.pmf,
-                                                          nee_weight(si, bsdf, sctx, c.ls, c.pmf)));
+            m_out.add(Technique::Nee,
+                      beta * nee_estimate(si, bsdf, sctx, m_walk.media, c.ls, c.f_b, c.pmf,
+                                          nee_weight(si, bsdf, sctx, c.ls, c.pmf, 1, 1, &m_walk.directions())));
             return;
         case ManifoldConnection::Kind::Manifold:
             break;
@@ -148,7 +150,8 @@ SampledSpectrum MneePath::connect_at_interface(const SurfaceInteraction& si, con
     double pmf = 0;
     const auto ls = sample_light(scene, si, m_ctx.wl, sampler, &light, &pmf);
     if (!ls) return {};
-    if (!s.has_xb || s.k == 0 || !m_weighs_mnee) return nee_connect(scene, si, bsdf, sctx, m_walk.media, *ls, pmf);
+    if (!s.has_xb || s.k == 0 || !m_weighs_mnee)
+        return nee_connect(scene, si, bsdf, sctx, m_walk.media, *ls, pmf, m_walk.directions());
     const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls->wi);
     const SampledSpectrum f = bsdf.eval(sctx, wo, wi);
     if (f.is_zero()) return {};

@@ -22,7 +22,7 @@ bool CameraWalk::trace(SurfaceInteraction* si) {
 
 std::optional<BSDFSample> CameraWalk::scatter(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& sctx,
                                               Sampler& sampler) {
-    const auto bs = bsdf.sample(sctx, si.to_local(si.wo), sampler.next_1d(), sampler.next_2d());
+    const auto bs = m_casters.sample(si, bsdf, sctx, sampler.next_1d(), sampler.next_2d());
     if (!bs || bs->weight.is_zero()) return std::nullopt;
     BSDFSample world = *bs;
     world.wi = si.to_world(bs->wi);

@@ -13,6 +13,7 @@
 #include "integrators/path/technique_stats.h"
 #include "integrators/scatter.h"
 #include "light/light.h"
+#include "scene/caster_sampling.h"
 
 namespace snell {
 
@@ -59,7 +60,12 @@ class CameraWalk {
 public:
     CameraWalk(const Scene& scene, const PathSettings& settings, const SampledWavelengths& wl, const Ray& camera_ray,
                PathObserver* observer)
-        : ray(camera_ray), m_scene(&scene), m_settings(&settings), m_wl(wl), m_observer(observer) {}
+        : ray(camera_ray),
+          m_scene(&scene),
+          m_settings(&settings),
+          m_wl(wl),
+          m_observer(observer),
+          m_casters(scene, settings.caster_probability) {}
 
     /// Traces `ray` to its next vertex `si`, attenuated by the medium it crossed (Beer-Lambert),
     /// and tells the observer. False when the ray escapes.
@@ -79,9 +85,12 @@ public:
     }
     /// Whether max_depth lets the path scatter at the current vertex.
     bool may_scatter() const { return !(m_settings->max_depth >= 0 && depth + 1 >= m_settings->max_depth); }
-    /// Samples the BSDF at `si` and moves on: the throughput, the media, the next `ray`, then
-    /// Russian roulette. The sample with its direction in world space, or nothing when the path
-    /// ends here (absorbed, or stopped by roulette).
+    /// How scatter() samples directions: BSDF sampling, mixed with caster sampling where it
+    /// applies; every MIS weight reads its density (CasterSampling::pdf).
+    const CasterSampling& directions() const { return m_casters; }
+    /// Samples the BSDF at `si` (mixed with caster sampling) and moves on: the throughput, the media, the next `ray`,
+    /// then Russian roulette. The sample with its direction in world space, or nothing when the path ends here
+    /// (absorbed, or stopped by roulette).
     std::optional<BSDFSample> scatter(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& sctx,
                                       Sampler& sampler);
 
@@ -96,6 +105,7 @@ private:
     SampledWavelengths m_wl;
     PathObserver* m_observer;
     bool m_specular_prefix = true;  ///< every vertex so far scattered by a delta lobe
+    CasterSampling m_casters;
 };
 
 }  // namespace snell

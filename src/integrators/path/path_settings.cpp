@@ -24,6 +24,9 @@ PathSettings PathSettings::tracer_from_props(const Props& props) {
     if (spread < 0 || spread > 255)
         props.raise_param("clamp_spread", "must lie in [0, 255] pixels (0: the clamped light is dropped)");
     s.clamp_spread = int(spread);
+    s.caster_probability = props.get_float("caster_probability", 0.0);
+    if (!(s.caster_probability >= 0 && s.caster_probability < 1))
+        props.raise_param("caster_probability", "must lie in [0, 1) (0: BSDF sampling alone)");
     return s;
 }
 

@@ -23,6 +23,11 @@ struct PathSettings {
     /// of being dropped (apply_outlier_clamp, camera/outlier_clamp.h); 0 (default): dropped. mnee's `biased` mode
     /// defaults it to kBiasedClampSpread.
     int clamp_spread = 0;
+    /// (caster_probability) the share of directions sampled at a reflecting, non-delta vertex
+    /// that aim at the scene's refractive shapes rather than follow the BSDF (caster_sampling.h).
+    /// 0 (default of pt, path and nee): BSDF sampling alone; `mnee` defaults it to
+    /// kMneeCasterProbability.
+    double caster_probability = 0;
     /// The settings every integrator built on paths reads (bdpt, pssmlt and erpt too).
     static PathSettings from_props(const Props& props);
     /// from_props plus max_sample_share: the integrators whose samples the film clamps (the

@@ -46,7 +46,8 @@ SampleEstimate PathTracer::radiance(const Ray& camera_ray, const Scene& scene, S
             const Light* light = nullptr;
             double pmf = 0;
             if (const auto ls = sample_light(scene, si, wl, sampler, &light, &pmf))
-                out.add(Technique::Nee, walk.tp.beta * nee_connect(scene, si, *bsdf, sctx, walk.media, *ls, pmf));
+                out.add(Technique::Nee,
+                        walk.tp.beta * nee_connect(scene, si, *bsdf, sctx, walk.media, *ls, pmf, walk.directions()));
         }
         const auto bs = walk.scatter(si, *bsdf, sctx, sampler);
         if (!bs) break;
