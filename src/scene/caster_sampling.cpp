@@ -64,8 +64,8 @@ double CasterSampling::pdf(const SurfaceInteraction& si, const BSDF& bsdf, const
     return (1 - m_probability) * p_bsdf + m_probability * cone_pdf(si, si.to_world(wi));
 }
 
-std::optional<BSDFSample> CasterSampling::sample(const SurfaceInteraction& si, const BSDF& bsdf,
-                                                 const BSDFContext& ctx, double uc, const Vec2& u) const {
+std::optional<BSDFSample> CasterSampling::sample(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
+                                                 double uc, const Vec2& u) const {
     const Vec3 wo = si.to_local(si.wo);
     if (!applies(si, bsdf)) return bsdf.sample(ctx, wo, uc, u);
     const double c = m_probability;

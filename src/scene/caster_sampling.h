@@ -36,8 +36,8 @@ public:
     bool applies(const SurfaceInteraction& si, const BSDF& bsdf) const;
     /// A direction leaving `si` (local frame, like BSDF::sample) and its weight f |cos| / pdf
     /// with pdf the mixture's; uc picks the technique and is reused within it.
-    std::optional<BSDFSample> sample(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx,
-                                     double uc, const Vec2& u) const;
+    std::optional<BSDFSample> sample(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx, double uc,
+                                     const Vec2& u) const;
     /// Solid-angle density of sample() producing the local direction wi (BSDF::pdf where the
     /// mixture does not apply).
     double pdf(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& ctx, const Vec3& wo,

@@ -32,7 +32,8 @@ std::string casters_scene(const std::string& floor_bsdf) {
     <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
   </sensor>
   <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><scale value="4"/></transform>
-    )" + floor_bsdf + R"(</shape>
+    )" + floor_bsdf +
+           R"(</shape>
 )" + sphere(R"(x="0.8" y="1.5" z="0")", "0.5") +
            sphere(R"(x="-1" y="0.9" z="0.5")", "0.3") + sphere(R"(x="0" y="-2" z="0")", "0.5") +
            sphere(R"(x="0" y="0.1" z="0")", "0.5") + R"(
@@ -103,13 +104,15 @@ TEST_P(CasterSamplingChi2, SamplesFollowTheMixturesPdf) {
 INSTANTIATE_TEST_SUITE_P(
     Floors, CasterSamplingChi2,
     ::testing::Values(Floor{"diffuse", R"(<bsdf type="diffuse"/>)"},
-                      Floor{"rough_conductor", R"(<bsdf type="roughconductor"><float name="alpha" value="0.3"/></bsdf>)"}),
+                      Floor{"rough_conductor",
+                            R"(<bsdf type="roughconductor"><float name="alpha" value="0.3"/></bsdf>)"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 // The mixture applies at reflecting vertices alone, and there averages the cones of the casters
 // outside the point and reaching above its side of the surface: from above the floor's origin
 // the two spheres above it (not the one below, not the one holding it); from below another
-// point the one below and the one that reaches through the floor, not the two above. Where it does not apply it is BSDF sampling, draw for draw.
+// point the one below and the one that reaches through the floor, not the two above. Where it does not apply it is BSDF
+// sampling, draw for draw.
 TEST(CasterSampling, AveragesTheConesOfTheCastersInView) {
     const LoadedScene ls = load_xml(casters_scene(R"(<bsdf type="diffuse"/>)"));
     const Scene& scene = *ls.scene;
@@ -125,8 +128,8 @@ TEST(CasterSampling, AveragesTheConesOfTheCastersInView) {
         ctx = ctx.at(si);
         const Vec3 wo = si.to_local(si.wo), wi = si.to_local(normalize(centre - si.p));
         const double p_bsdf = si.bsdf()->pdf(ctx, wo, wi);
-        EXPECT_NEAR(mix.pdf(si, *si.bsdf(), ctx, wo, wi),
-                    (1 - c) * p_bsdf + c * cone_density(si.p, centre, r) / cones, 1e-9);
+        EXPECT_NEAR(mix.pdf(si, *si.bsdf(), ctx, wo, wi), (1 - c) * p_bsdf + c * cone_density(si.p, centre, r) / cones,
+                    1e-9);
     };
     const SurfaceInteraction top = floor_point(scene);
     ASSERT_TRUE(mix.applies(top, *top.bsdf()));
