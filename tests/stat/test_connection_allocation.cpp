@@ -390,9 +390,8 @@ TEST(ConnectionAllocation, LearnedAllocationOnRoughGlassMatchesNee) {
         // BSDF sampling alone (caster_probability 0): with the default's caster sampling it finds
         // this droplet's light well enough that every region takes q = 0, and the test needs
         // regions of both kinds.
-        LoadedScene mnee =
-            load_xml(scene(std::string(kLearned) + R"(<float name="caster_probability" value="0"/>)"),
-                     {{"integrator", "mnee"}});
+        LoadedScene mnee = load_xml(scene(std::string(kLearned) + R"(<float name="caster_probability" value="0"/>)"),
+                                    {{"integrator", "mnee"}});
         RenderOptions opt;
         opt.spp = 4;
         opt.progress = false;
