@@ -8,6 +8,8 @@
 
 #include "bsdf/bsdf.h"
 #include "geometry/embree_context.h"
+#include "light/directional.h"
+#include "scene/caster_sampling.h"
 
 namespace snell {
 
@@ -158,6 +160,20 @@ void Scene::build() {
     for (const auto& s : m_shapes)
         if (!s->emitter() && s->bsdf() && s->bsdf()->is_refractive_interface(550.0))
             m_refractive_casters.push_back(s->bounding_sphere());
+    m_bounded_lights.clear();
+    for (const auto& l : m_lights) {
+        if (const auto* d = dynamic_cast<const DirectionalLight*>(l.get()))
+            m_bounded_lights.push_back({-d->direction(), -1.0});
+        else if (l->shape())
+            m_bounded_lights.push_back(l->shape()->bounding_sphere());
+        else if (l->kind() == LightKind::Point || l->kind() == LightKind::Spot || l->kind() == LightKind::Projector)
+            m_bounded_lights.push_back({l->position(), 0.0});
+        else {  // an environment: light from every direction
+            m_bounded_lights.clear();
+            break;
+        }
+    }
+    if (m_bounded_lights.size() > CasterSampling::kMaxLights) m_bounded_lights.clear();
 }
 
 bool Scene::intersect(const Ray& ray, SurfaceInteraction* si) const {

@@ -92,6 +92,11 @@ public:
     /// Spheres holding the shapes that refract light (BSDF::is_refractive_interface at 550 nm,
     /// emitters excluded): caster sampling's cones (scene/caster_sampling.h).
     const std::vector<BoundingSphere>& refractive_casters() const { return m_refractive_casters; }
+    /// Where the lights are, for caster sampling's shadow test: a sphere holding each (radius 0
+    /// for a light at a point; a directional light's `center` is the unit direction towards it,
+    /// with radius -1). Empty where a light has no bounds (an environment) or there are more
+    /// than CasterSampling::kMaxLights.
+    const std::vector<BoundingSphere>& bounded_lights() const { return m_bounded_lights; }
     const LightSampler& light_sampler() const { return m_light_sampler; }
     const Camera* camera() const { return m_camera.get(); }
     RTCDevice device() const { return m_device; }
@@ -110,6 +115,7 @@ private:
     std::vector<const Light*> m_infinite;
     bool m_has_delta_lights = false;
     std::vector<BoundingSphere> m_refractive_casters;
+    std::vector<BoundingSphere> m_bounded_lights;
     LightSampler m_light_sampler;
     std::shared_ptr<Camera> m_camera;
     Bounds3 m_bounds;

@@ -18,7 +18,11 @@ namespace {
 
 // A floor with `floor_bsdf` and four glass spheres seen from the floor's origin: two above it
 // (their cones apply), one below its plane and one holding the origin (theirs do not).
-std::string casters_scene(const std::string& floor_bsdf) {
+// `emitter`: the scene's light (an environment by default, which lights every point through
+// every caster, so the shadow test passes everywhere).
+std::string casters_scene(
+    const std::string& floor_bsdf,
+    const std::string& emitter = R"(<emitter type="constant"><rgb name="radiance" value="1, 1, 1"/></emitter>)") {
     const std::string glass =
         R"(<bsdf type="dielectric"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/></bsdf>)";
     const auto sphere = [&](const char* c, const char* r) {
@@ -36,9 +40,7 @@ std::string casters_scene(const std::string& floor_bsdf) {
            R"(</shape>
 )" + sphere(R"(x="0.8" y="1.5" z="0")", "0.5") +
            sphere(R"(x="-1" y="0.9" z="0.5")", "0.3") + sphere(R"(x="0" y="-2" z="0")", "0.5") +
-           sphere(R"(x="0" y="0.1" z="0")", "0.5") + R"(
-  <emitter type="constant"><rgb name="radiance" value="1, 1, 1"/></emitter>
-</scene>)";
+           sphere(R"(x="0" y="0.1" z="0")", "0.5") + emitter + "\n</scene>";
 }
 
 // The floor's point at the origin, reached from straight above (inside the fourth sphere).
@@ -157,5 +159,41 @@ TEST(CasterSampling, AveragesTheConesOfTheCastersInView) {
             EXPECT_EQ(a->wi, b->wi);
             EXPECT_EQ(a->pdf, b->pdf);
         }
+    }
+}
+
+// The shadow test: with a light behind the first sphere as seen from the floor's origin, only
+// that sphere's cone applies there, and at a floor point that sees no caster in front of the
+// light the mixture does not apply at all. The same for a sphere light, a point light and a
+// directional light along that line.
+TEST(CasterSampling, AimsOnlyAtCastersInFrontOfALight) {
+    const char* lights[] = {
+        R"(<shape type="sphere"><point name="center" x="2.4" y="4.5" z="0"/><float name="radius" value="0.2"/>
+             <emitter type="area"><rgb name="radiance" value="10, 10, 10"/></emitter></shape>)",
+        R"(<emitter type="point"><point name="position" x="2.4" y="4.5" z="0"/></emitter>)",
+        R"(<emitter type="directional"><vector name="direction" x="-0.8" y="-1.5" z="0"/></emitter>)",
+    };
+    const double c = 0.6;
+    for (const char* light : lights) {
+        const LoadedScene ls = load_xml(casters_scene(R"(<bsdf type="diffuse"/>)", light));
+        const Scene& scene = *ls.scene;
+        ASSERT_EQ(scene.bounded_lights().size(), 1u) << light;
+        const CasterSampling mix(scene, c);
+        const SurfaceInteraction top = floor_point(scene);
+        ASSERT_TRUE(mix.applies(top, *top.bsdf())) << light;
+        BSDFContext ctx;
+        ctx = ctx.at(top);
+        const Vec3 centre(0.8, 1.5, 0), wo = top.to_local(top.wo), wi = top.to_local(normalize(centre - top.p));
+        const double sin2 = 0.25 / length_squared(centre - top.p);
+        const double cone = 1.0 / (2 * kPi * (1 - std::sqrt(1 - sin2)));  // the first sphere's alone
+        EXPECT_NEAR(mix.pdf(top, *top.bsdf(), ctx, wo, wi), (1 - c) * top.bsdf()->pdf(ctx, wo, wi) + c * cone, 1e-9)
+            << light;
+        // The second sphere's direction is BSDF sampling's alone.
+        const Vec3 wi2 = top.to_local(normalize(Vec3(-1, 0.9, 0.5) - top.p));
+        EXPECT_NEAR(mix.pdf(top, *top.bsdf(), ctx, wo, wi2), (1 - c) * top.bsdf()->pdf(ctx, wo, wi2), 1e-12) << light;
+
+        SurfaceInteraction lit;  // a floor point no caster shadows
+        ASSERT_TRUE(scene.intersect(Ray(Vec3(3, 1, -3), Vec3(0, -1, 0)), &lit));
+        EXPECT_FALSE(mix.applies(lit, *lit.bsdf())) << light;
     }
 }
