@@ -30,7 +30,7 @@ bool CasterSampling::cone(const SurfaceInteraction& si, size_t i, Cone* out) con
 
 bool CasterSampling::overlaps_a_light(const Vec3& p, const Cone& c) const {
     const auto& lights = m_scene->bounded_lights();
-    if (lights.empty()) return true;  // an environment, or too many lights to test
+    if (lights.empty()) return true;  // a bright environment, or too many lights to test
     const double cos_c = 1 - c.one_minus_cos, sin_c = std::sqrt(std::max(0.0, c.one_minus_cos * (1 + cos_c)));
     for (const BoundingSphere& l : lights) {
         Vec3 axis = l.center;  // a directional light: the direction towards it, a cone of angle 0

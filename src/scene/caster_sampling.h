@@ -33,7 +33,7 @@ public:
     /// Scenes with more refractive shapes than this sample their BSDFs alone (the density is a
     /// sum over the casters, evaluated at every MIS weight).
     static constexpr size_t kMaxCasters = 16;
-    /// Scenes with more lights than this (or an environment) aim at the casters wherever their
+    /// Scenes with more lights than this (or a bright environment) aim at the casters wherever their
     /// cones reach above the surface, without the shadow test.
     static constexpr size_t kMaxLights = 16;
 

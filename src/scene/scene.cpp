@@ -161,6 +161,7 @@ void Scene::build() {
         if (!s->emitter() && s->bsdf() && s->bsdf()->is_refractive_interface(550.0))
             m_refractive_casters.push_back(s->bounding_sphere());
     m_bounded_lights.clear();
+    double bounded_power = 0, environment_power = 0;
     for (const auto& l : m_lights) {
         if (const auto* d = dynamic_cast<const DirectionalLight*>(l.get()))
             m_bounded_lights.push_back({-d->direction(), -1.0});
@@ -169,10 +170,14 @@ void Scene::build() {
         else if (l->kind() == LightKind::Point || l->kind() == LightKind::Spot || l->kind() == LightKind::Projector)
             m_bounded_lights.push_back({l->position(), 0.0});
         else {  // an environment: light from every direction
-            m_bounded_lights.clear();
-            break;
+            environment_power += l->power();
+            continue;
         }
+        bounded_power += l->power();
     }
+    // A dim environment (an ambient fill) leaves the shadow test to the other lights; one that
+    // outshines them lights every point through every caster.
+    if (environment_power > bounded_power) m_bounded_lights.clear();
     if (m_bounded_lights.size() > CasterSampling::kMaxLights) m_bounded_lights.clear();
 }
 

@@ -94,8 +94,9 @@ public:
     const std::vector<BoundingSphere>& refractive_casters() const { return m_refractive_casters; }
     /// Where the lights are, for caster sampling's shadow test: a sphere holding each (radius 0
     /// for a light at a point; a directional light's `center` is the unit direction towards it,
-    /// with radius -1). Empty where a light has no bounds (an environment) or there are more
-    /// than CasterSampling::kMaxLights.
+    /// with radius -1). Environments are left out where the other lights outshine them (by
+    /// Light::power); empty where they do not, or where there are more than
+    /// CasterSampling::kMaxLights.
     const std::vector<BoundingSphere>& bounded_lights() const { return m_bounded_lights; }
     const LightSampler& light_sampler() const { return m_light_sampler; }
     const Camera* camera() const { return m_camera.get(); }

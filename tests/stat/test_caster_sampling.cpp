@@ -164,12 +164,15 @@ TEST(CasterSampling, AveragesTheConesOfTheCastersInView) {
 
 // The shadow test: with a light behind the first sphere as seen from the floor's origin, only
 // that sphere's cone applies there, and at a floor point that sees no caster in front of the
-// light the mixture does not apply at all. The same for a sphere light, a point light and a
-// directional light along that line.
+// light the mixture does not apply at all. The same for a sphere light (beside a dim
+// environment), a point light and a directional light along that line; a bright environment
+// turns the test off.
 TEST(CasterSampling, AimsOnlyAtCastersInFrontOfALight) {
     const char* lights[] = {
+        // with a dim environment beside it, which the test leaves out
         R"(<shape type="sphere"><point name="center" x="2.4" y="4.5" z="0"/><float name="radius" value="0.2"/>
-             <emitter type="area"><rgb name="radiance" value="10, 10, 10"/></emitter></shape>)",
+             <emitter type="area"><rgb name="radiance" value="10, 10, 10"/></emitter></shape>
+           <emitter type="constant"><rgb name="radiance" value="0.001, 0.001, 0.001"/></emitter>)",
         R"(<emitter type="point"><point name="position" x="2.4" y="4.5" z="0"/></emitter>)",
         R"(<emitter type="directional"><vector name="direction" x="-0.8" y="-1.5" z="0"/></emitter>)",
     };
@@ -196,4 +199,13 @@ TEST(CasterSampling, AimsOnlyAtCastersInFrontOfALight) {
         ASSERT_TRUE(scene.intersect(Ray(Vec3(3, 1, -3), Vec3(0, -1, 0)), &lit));
         EXPECT_FALSE(mix.applies(lit, *lit.bsdf())) << light;
     }
+    // An environment brighter than the sphere light lights every point through every caster.
+    const LoadedScene ls = load_xml(casters_scene(R"(<bsdf type="diffuse"/>)", R"(
+        <shape type="sphere"><point name="center" x="2.4" y="4.5" z="0"/><float name="radius" value="0.2"/>
+          <emitter type="area"><rgb name="radiance" value="10, 10, 10"/></emitter></shape>
+        <emitter type="constant"><rgb name="radiance" value="1, 1, 1"/></emitter>)"));
+    EXPECT_TRUE(ls.scene->bounded_lights().empty());
+    SurfaceInteraction lit;
+    ASSERT_TRUE(ls.scene->intersect(Ray(Vec3(3, 1, -3), Vec3(0, -1, 0)), &lit));
+    EXPECT_TRUE(CasterSampling(*ls.scene, c).applies(lit, *lit.bsdf()));
 }
