@@ -9,11 +9,10 @@
 // (the floor point is the image of one small part of the light) and its per-sample variance is
 // no lower than BSDF sampling's (docs/experiments.md, "Aiming BSDF sampling at the glass").
 //
-// It is a one-sample mixture (Veach 1997, Sec. 9.2.4: a technique's density is the mixture's),
 // Where: only where a caster's cone overlaps a light's as seen from the vertex, that is in the
 // caster's (soft) shadow, where a focusing glass puts its caustic. Elsewhere, in a room with a
 // glass ball say, the light arrives directly and aiming at the glass only takes samples from the
-// indirect light (docs/experiments.md, "The shadow test").
+// indirect light (docs/experiments.md, "Caster sampling in the casters' shadows").
 //
 // It is a one-sample mixture (Veach 1997, Sec. 9.2.4: a technique's density is the mixture's),
 // so it adds no MIS technique: every weight that reads BSDF sampling's density at such a vertex
