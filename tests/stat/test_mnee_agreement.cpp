@@ -447,5 +447,9 @@ TEST(MneeAgreement, GlassCylinderMatchesNee) {
     <transform name="to_world"><scale value="1.5"/><rotate x="1" angle="90"/><translate x="-0.3" y="3" z="-0.5"/></transform>
     <emitter type="area"><rgb name="radiance" value="3, 3, 3"/></emitter></shape>
 </scene>)";
-    expect_mnee_matches_nee(rod, 256, 64, "glass cylinder");
+    // 32 replicas of `mnee` and `nee` at 1,024 spp: with caster_probability 0.75 the rod's
+    // loose sphere (its box's) gives `mnee` a heavy tail, and 8 replicas at 64 spp read block 3
+    // 1.9 % high at 4.7 of their standard errors, while 8 x 2,048 spp agree with `nee` at
+    // 65,536 spp in every block (issue 26, fifteenth measurement).
+    expect_mnee_matches_nee(rod, 1024, 64, "glass cylinder", "", 32);
 }
