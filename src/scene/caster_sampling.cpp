@@ -32,15 +32,15 @@ bool CasterSampling::overlaps_a_light(const Vec3& p, const Cone& c) const {
     const auto& lights = m_scene->bounded_lights();
     if (lights.empty()) return true;  // a bright environment, or too many lights to test
     const double cos_c = 1 - c.one_minus_cos, sin_c = std::sqrt(std::max(0.0, c.one_minus_cos * (1 + cos_c)));
-    for (const BoundingSphere& l : lights) {
-        Vec3 axis = l.center;  // a directional light: the direction towards it, a cone of angle 0
+    for (const LightBounds& l : lights) {
+        Vec3 axis = l.direction;  // a directional light: a cone of angle 0
         double cos_l = 1, sin_l = 0;
-        if (l.radius >= 0) {
-            const Vec3 v = l.center - p;
-            const double d2 = length_squared(v);
-            if (!(d2 > l.radius * l.radius)) return true;  // inside the light's sphere
+        if (!l.directional) {
+            const Vec3 v = l.sphere.center - p;
+            const double d2 = length_squared(v), r = l.sphere.radius;
+            if (!(d2 > r * r)) return true;  // inside the light's sphere
             axis = v / std::sqrt(d2);
-            sin_l = l.radius / std::sqrt(d2);
+            sin_l = r / std::sqrt(d2);
             cos_l = std::sqrt(1 - sin_l * sin_l);
         }
         // The cones overlap where the angle between their axes is at most the sum of their

@@ -164,11 +164,11 @@ void Scene::build() {
     double bounded_power = 0, environment_power = 0;
     for (const auto& l : m_lights) {
         if (const auto* d = dynamic_cast<const DirectionalLight*>(l.get()))
-            m_bounded_lights.push_back({-d->direction(), -1.0});
+            m_bounded_lights.push_back(LightBounds::towards(-d->direction()));
         else if (l->shape())
-            m_bounded_lights.push_back(l->shape()->bounding_sphere());
+            m_bounded_lights.push_back(LightBounds::around(l->shape()->bounding_sphere()));
         else if (l->kind() == LightKind::Point || l->kind() == LightKind::Spot || l->kind() == LightKind::Projector)
-            m_bounded_lights.push_back({l->position(), 0.0});
+            m_bounded_lights.push_back(LightBounds::around({l->position(), 0.0}));
         else {  // an environment: light from every direction
             environment_power += l->power();
             continue;

@@ -13,6 +13,7 @@
 #include "geometry/shape.h"
 #include "light/light.h"
 #include "light/light_sampler.h"
+#include "scene/light_bounds.h"
 
 namespace snell {
 
@@ -92,12 +93,10 @@ public:
     /// Spheres holding the shapes that refract light (BSDF::is_refractive_interface at 550 nm,
     /// emitters excluded): caster sampling's cones (scene/caster_sampling.h).
     const std::vector<BoundingSphere>& refractive_casters() const { return m_refractive_casters; }
-    /// Where the lights are, for caster sampling's shadow test: a sphere holding each (radius 0
-    /// for a light at a point; a directional light's `center` is the unit direction towards it,
-    /// with radius -1). Environments are left out where the other lights outshine them (by
-    /// Light::power); empty where they do not, or where there are more than
-    /// CasterSampling::kMaxLights.
-    const std::vector<BoundingSphere>& bounded_lights() const { return m_bounded_lights; }
+    /// Where the lights are, for caster sampling's shadow test. Environments are left out where
+    /// the other lights outshine them (by Light::power); empty where they do not, or where there
+    /// are more than CasterSampling::kMaxLights.
+    const std::vector<LightBounds>& bounded_lights() const { return m_bounded_lights; }
     const LightSampler& light_sampler() const { return m_light_sampler; }
     const Camera* camera() const { return m_camera.get(); }
     RTCDevice device() const { return m_device; }
@@ -116,7 +115,7 @@ private:
     std::vector<const Light*> m_infinite;
     bool m_has_delta_lights = false;
     std::vector<BoundingSphere> m_refractive_casters;
-    std::vector<BoundingSphere> m_bounded_lights;
+    std::vector<LightBounds> m_bounded_lights;
     LightSampler m_light_sampler;
     std::shared_ptr<Camera> m_camera;
     Bounds3 m_bounds;
