@@ -18,9 +18,9 @@ inline constexpr double kBiasedMaxSampleShare = 0.5;
 inline constexpr int kBiasedClampSpread = 8;
 
 /// `mnee`'s default caster_probability (PathSettings; scene/caster_sampling.h): three quarters
-/// of the directions at a diffuse vertex in a caster's shadow aim at the glass. Once the
-/// shadow test kept the mixture to the shadows, 0.75 beat 0.5 on eight of nine gallery cases
-/// (docs/experiments.md, "Caster sampling in the casters' shadows").
+/// of the directions at a diffuse vertex in a caster's shadow aim at the glass. Why this share,
+/// and how 0.5 and 0.9 fared on the caustic gallery: docs/experiments.md, "Caster sampling in
+/// the casters' shadows" and "The default over three seeds".
 inline constexpr double kMneeCasterProbability = 0.75;
 
 /// The loop of one camera sample is MneePath's (mnee_path.h); the integrator holds the settings
