@@ -307,25 +307,20 @@ StraightSeed trace_straight_seed(const Scene& scene, const SurfaceInteraction& x
     return s;
 }
 
-double solution_density(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb, const BSDF& bsdf_b,
-                        const SurfaceInteraction* path, int k, const Light& light, double pmf, const Vec3& xc,
-                        const Vec3& nc, double lambda, const StraightSeed* traced) {
+namespace {
+// Alg. 2 lines 1, 3 and 8 for the path as it scatters; `reflects`: whether it reflects anywhere.
+double chain_solution_density(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb,
+                              const BSDF& bsdf_b, const SurfaceInteraction* path, int k, const Light& light,
+                              double pmf, const Vec3& xc, const Vec3& nc, double lambda, bool* reflects) {
+    *reflects = false;
     if (k <= 0 || k > st.max_vertices) return 0;
-    const double p_point = light_point_pdf(scene, light, xb.p, xc, nc);  // Alg. 2 line 1
+    const double p_point = light_point_pdf(scene, light, xb.p, xc, nc);  // line 1
     if (!(p_point > 0) || mnee_seed_culled(xb, bsdf_b, xc, st.cull_margin)) return 0;
     std::vector<ManifoldVertex> input;
     if (!manifold_vertices_of(path, k, lambda, &input)) return 0;
-    for (int i = 0; i < k; ++i)
-        if (path[i].emitter()) return 0;
-    // Each vertex as the path itself scatters there (reflections only with settings.reflections).
-    scatter_as_the_path(xb.p, input, xc);
-    for (const ManifoldVertex& v : input)
-        if (v.reflect && !st.reflections) return 0;
+    scatter_as_the_path(xb.p, input, xc);  // each vertex as the path itself scatters there
+    for (const ManifoldVertex& v : input) *reflects = *reflects || v.reflect;
     if (!chain_admissible(xb.p, input, xc)) return 0;
-    // The domain: refractive interfaces lie on the straight segment x_b -> x_c, blocked by an
-    // opaque surface or not (the integrator runs the surface seeds for both).
-    const SeedStatus status = traced ? traced->status : trace_straight_seed(scene, xb, xc, lambda, st).status;
-    if (status != SeedStatus::Refractive && status != SeedStatus::BlockedRefractive) return 0;
     double p_dH = 1;  // line 3, on the path's own half vectors
     for (int i = 0; i < k; ++i) {
         Vec3 wi, wo;
@@ -335,6 +330,28 @@ double solution_density(const Scene& scene, const MneeSettings& st, const Surfac
     if (!(p_dH > 0)) return 0;
     const ChainJacobians jac = chain_jacobians(xb.p, input, light_point_basis(xc, nc, normalize(xc - xb.p)));
     return jac.valid ? pmf * p_point * p_dH * jac.dH_dX : 0.0;  // line 8
+}
+}  // namespace
+
+double solution_density_bound(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb,
+                              const BSDF& bsdf_b, const SurfaceInteraction* path, int k, const Light& light,
+                              double pmf, const Vec3& xc, const Vec3& nc, double lambda) {
+    bool reflects = false;
+    return chain_solution_density(scene, st, xb, bsdf_b, path, k, light, pmf, xc, nc, lambda, &reflects);
+}
+
+double solution_density(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb, const BSDF& bsdf_b,
+                        const SurfaceInteraction* path, int k, const Light& light, double pmf, const Vec3& xc,
+                        const Vec3& nc, double lambda, const StraightSeed* traced) {
+    for (int i = 0; i < k; ++i)
+        if (path[i].emitter()) return 0;
+    bool reflects = false;
+    const double p = chain_solution_density(scene, st, xb, bsdf_b, path, k, light, pmf, xc, nc, lambda, &reflects);
+    if (!(p > 0) || (reflects && !st.reflections)) return 0;  // reflections only with settings.reflections
+    // The domain: refractive interfaces lie on the straight segment x_b -> x_c, blocked by an
+    // opaque surface or not (the integrator runs the surface seeds for both).
+    const SeedStatus status = traced ? traced->status : trace_straight_seed(scene, xb, xc, lambda, st).status;
+    return status == SeedStatus::Refractive || status == SeedStatus::BlockedRefractive ? p : 0.0;
 }
 
 double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb, const BSDF& bsdf_b,

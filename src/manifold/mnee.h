@@ -112,11 +112,19 @@ struct StraightSeed {
 StraightSeed trace_straight_seed(const Scene& scene, const SurfaceInteraction& xb, const Vec3& xc, double lambda,
                                  const MneeSettings& settings);
 
+/// Alg. 2 lines 1, 3 and 8 (light point, the path's own half vectors, |dH/dX|) for the path x_b,
+/// chain[0..k), x_c, without the seed's trace or its walk: the density any MNEE estimator gives
+/// the path where it produces it at all (surface_weight only lowers it), so an upper bound on
+/// every estimator's density() that costs no ray. The MIS cutoff (mis_cutoff) reads it.
+double solution_density_bound(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb,
+                              const BSDF& bsdf_b, const SurfaceInteraction* chain, int k, const Light& light,
+                              double pmf, const Vec3& xc, const Vec3& nc, double lambda);
+
 /// The density of the all-solutions technique for the path x_b, chain[0..k), x_c: Alg. 2 lines
 /// 1, 3 and 8 (light point, half vectors, |dH/dX|) without its walk, times the indicator of the
 /// technique's domain (a refractive interface lies on the straight segment from x_b to x_c,
-/// whether an opaque surface blocks it or not, and the seed is not culled). Every solution
-/// there is the technique's, found or not.
+/// whether an opaque surface blocks it or not, and the seed is not culled): solution_density_bound
+/// where that domain holds. Every solution there is the technique's, found or not.
 double solution_density(const Scene& scene, const MneeSettings& settings, const SurfaceInteraction& xb,
                         const BSDF& bsdf_b, const SurfaceInteraction* chain, int k, const Light& light, double pmf,
                         const Vec3& xc, const Vec3& nc, double lambda, const StraightSeed* traced = nullptr);

@@ -109,6 +109,13 @@ MneeSettings MneeSettings::from_props(const Props& p) {
         p.get_choice("work_price", s.work_price, {{"image", WorkPrice::Image}, {"region", WorkPrice::Region}});
     if (p.has("work_price") && !s.learned_allocation)
         p.raise_param("work_price", "work_price needs allocation=learned");
+    s.mis_cutoff =
+        p.get_float("mis_cutoff", s.solutions != MneeSolutions::One && !s.biased ? kDefaultMisCutoff : 0.0);
+    if (!(s.mis_cutoff >= 0 && s.mis_cutoff < kInfinity)) p.raise_param("mis_cutoff", "mis_cutoff must be >= 0 (0: off)");
+    if (s.mis_cutoff > 0 && s.biased)
+        p.raise_param("mis_cutoff",
+                      "the biased mode drops the paths MNEE's density gives 0, so it needs that density for every "
+                      "path: mis_cutoff must be 0 there");
     s.pilot_spp = int(p.get_int("pilot_spp", s.pilot_spp));
     if (s.pilot_spp < 1 || s.pilot_spp > 4096) p.raise_param("pilot_spp", "pilot_spp must lie in [1, 4096]");
     s.allocation_block = int(p.get_int("allocation_block", s.allocation_block));

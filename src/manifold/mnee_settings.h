@@ -10,6 +10,8 @@ class Props;
 /// surface_weight's default with solutions=unbiased and both kinds of seeds (the best measured
 /// at equal time on the droplets' caustics; docs/mnee.md, "surface_weight").
 inline constexpr double kDefaultSurfaceWeight = 0.03;
+/// mis_cutoff's default for a scene's unbiased estimators (docs/mnee.md, "The MIS cutoff").
+inline constexpr double kDefaultMisCutoff = 10;
 /// trials' default with solutions=keyed (docs/mnee.md, "Keyed trials").
 inline constexpr int kKeyedTrials = 16;
 /// The most refractive vertices a path records after x_b (max_vertices' upper bound).
@@ -119,6 +121,16 @@ struct MneeSettings {
     /// image (one exchange rate, learned from a lattice of regions); `region`: each region
     /// minimises its own variance x work (issue 26, docs/mnee.md "The image's price of work").
     WorkPrice work_price = WorkPrice::Image;
+    /// (mis_cutoff) K >= 0: MIS gives MNEE no share of a path where the other techniques'
+    /// density exceeds K q times solution_density_bound, the most MNEE's density can be there
+    /// (Veach's cutoff heuristic, with a bound that needs no walk). Under the power heuristic
+    /// MNEE's weight there is below 1 / (1 + K^2), so the image hardly changes, but BSDF
+    /// sampling's paths through the glass skip Alg. 2's walk wherever they are cut, the most
+    /// of them (issue 26, point 5). The bound is a function of the path alone, so both sides
+    /// of every path cut alike and the weights still sum to one. 0: off (the paper's MIS; the
+    /// default with solutions=one and in the biased mode, whose outlier rule needs MNEE's
+    /// density of every path).
+    double mis_cutoff = 0;
     int pilot_spp = 4;          ///< (pilot_spp) samples per pixel the allocation learns from, at q
     int allocation_block = 16;  ///< (allocation_block) pixels on a side of a region
     WalkSettings walk;          ///< (max_iterations, threshold, allow_error_increase, projection, ...)

@@ -28,6 +28,9 @@ StatCounter bernoulli_capped{"mnee.bernoulli_capped", "1/p estimates that reache
 StatCounter geometry_clamped{"mnee.geometry_clamped", "connections scaled down by max_geometry"};
 StatCounter pdf_walks{"mnee.pdf_walks", "Alg. 2 walks (MIS densities of BSDF-sampled paths)"};
 StatCounter pdf_walks_found{"mnee.pdf_walks_found", "Alg. 2 walks that reproduced their input path"};
+StatCounter mis_cut_densities{"mnee.mis_cut_densities",
+                              "MNEE densities of other techniques' paths mis_cutoff made unnecessary"};
+StatCounter mis_cut_solutions{"mnee.mis_cut_solutions", "MNEE solutions mis_cutoff gave no MIS weight"};
 StatHistogram iteration_histogram{"mnee.iteration_histogram", "iterations of converged walks", kIterationBins};
 StatHistogram walk_end_alg1{"mnee.walk_end_alg1", "Alg. 1 walks by how they ended (WalkEnd)", uint32_t(WalkEnd::Count)};
 StatHistogram walk_end_alg2{"mnee.walk_end_alg2", "Alg. 2 walks by how they ended (WalkEnd)", uint32_t(WalkEnd::Count)};

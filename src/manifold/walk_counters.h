@@ -49,6 +49,11 @@ extern StatCounter bernoulli_capped;       ///< ... that reached max_trials
 extern StatCounter geometry_clamped;       ///< connections scaled down by max_geometry
 extern StatCounter pdf_walks;              ///< Alg. 2 walks (MIS densities of BSDF-sampled paths)
 extern StatCounter pdf_walks_found;        ///< ... that reproduced the input path
+/// "mnee.mis_cut_densities": MNEE densities of other techniques' paths not computed because
+/// mis_cutoff leaves MNEE no share of the path (each saves Alg. 2's walk, where one would run).
+extern StatCounter mis_cut_densities;
+/// "mnee.mis_cut_solutions": MNEE's solutions dropped by mis_cutoff (weight 0).
+extern StatCounter mis_cut_solutions;
 extern StatHistogram iteration_histogram;  ///< iterations of converged walks
 extern StatHistogram walk_end_alg1;        ///< "mnee.walk_end_alg1": Alg. 1 walks by WalkEnd
 extern StatHistogram walk_end_alg2;        ///< "mnee.walk_end_alg2": Alg. 2 walks by WalkEnd

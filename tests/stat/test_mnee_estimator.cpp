@@ -161,6 +161,52 @@ TEST(MneeMis, WeightsOfAllTechniquesSumToOne) {
     EXPECT_GE(checked, 20);
 }
 
+// solution_density_bound (mis_cutoff's bound, issue 26 point 5) is a function of the path alone,
+// and for every path Alg. 1 finds it is the density Alg. 1 reports (Eq. 7 with Eq. 8), which
+// Alg. 2 reproduces: so the cutoff's test reads the same on the solution's side and on BSDF
+// sampling's side of the path, and bounds Alg. 2's density. A ball above the floor (k = 2),
+// smooth and rough (there line 3's half-vector density enters).
+TEST(MneeMis, SolutionDensityBoundIsTheDensityOfTheSolutionsFound) {
+    for (const char* bsdf :
+         {R"(<bsdf type="dielectric"><float name="int_ior" value="1.5"/></bsdf>)",
+          R"(<bsdf type="roughdielectric"><float name="alpha" value="0.1"/><float name="int_ior" value="1.5"/></bsdf>)"}) {
+        std::string xml = kScene;
+        xml.replace(xml.find("$light"), 6, kAreaLight);
+        xml.replace(xml.find(R"(<float name="radius" value="0.8"/>)"), 34, R"(<float name="radius" value="0.3"/>)");
+        xml.replace(xml.find(R"(y="0.35")"), 8, R"(y="1.2")");
+        const size_t a = xml.find(R"(<bsdf type="dielectric">)");
+        xml.replace(a, xml.find("</bsdf>", a) + 7 - a, bsdf);
+        LoadedScene ls = load_xml(xml);
+        const Scene& scene = *ls.scene;
+        const Light& light = *scene.lights()[0];
+        const MneeSettings st;
+        IndependentSampler smp(5);
+        smp.start_pixel_sample(0, 0, 0);
+        int checked = 0;
+        for (double x : {-0.25, -0.1, 0.05}) {
+            const SurfaceInteraction xb = droplet_receiver(scene, x, 0.1, 0.5);
+            for (int n = 0; n < 400; ++n) {
+                auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), SampledWavelengths::single(550));
+                if (!s) continue;
+                std::vector<ManifoldVertex> chain;
+                if (trace_seed_path(scene, xb, s->p, 550, st, &chain) != SeedStatus::Refractive) continue;
+                const double pmf = 0.6;
+                const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, pmf,
+                                                      light_point(scene, light, *s, xb.p), chain, smp);
+                if (c.outcome != MneeOutcome::Success) continue;
+                ASSERT_EQ(chain.size(), 2u);
+                const SurfaceInteraction path[2] = {chain[0].si, chain[1].si};
+                const double bound = solution_density_bound(scene, st, xb, *xb.bsdf(), path, 2, light, pmf, s->p, s->n, 550);
+                EXPECT_NEAR(bound, c.pdf_mnee, 1e-5 * c.pdf_mnee) << bsdf;
+                const double alg2 = mnee_pdf(scene, st, xb, *xb.bsdf(), path, 2, light, pmf, s->p, s->n, 550);
+                EXPECT_LE(alg2, bound * (1 + 1e-6)) << bsdf;
+                ++checked;
+            }
+        }
+        EXPECT_GE(checked, 100) << bsdf;
+    }
+}
+
 // A point light of intensity I is the limit of small spherical lights of radiance
 // I / (pi r^2): MNEE must give the same caustic for both (no area: a virtual tangent plane).
 TEST(MneeEstimator, PointLightIsTheLimitOfSmallSphereLights) {

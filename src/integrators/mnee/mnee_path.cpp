@@ -124,8 +124,9 @@ void MneePath::connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSD
         // The surface trials' solutions are the paths only they reach (the straight seed's own
         // is never added twice).
         for (const ManifoldSolution& sol : c.set.solutions)
-            m_pilot->add_connection((beta * sol.value * sol.count).average(), sol.count, sol.density, sol.weight,
-                                    sol.pdf_bsdf + sol.pdf_nee_last, c.q, sol.from_surface);
+            if (!cut_off(sol, c.q))
+                m_pilot->add_connection((beta * sol.value * sol.count).average(), sol.count, sol.density,
+                                        sol.weight, sol.pdf_bsdf + sol.pdf_nee_last, c.q, sol.from_surface);
         m_pilot->work_probe += c.set.probe_work;
         for (const ManifoldSolution& sol : c.set.probes)
             m_pilot->add_probe((beta * sol.value * sol.count).average(), sol.count, sol.density,
@@ -135,6 +136,10 @@ void MneePath::connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSD
     // made with probability q, so it counts 1 / q and its density is q p_mnee (BSDF sampling's
     // paths are weighed the same way in emitter_weight and connect_at_interface).
     for (const ManifoldSolution& sol : c.set.solutions) {
+        if (cut_off(sol, c.q)) {
+            ++walk_counters::mis_cut_solutions;
+            continue;
+        }
         const SampledSpectrum v =
             beta * sol.value * (sol.count * power_heuristic(c.q * sol.density, {sol.pdf_bsdf, sol.pdf_nee_last}) / c.q);
         by_vertex[std::min<size_t>(size_t(m_walk.depth), std::size(by_vertex) - 1)].add(m_ctx.wl.to_xyz(v).y);
@@ -165,7 +170,7 @@ SampledSpectrum MneePath::connect_at_interface(const SurfaceInteraction& si, con
     const bool refracts = dot(si.wo, si.ng) * dot(ls->wi, si.ng) < 0;
     const double q = connect_probability(*light);
     DensityDetail detail;
-    const double p_m = mnee_density(refracts, *light, pmf, lp.p, lp.n, q, &detail);
+    const double p_m = mnee_density(refracts, *light, pmf, lp.p, lp.n, q, p_nee + p_bsdf, &detail);
     const double p_mnee = q * p_m;
     if (m_mnee->biased && covers(refracts) && !(p_mnee > 0)) return {};
     const SampledSpectrum unweighted = nee_estimate(si, bsdf, sctx, m_walk.media, *ls, f, pmf, 1.0);
@@ -185,11 +190,11 @@ double MneePath::emitter_weight(const Light& light, const Vec3& p, const Vec3& n
     const size_t last = size_t(s.k - 1);
     const double p_bsdf = s.p_prefix * s.q_last * std::abs(dot(lp.n, d)) / length_squared(lp.p - s.chain[last].p);
     const double q = connect_probability(light);
-    DensityDetail detail;
-    const double p_m = mnee_density(true, light, pmf, lp.p, lp.n, q, &detail);
-    const double p_mnee = q * p_m;
     const double p_nee =
         s.specular[last] ? 0.0 : s.p_prefix * pmf * light_point_pdf(scene, light, s.chain[last].p, lp.p, lp.n);
+    DensityDetail detail;
+    const double p_m = mnee_density(true, light, pmf, lp.p, lp.n, q, p_bsdf + p_nee, &detail);
+    const double p_mnee = q * p_m;
     if (m_pilot) record_other(value.average(), p_bsdf, p_m, detail, p_bsdf + p_nee, q);
     // Sec. 3.5: outlier removal drops the light that BSDF sampling finds through interfaces after
     // x_b but MNEE cannot: transmissive suffixes its walks do not reach, and suffixes with an
@@ -243,12 +248,22 @@ void MneePath::scattered(const SurfaceInteraction& si, const BSDF& bsdf, const B
 }
 
 double MneePath::mnee_density(bool last_refracts, const Light& light, double pmf, const Vec3& p, const Vec3& n,
-                              double q, DensityDetail* detail) const {
+                              double q, double p_others, DensityDetail* detail) const {
     *detail = DensityDetail();
     detail->want_probe = m_pilot != nullptr;
     const RefractiveSuffix& s = m_suffix;
     // q = 0: the region leaves these paths to BSDF sampling, and MIS needs no density (nor its walk).
     if (!covers(last_refracts) || !(q > 0)) return 0.0;
+    // Where the others' density dwarfs the most MNEE's can be, MNEE has no share (mis_cutoff),
+    // and Alg. 2's walk is not needed.
+    if (m_mnee->mis_cutoff > 0 &&
+        mis_cut_off(p_others,
+                    q * solution_density_bound(*m_scene, *m_mnee, s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light, pmf,
+                                               p, n, m_ctx.hero()),
+                    m_mnee->mis_cutoff)) {
+        ++walk_counters::mis_cut_densities;
+        return 0.0;
+    }
     const double w0 = m_pilot ? work_so_far() : 0.0;
     const double d = m_technique.density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light, pmf, p, n, m_ctx.hero(),
                                          m_surface_trials, detail);
@@ -262,6 +277,11 @@ void MneePath::record_other(double value, double p_t, double p_m, const DensityD
         m_pilot->add_other(value, p_t, p_m, detail.weight, p_other, q, detail.surface_path);
     else if (detail.probe > 0)
         m_pilot->add_probe_other(value, p_t, detail.probe, p_other, q);
+}
+
+bool MneePath::cut_off(const ManifoldSolution& sol, double q) const {
+    // The solution's density before surface_weight: solution_density_bound of its path.
+    return mis_cut_off(sol.pdf_bsdf + sol.pdf_nee_last, q * sol.density / sol.weight, m_mnee->mis_cutoff);
 }
 
 double MneePath::connect_probability(const Light& light) const {

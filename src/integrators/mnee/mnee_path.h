@@ -51,11 +51,15 @@ private:
     /// its surface seeds also reflect (solutions other than one, with reflections).
     bool covers(bool last_refracts) const;
     /// MNEE's density of the BSDF-sampled suffix ending at the light point (p, n), or 0 when the
-    /// technique cannot produce it or q is 0; its work goes to the pilot's record, and `detail`
+    /// technique cannot produce it, q is 0, or mis_cutoff gives MNEE no share of it against the
+    /// other techniques' density p_others; its work goes to the pilot's record, and `detail`
     /// tells whether only the surface trials reach it, and the rest of DensityDetail (the probe's
     /// density in the pilot).
     double mnee_density(bool last_refracts, const Light& light, double pmf, const Vec3& p, const Vec3& n, double q,
-                        DensityDetail* detail) const;
+                        double p_others, DensityDetail* detail) const;
+    /// Whether mis_cutoff gives this solution of a connection made with probability q no MIS
+    /// weight: the same test as mnee_density's on the path's other side.
+    bool cut_off(const ManifoldSolution& sol, double q) const;
     /// The pilot's record of a path another technique sampled with density p_t (ConnectionAllocation).
     void record_other(double value, double p_t, double p_m, const DensityDetail& detail, double p_other,
                       double q) const;
