@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "geometry/shape.h"
+#include "manifold/mis_cutoff.h"
 #include "manifold/seed_path.h"
 #include "manifold/surface_seed.h"
 #include "manifold/walk_counters.h"
@@ -59,6 +60,7 @@ int EstimatorBase::add_solution(const ManifoldQuery& q, const BSDFContext& ctx, 
         s.value = c.hero_only && !q.hero_only ? q.ctx.wl.hero_only(c.value) : c.value;
     }
     s.density = c.pdf_mnee;
+    s.bound = c.pdf_mnee;
     s.pdf_bsdf = c.pdf_bsdf;
     s.pdf_nee_last = c.pdf_nee_last;
     // The path samples x_b's direction with its own density (caster sampling): it replaces
@@ -162,6 +164,12 @@ void EstimatorBase::count_trials_to_refind(const ManifoldQuery& q, const BSDFCon
         if (index >= 0) found.push_back(index);
     }
     for (const int index : found) {
+        // A solution mis_cutoff gives no MIS weight: its count is never read.
+        const ManifoldSolution& sol = out.solutions[size_t(index)];
+        if (q.cutoff_q > 0 && mis_cut_off(sol.pdf_bsdf + sol.pdf_nee_last, q.cutoff_q * sol.bound, st.mis_cutoff)) {
+            ++walk_counters::mis_cut_counts;
+            continue;
+        }
         int n = 1;
         for (; n <= st.max_trials; ++n) {
             std::vector<ManifoldVertex> again;

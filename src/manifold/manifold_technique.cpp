@@ -90,6 +90,7 @@ ManifoldConnection ManifoldTechnique::connect(const ManifoldQuery& query, Sample
     // Lines 3-5 (half vectors, walk, measurement) for every solution the estimator finds.
     ManifoldQuery q = query;
     q.straight_seed = status == SeedStatus::Refractive;
+    q.cutoff_q = query.meter_work ? 0.0 : c.q;
     const double w0 = query.meter_work ? work_so_far() : 0.0;
     c.set = solve(q, *c.light, c.pmf, lp, seed, sampler, query.max_k);
     if (query.meter_work) c.work = work_so_far() - w0 - c.set.probe_work;

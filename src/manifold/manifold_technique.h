@@ -38,6 +38,10 @@ struct ManifoldQuery {
     /// hit is made (ConnectionAllocation; 0: not at all, its light is left to BSDF sampling).
     /// Delta lights are always connected.
     double connect_probability = 1;
+    /// Set by connect() outside the pilot (`meter_work` false): the q the caller weighs the
+    /// solutions with. The 1 / p estimate then skips a solution mis_cutoff gives no MIS weight.
+    /// 0: every solution counted (the pilot's record reads the counts).
+    double cutoff_q = 0;
     /// The longest chain max_depth allows here (-1: any).
     int max_k = -1;
     /// connect() measures the work of its walks (ManifoldConnection::work; the allocation's pilot).

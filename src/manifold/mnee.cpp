@@ -310,8 +310,8 @@ StraightSeed trace_straight_seed(const Scene& scene, const SurfaceInteraction& x
 namespace {
 // Alg. 2 lines 1, 3 and 8 for the path as it scatters; `reflects`: whether it reflects anywhere.
 double chain_solution_density(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb,
-                              const BSDF& bsdf_b, const SurfaceInteraction* path, int k, const Light& light,
-                              double pmf, const Vec3& xc, const Vec3& nc, double lambda, bool* reflects) {
+                              const BSDF& bsdf_b, const SurfaceInteraction* path, int k, const Light& light, double pmf,
+                              const Vec3& xc, const Vec3& nc, double lambda, bool* reflects) {
     *reflects = false;
     if (k <= 0 || k > st.max_vertices) return 0;
     const double p_point = light_point_pdf(scene, light, xb.p, xc, nc);  // line 1
@@ -334,8 +334,8 @@ double chain_solution_density(const Scene& scene, const MneeSettings& st, const 
 }  // namespace
 
 double solution_density_bound(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb,
-                              const BSDF& bsdf_b, const SurfaceInteraction* path, int k, const Light& light,
-                              double pmf, const Vec3& xc, const Vec3& nc, double lambda) {
+                              const BSDF& bsdf_b, const SurfaceInteraction* path, int k, const Light& light, double pmf,
+                              const Vec3& xc, const Vec3& nc, double lambda) {
     bool reflects = false;
     return chain_solution_density(scene, st, xb, bsdf_b, path, k, light, pmf, xc, nc, lambda, &reflects);
 }

@@ -109,9 +109,9 @@ MneeSettings MneeSettings::from_props(const Props& p) {
         p.get_choice("work_price", s.work_price, {{"image", WorkPrice::Image}, {"region", WorkPrice::Region}});
     if (p.has("work_price") && !s.learned_allocation)
         p.raise_param("work_price", "work_price needs allocation=learned");
-    s.mis_cutoff =
-        p.get_float("mis_cutoff", s.solutions != MneeSolutions::One && !s.biased ? kDefaultMisCutoff : 0.0);
-    if (!(s.mis_cutoff >= 0 && s.mis_cutoff < kInfinity)) p.raise_param("mis_cutoff", "mis_cutoff must be >= 0 (0: off)");
+    s.mis_cutoff = p.get_float("mis_cutoff", s.solutions != MneeSolutions::One && !s.biased ? kDefaultMisCutoff : 0.0);
+    if (!(s.mis_cutoff >= 0 && s.mis_cutoff < kInfinity))
+        p.raise_param("mis_cutoff", "mis_cutoff must be >= 0 (0: off)");
     if (s.mis_cutoff > 0 && s.biased)
         p.raise_param("mis_cutoff",
                       "the biased mode drops the paths MNEE's density gives 0, so it needs that density for every "

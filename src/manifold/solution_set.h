@@ -18,9 +18,11 @@ struct ManifoldSolution {
     /// f(X) / p(X) of Alg. 1 (light pmf included), before MIS: every wavelength slot, or only
     /// `slot`'s when the chain disperses and was solved for that wavelength alone.
     SampledSpectrum value;
-    int slot = -1;              ///< wavelength slot the chain was solved for; -1: all of them
-    double count = 1;           ///< estimator weight of the solution (1 for the paper's estimator)
-    double density = 0;         ///< this technique's area density (Eq. 7 with Eq. 8)
+    int slot = -1;       ///< wavelength slot the chain was solved for; -1: all of them
+    double count = 1;    ///< estimator weight of the solution (1 for the paper's estimator)
+    double density = 0;  ///< this technique's area density (Eq. 7 with Eq. 8)
+    /// `density` before surface_weight: solution_density_bound of the path, which mis_cutoff reads.
+    double bound = 0;
     double pdf_bsdf = 0;        ///< BSDF sampling of the same path from x_b
     double pdf_nee_last = 0;    ///< NEE from x_k (0 unless x_k is rough)
     bool from_surface = false;  ///< walked from a seed sampled on a caster (else the straight seed)

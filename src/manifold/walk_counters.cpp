@@ -30,6 +30,7 @@ StatCounter pdf_walks{"mnee.pdf_walks", "Alg. 2 walks (MIS densities of BSDF-sam
 StatCounter pdf_walks_found{"mnee.pdf_walks_found", "Alg. 2 walks that reproduced their input path"};
 StatCounter mis_cut_densities{"mnee.mis_cut_densities",
                               "MNEE densities of other techniques' paths mis_cutoff made unnecessary"};
+StatCounter mis_cut_counts{"mnee.mis_cut_counts", "surface solutions whose 1 / p estimate mis_cutoff made unnecessary"};
 StatCounter mis_cut_solutions{"mnee.mis_cut_solutions", "MNEE solutions mis_cutoff gave no MIS weight"};
 StatHistogram iteration_histogram{"mnee.iteration_histogram", "iterations of converged walks", kIterationBins};
 StatHistogram walk_end_alg1{"mnee.walk_end_alg1", "Alg. 1 walks by how they ended (WalkEnd)", uint32_t(WalkEnd::Count)};

@@ -43,15 +43,17 @@ extern StatHistogram surface_seed_end;    ///< "mnee.surface_seed_end": surface 
 /// "mnee.solutions_per_connection": distinct solutions per light connection and wavelength
 /// solve (bins 0..7, the last collects more), with solutions=all or unbiased.
 extern StatHistogram solutions_per_connection;
-extern StatCounter bernoulli_loops;        ///< solutions=unbiased: geometric 1/p estimates made
-extern StatCounter bernoulli_trials;       ///< ... their counts N summed (mean: E[1/p] over found solutions)
-extern StatCounter bernoulli_capped;       ///< ... that reached max_trials
-extern StatCounter geometry_clamped;       ///< connections scaled down by max_geometry
-extern StatCounter pdf_walks;              ///< Alg. 2 walks (MIS densities of BSDF-sampled paths)
-extern StatCounter pdf_walks_found;        ///< ... that reproduced the input path
+extern StatCounter bernoulli_loops;   ///< solutions=unbiased: geometric 1/p estimates made
+extern StatCounter bernoulli_trials;  ///< ... their counts N summed (mean: E[1/p] over found solutions)
+extern StatCounter bernoulli_capped;  ///< ... that reached max_trials
+extern StatCounter geometry_clamped;  ///< connections scaled down by max_geometry
+extern StatCounter pdf_walks;         ///< Alg. 2 walks (MIS densities of BSDF-sampled paths)
+extern StatCounter pdf_walks_found;   ///< ... that reproduced the input path
 /// "mnee.mis_cut_densities": MNEE densities of other techniques' paths not computed because
 /// mis_cutoff leaves MNEE no share of the path (each saves Alg. 2's walk, where one would run).
 extern StatCounter mis_cut_densities;
+/// "mnee.mis_cut_counts": surface solutions whose 1 / p estimate mis_cutoff made unnecessary.
+extern StatCounter mis_cut_counts;
 /// "mnee.mis_cut_solutions": MNEE's solutions dropped by mis_cutoff (weight 0).
 extern StatCounter mis_cut_solutions;
 extern StatHistogram iteration_histogram;  ///< iterations of converged walks

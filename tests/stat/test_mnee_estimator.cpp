@@ -167,9 +167,10 @@ TEST(MneeMis, WeightsOfAllTechniquesSumToOne) {
 // sampling's side of the path, and bounds Alg. 2's density. A ball above the floor (k = 2),
 // smooth and rough (there line 3's half-vector density enters).
 TEST(MneeMis, SolutionDensityBoundIsTheDensityOfTheSolutionsFound) {
-    for (const char* bsdf :
-         {R"(<bsdf type="dielectric"><float name="int_ior" value="1.5"/></bsdf>)",
-          R"(<bsdf type="roughdielectric"><float name="alpha" value="0.1"/><float name="int_ior" value="1.5"/></bsdf>)"}) {
+    for (
+        const char* bsdf :
+        {R"(<bsdf type="dielectric"><float name="int_ior" value="1.5"/></bsdf>)",
+         R"(<bsdf type="roughdielectric"><float name="alpha" value="0.1"/><float name="int_ior" value="1.5"/></bsdf>)"}) {
         std::string xml = kScene;
         xml.replace(xml.find("$light"), 6, kAreaLight);
         xml.replace(xml.find(R"(<float name="radius" value="0.8"/>)"), 34, R"(<float name="radius" value="0.3"/>)");
@@ -196,7 +197,8 @@ TEST(MneeMis, SolutionDensityBoundIsTheDensityOfTheSolutionsFound) {
                 if (c.outcome != MneeOutcome::Success) continue;
                 ASSERT_EQ(chain.size(), 2u);
                 const SurfaceInteraction path[2] = {chain[0].si, chain[1].si};
-                const double bound = solution_density_bound(scene, st, xb, *xb.bsdf(), path, 2, light, pmf, s->p, s->n, 550);
+                const double bound =
+                    solution_density_bound(scene, st, xb, *xb.bsdf(), path, 2, light, pmf, s->p, s->n, 550);
                 EXPECT_NEAR(bound, c.pdf_mnee, 1e-5 * c.pdf_mnee) << bsdf;
                 const double alg2 = mnee_pdf(scene, st, xb, *xb.bsdf(), path, 2, light, pmf, s->p, s->n, 550);
                 EXPECT_LE(alg2, bound * (1 + 1e-6)) << bsdf;

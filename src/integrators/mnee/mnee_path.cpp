@@ -9,6 +9,7 @@
 #include "integrators/light_connection.h"
 #include "integrators/mis.h"
 #include "manifold/light_point.h"
+#include "manifold/mis_cutoff.h"
 #include "manifold/mnee.h"
 #include "manifold/seed_path.h"
 #include "manifold/work_meter.h"
@@ -123,10 +124,10 @@ void MneePath::connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSD
         m_pilot->work_trials += c.set.trial_work;
         // The surface trials' solutions are the paths only they reach (the straight seed's own
         // is never added twice).
+        // Those mis_cutoff leaves no weight too: the model weighs every candidate q without it.
         for (const ManifoldSolution& sol : c.set.solutions)
-            if (!cut_off(sol, c.q))
-                m_pilot->add_connection((beta * sol.value * sol.count).average(), sol.count, sol.density,
-                                        sol.weight, sol.pdf_bsdf + sol.pdf_nee_last, c.q, sol.from_surface);
+            m_pilot->add_connection((beta * sol.value * sol.count).average(), sol.count, sol.density, sol.weight,
+                                    sol.pdf_bsdf + sol.pdf_nee_last, c.q, sol.from_surface);
         m_pilot->work_probe += c.set.probe_work;
         for (const ManifoldSolution& sol : c.set.probes)
             m_pilot->add_probe((beta * sol.value * sol.count).average(), sol.count, sol.density,
@@ -170,8 +171,9 @@ SampledSpectrum MneePath::connect_at_interface(const SurfaceInteraction& si, con
     const bool refracts = dot(si.wo, si.ng) * dot(ls->wi, si.ng) < 0;
     const double q = connect_probability(*light);
     DensityDetail detail;
-    const double p_m = mnee_density(refracts, *light, pmf, lp.p, lp.n, q, p_nee + p_bsdf, &detail);
-    const double p_mnee = q * p_m;
+    bool cut = false;
+    const double p_m = mnee_density(refracts, *light, pmf, lp.p, lp.n, q, p_nee + p_bsdf, &detail, &cut);
+    const double p_mnee = cut ? 0.0 : q * p_m;
     if (m_mnee->biased && covers(refracts) && !(p_mnee > 0)) return {};
     const SampledSpectrum unweighted = nee_estimate(si, bsdf, sctx, m_walk.media, *ls, f, pmf, 1.0);
     if (m_pilot && !light->is_delta())
@@ -193,8 +195,9 @@ double MneePath::emitter_weight(const Light& light, const Vec3& p, const Vec3& n
     const double p_nee =
         s.specular[last] ? 0.0 : s.p_prefix * pmf * light_point_pdf(scene, light, s.chain[last].p, lp.p, lp.n);
     DensityDetail detail;
-    const double p_m = mnee_density(true, light, pmf, lp.p, lp.n, q, p_bsdf + p_nee, &detail);
-    const double p_mnee = q * p_m;
+    bool cut = false;
+    const double p_m = mnee_density(true, light, pmf, lp.p, lp.n, q, p_bsdf + p_nee, &detail, &cut);
+    const double p_mnee = cut ? 0.0 : q * p_m;
     if (m_pilot) record_other(value.average(), p_bsdf, p_m, detail, p_bsdf + p_nee, q);
     // Sec. 3.5: outlier removal drops the light that BSDF sampling finds through interfaces after
     // x_b but MNEE cannot: transmissive suffixes its walks do not reach, and suffixes with an
@@ -248,25 +251,32 @@ void MneePath::scattered(const SurfaceInteraction& si, const BSDF& bsdf, const B
 }
 
 double MneePath::mnee_density(bool last_refracts, const Light& light, double pmf, const Vec3& p, const Vec3& n,
-                              double q, double p_others, DensityDetail* detail) const {
+                              double q, double p_others, DensityDetail* detail, bool* cut) const {
     *detail = DensityDetail();
     detail->want_probe = m_pilot != nullptr;
+    *cut = false;
     const RefractiveSuffix& s = m_suffix;
     // q = 0: the region leaves these paths to BSDF sampling, and MIS needs no density (nor its walk).
     if (!covers(last_refracts) || !(q > 0)) return 0.0;
     // Where the others' density dwarfs the most MNEE's can be, MNEE has no share (mis_cutoff),
-    // and Alg. 2's walk is not needed.
-    if (m_mnee->mis_cutoff > 0 &&
-        mis_cut_off(p_others,
-                    q * solution_density_bound(*m_scene, *m_mnee, s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light, pmf,
-                                               p, n, m_ctx.hero()),
-                    m_mnee->mis_cutoff)) {
+    // and Alg. 2's walk is not needed, but by the pilot's record: its model weighs every
+    // candidate q as without the cutoff, which moves those weights by under 1 / (1 + K^2).
+    *cut = m_mnee->mis_cutoff > 0 &&
+           mis_cut_off(p_others,
+                       q * solution_density_bound(*m_scene, *m_mnee, s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light,
+                                                  pmf, p, n, m_ctx.hero()),
+                       m_mnee->mis_cutoff);
+    if (*cut) {
         ++walk_counters::mis_cut_densities;
-        return 0.0;
+        if (!m_pilot) return 0.0;
     }
     const double w0 = m_pilot ? work_so_far() : 0.0;
     const double d = m_technique.density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light, pmf, p, n, m_ctx.hero(),
                                          m_surface_trials, detail);
+    // A cut density's work is charged as if it ran, so that the allocation chooses as without
+    // the cutoff: charged only at its pilot's q, the walks looked cheap at small q, and 20 more
+    // regions of the balls on a plane walked, where walks do not pay (docs/mnee.md, "The MIS
+    // cutoff").
     if (m_pilot) m_pilot->work_density += work_so_far() - w0;
     return d;
 }
@@ -280,8 +290,8 @@ void MneePath::record_other(double value, double p_t, double p_m, const DensityD
 }
 
 bool MneePath::cut_off(const ManifoldSolution& sol, double q) const {
-    // The solution's density before surface_weight: solution_density_bound of its path.
-    return mis_cut_off(sol.pdf_bsdf + sol.pdf_nee_last, q * sol.density / sol.weight, m_mnee->mis_cutoff);
+    // The same test, on the same numbers, as the 1 / p estimate's (count_trials_to_refind).
+    return mis_cut_off(sol.pdf_bsdf + sol.pdf_nee_last, q * sol.bound, m_mnee->mis_cutoff);
 }
 
 double MneePath::connect_probability(const Light& light) const {

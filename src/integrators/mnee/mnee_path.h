@@ -51,12 +51,13 @@ private:
     /// its surface seeds also reflect (solutions other than one, with reflections).
     bool covers(bool last_refracts) const;
     /// MNEE's density of the BSDF-sampled suffix ending at the light point (p, n), or 0 when the
-    /// technique cannot produce it, q is 0, or mis_cutoff gives MNEE no share of it against the
-    /// other techniques' density p_others; its work goes to the pilot's record, and `detail`
+    /// technique cannot produce it or q is 0; its work goes to the pilot's record, and `detail`
     /// tells whether only the surface trials reach it, and the rest of DensityDetail (the probe's
-    /// density in the pilot).
+    /// density in the pilot). `*cut`: mis_cutoff gives MNEE no share of the path against the
+    /// other techniques' density p_others, so MIS weighs it as if MNEE's density were 0; outside
+    /// the pilot it is then not computed (0); in the pilot it is, for the record and its work.
     double mnee_density(bool last_refracts, const Light& light, double pmf, const Vec3& p, const Vec3& n, double q,
-                        double p_others, DensityDetail* detail) const;
+                        double p_others, DensityDetail* detail, bool* cut) const;
     /// Whether mis_cutoff gives this solution of a connection made with probability q no MIS
     /// weight: the same test as mnee_density's on the path's other side.
     bool cut_off(const ManifoldSolution& sol, double q) const;
