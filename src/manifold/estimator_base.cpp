@@ -164,10 +164,12 @@ void EstimatorBase::count_trials_to_refind(const ManifoldQuery& q, const BSDFCon
         if (index >= 0) found.push_back(index);
     }
     for (const int index : found) {
-        // A solution mis_cutoff gives no MIS weight: its count is never read.
-        const ManifoldSolution& sol = out.solutions[size_t(index)];
+        // A solution mis_cutoff gives no MIS weight needs no 1 / p estimate: it counts 0 (it stays
+        // in the set, so that another caster's trials do not add it again).
+        ManifoldSolution& sol = out.solutions[size_t(index)];
         if (q.cutoff_q > 0 && mis_cut_off(sol.pdf_bsdf + sol.pdf_nee_last, q.cutoff_q * sol.bound, st.mis_cutoff)) {
             ++walk_counters::mis_cut_counts;
+            sol.count = 0;
             continue;
         }
         int n = 1;

@@ -39,8 +39,8 @@ struct ManifoldQuery {
     /// Delta lights are always connected.
     double connect_probability = 1;
     /// Set by connect() outside the pilot (`meter_work` false): the q the caller weighs the
-    /// solutions with. The 1 / p estimate then skips a solution mis_cutoff gives no MIS weight.
-    /// 0: every solution counted (the pilot's record reads the counts).
+    /// solutions with. The 1 / p estimate then skips a solution mis_cutoff gives no MIS weight,
+    /// and the solution counts 0. 0: every solution counted (the pilot's record reads the counts).
     double cutoff_q = 0;
     /// The longest chain max_depth allows here (-1: any).
     int max_k = -1;

@@ -274,9 +274,8 @@ double MneePath::mnee_density(bool last_refracts, const Light& light, double pmf
     const double d = m_technique.density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light, pmf, p, n, m_ctx.hero(),
                                          m_surface_trials, detail);
     // A cut density's work is charged as if it ran, so that the allocation chooses as without
-    // the cutoff: charged only at its pilot's q, the walks looked cheap at small q, and 20 more
-    // regions of the balls on a plane walked, where walks do not pay (docs/mnee.md, "The MIS
-    // cutoff").
+    // the cutoff: charged only at the pilot's q, the walks looked cheap at small q, and the balls
+    // on a plane walked in more regions, where walks do not pay (docs/mnee.md, "The MIS cutoff").
     if (m_pilot) m_pilot->work_density += work_so_far() - w0;
     return d;
 }
