@@ -2,6 +2,7 @@
 // under a water droplet: unbiased against BSDF sampling, MIS weights that sum to one, lights
 // without area.
 #include <cmath>
+#include <optional>
 
 #include "bsdf/fresnel.h"
 #include "integrators/mis.h"
@@ -38,6 +39,27 @@ LoadedScene droplet(const std::string& light) {
 }
 
 const BSDFContext kCtx{SampledWavelengths::single(550), TransportMode::Radiance};
+
+// One connection of Alg. 1 from x_b through the straight seed to a light sample (chosen with
+// probability pmf), where the seed refracts and the walk succeeds.
+struct StraightConnection {
+    LightSample ls;
+    std::vector<ManifoldVertex> chain;
+    MneeConnection c;
+};
+std::optional<StraightConnection> connect_straight(const Scene& scene, const MneeSettings& st,
+                                                   const SurfaceInteraction& xb, const Light& light, double pmf,
+                                                   Sampler& smp) {
+    auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), SampledWavelengths::single(550));
+    if (!s) return std::nullopt;
+    StraightConnection out;
+    out.ls = *s;
+    if (trace_seed_path(scene, xb, s->p, 550, st, &out.chain) != SeedStatus::Refractive) return std::nullopt;
+    out.c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, pmf,
+                         light_point(scene, light, *s, xb.p), out.chain, smp);
+    if (out.c.outcome != MneeOutcome::Success) return std::nullopt;
+    return out;
+}
 
 // MNEE's value at receivers under the droplet for light `a` (a single sample: the light has no
 // area, so MNEE is deterministic there) against the mean of MNEE samples for the area light
@@ -130,14 +152,12 @@ TEST(MneeMis, WeightsOfAllTechniquesSumToOne) {
     smp.start_pixel_sample(0, 0, 0);
     int checked = 0;
     for (int n = 0; n < 400 && checked < 50; ++n) {
-        auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), SampledWavelengths::single(550));
-        if (!s) continue;
-        std::vector<ManifoldVertex> chain;
-        if (trace_seed_path(scene, xb, s->p, 550, st, &chain) != SeedStatus::Refractive) continue;
         const double pmf = 0.7;
-        const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, pmf,
-                                              light_point(scene, light, *s, xb.p), chain, smp);
-        if (c.outcome != MneeOutcome::Success) continue;
+        const auto found = connect_straight(scene, st, xb, light, pmf, smp);
+        if (!found) continue;
+        const LightSample* s = &found->ls;
+        const std::vector<ManifoldVertex>& chain = found->chain;
+        const MneeConnection& c = found->c;
         ASSERT_EQ(chain.size(), 1u);
         const SurfaceInteraction& v = chain[0].si;
         // Alg. 2 on the produced path.
@@ -187,16 +207,13 @@ TEST(MneeMis, SolutionDensityBoundIsTheDensityOfTheSolutionsFound) {
         for (double x : {-0.25, -0.1, 0.05}) {
             const SurfaceInteraction xb = droplet_receiver(scene, x, 0.1, 0.5);
             for (int n = 0; n < 400; ++n) {
-                auto s = light.sample_li({xb.p, xb.n}, smp.next_2d(), SampledWavelengths::single(550));
-                if (!s) continue;
-                std::vector<ManifoldVertex> chain;
-                if (trace_seed_path(scene, xb, s->p, 550, st, &chain) != SeedStatus::Refractive) continue;
                 const double pmf = 0.6;
-                const MneeConnection c = mnee_connect(scene, st, xb, *xb.bsdf(), kCtx, MediumStack(), light, pmf,
-                                                      light_point(scene, light, *s, xb.p), chain, smp);
-                if (c.outcome != MneeOutcome::Success) continue;
-                ASSERT_EQ(chain.size(), 2u);
-                const SurfaceInteraction path[2] = {chain[0].si, chain[1].si};
+                const auto found = connect_straight(scene, st, xb, light, pmf, smp);
+                if (!found) continue;
+                const LightSample* s = &found->ls;
+                const MneeConnection& c = found->c;
+                ASSERT_EQ(found->chain.size(), 2u);
+                const SurfaceInteraction path[2] = {found->chain[0].si, found->chain[1].si};
                 const double bound =
                     solution_density_bound(scene, st, xb, *xb.bsdf(), path, 2, light, pmf, s->p, s->n, 550);
                 EXPECT_NEAR(bound, c.pdf_mnee, 1e-5 * c.pdf_mnee) << bsdf;
