@@ -89,6 +89,7 @@ WalkResult manifold_walk(const Scene* scene, const Vec3& x_b, std::vector<Manifo
     // The error before each iteration, for the progress test (a ring of stall_window entries).
     std::array<double, kMaxStallWindow> history{};
     const int window = std::min(st.stall_window, kMaxStallWindow);
+    bool have_dx = false;  // dx holds the current chain's (trust-limited) Newton step
     for (res.iterations = 0; res.iterations < st.max_iterations; ++res.iterations) {
         if (err < st.threshold) {
             res.outcome = WalkOutcome::Converged;
@@ -104,27 +105,32 @@ WalkResult manifold_walk(const Scene* scene, const Vec3& x_b, std::vector<Manifo
             }
             then = err;
         }
-        // Predictor: first-order offsets that would zero the constraints.
-        if (!build_constraints(x_b, chain, x_c, &m, &c) || !solve_matrix_h_to_x(m, c, &dx)) {
-            res.outcome = WalkOutcome::SingularMatrix;
-            res.error = err;
-            return res;
+        // Predictor: first-order offsets that would zero the constraints. A rejected step leaves
+        // the chain as it was, so its offsets stand and only beta shrinks: they are computed
+        // again only after the chain moved.
+        if (!have_dx) {
+            if (!build_constraints(x_b, chain, x_c, &m, &c) || !solve_matrix_h_to_x(m, c, &dx)) {
+                res.outcome = WalkOutcome::SingularMatrix;
+                res.error = err;
+                return res;
+            }
+            // Trust region: no vertex may move further than a fraction of its local length
+            // scale (distance to its neighbours, radius of curvature) in one step; far from the
+            // solution the linearisation is poor and unbounded steps wrap around curved shapes.
+            // All lengths are the scene's own, so this is scale-free.
+            double limit = 1.0;
+            for (size_t i = 0; i < chain.size(); ++i) {
+                const Vec3& prev = i == 0 ? x_b : chain[i - 1].p;
+                const Vec3& next = i + 1 == chain.size() ? x_c.p : chain[i + 1].p;
+                const double curvature = std::max(length(chain[i].dn_ds), length(chain[i].dn_dt));
+                double scale = std::min(length(prev - chain[i].p), length(next - chain[i].p));
+                if (curvature > 0) scale = std::min(scale, 1.0 / curvature);
+                const double step = length(dx[i]);
+                if (step > 0) limit = std::min(limit, kTrustFraction * scale / step);
+            }
+            for (Vec2& d : dx) d = d * limit;
+            have_dx = true;
         }
-        // Trust region: no vertex may move further than a fraction of its local length
-        // scale (distance to its neighbours, radius of curvature) in one step; far from the
-        // solution the linearisation is poor and unbounded steps wrap around curved shapes.
-        // All lengths are the scene's own, so this is scale-free.
-        double limit = 1.0;
-        for (size_t i = 0; i < chain.size(); ++i) {
-            const Vec3& prev = i == 0 ? x_b : chain[i - 1].p;
-            const Vec3& next = i + 1 == chain.size() ? x_c.p : chain[i + 1].p;
-            const double curvature = std::max(length(chain[i].dn_ds), length(chain[i].dn_dt));
-            double scale = std::min(length(prev - chain[i].p), length(next - chain[i].p));
-            if (curvature > 0) scale = std::min(scale, 1.0 / curvature);
-            const double step = length(dx[i]);
-            if (step > 0) limit = std::min(limit, kTrustFraction * scale / step);
-        }
-        for (Vec2& d : dx) d = d * limit;
 
         // Corrector: project every displaced vertex back onto its own shape.
         walk_counters::walk_vertex_steps += chain.size();
@@ -147,6 +153,7 @@ WalkResult manifold_walk(const Scene* scene, const Vec3& x_b, std::vector<Manifo
                 beta = std::min(beta_max, beta * 2.0);
             chain.swap(proposal);
             err = new_err;
+            have_dx = false;
         } else {
             // Variant A: revert to X^i and halve the step.
             beta *= 0.5;
