@@ -76,6 +76,14 @@ MneeSettings MneeSettings::from_props(const Props& p) {
         p.raise_param("surface_weight",
                       "surface_weight weighs the surface seeds' solutions against the straight seed's: it needs "
                       "solutions=all or unbiased with seeding=straight+surface");
+    s.failed_walk_weight = p.get_float("failed_walk_weight", s.failed_walk_weight);
+    if (!(s.failed_walk_weight >= 0 && s.failed_walk_weight <= 1))
+        p.raise_param("failed_walk_weight", "failed_walk_weight must lie in [0, 1]");
+    if (p.has("failed_walk_weight") && !(both_seeds && s.surface_weight < 1))
+        p.raise_param("failed_walk_weight",
+                      "failed_walk_weight weighs the surface solutions where the straight walk fails, apart from "
+                      "surface_weight's: it needs solutions=all or unbiased, seeding=straight+surface and "
+                      "surface_weight < 1");
     if (s.reflections && s.solutions == MneeSolutions::One)
         p.raise_param("reflections", "reflections need the surface seeds of solutions=all or unbiased");
     if (s.max_vertices < 1 || s.max_vertices > kMaxChainVertices)

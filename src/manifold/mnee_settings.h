@@ -97,6 +97,13 @@ struct MneeSettings {
     /// of full walks), and only those crossing the straight seed's shapes in its order: the
     /// paths Alg. 2 can tell apart, so density() gives the others 0 (BSDF sampling's).
     double surface_weight = 1;
+    /// (failed_walk_weight) c_f in [0, 1], with surface_weight < 1: beside a clear straight seed
+    /// whose walk does not converge, the surface solutions count too, with MIS density c_f times
+    /// their solution density (the same paths as above: the straight seed's shapes in its
+    /// order). Past a caustic's fold the straight walk fails where other solutions exist, and
+    /// BSDF sampling finds them rarely there. 0 leaves them to BSDF sampling and runs no trials
+    /// there (the pilot's probes alone look). Unbiased for every c_f: a function of the path.
+    double failed_walk_weight = 0;
     /// (connect_probability) q in (0, 1]: the probability with which the `mnee` integrator
     /// connects a light sample whose seed refracts by the manifold technique; otherwise it makes
     /// no connection and leaves those paths to BSDF sampling (issue 26: where a focusing ball

@@ -44,7 +44,10 @@ void MultiSolutionEstimator::solve(const ManifoldQuery& q, const BSDFContext& ct
         for (const Shape* caster : manifold_casters(*m_scene, ctx.hero()))
             trials_on(q, ctx, slot, light, pmf, lp, *caster, rng, draws, max_k, foreign, first, into);
     };
-    if (weighted && !straight_converged) {
+    // Where the straight walk failed the trials' finds weigh failed_walk_weight; at 0 they are
+    // BSDF sampling's.
+    const double c_f = m_settings->failed_walk_weight;
+    if (weighted && !straight_converged && !(c_f > 0)) {
         // The pilot's probes: the paths found here stay BSDF sampling's (density() gives them 0),
         // but the pilot judges BSDF sampling's variance for them from these finds
         // (ConnectionAllocation); their work is no part of a connection's.
@@ -66,22 +69,28 @@ void MultiSolutionEstimator::solve(const ManifoldQuery& q, const BSDFContext& ct
     // The solutions the straight seed does not walk to (all found by surface seeds; the straight
     // seed's own is never added twice) weigh c times their density in MIS, as density() answers
     // for their BSDF-sampled copies.
-    if (weighted)
+    if (weighted) {
+        const double c = straight_converged ? m_settings->surface_weight : c_f;
         for (size_t i = before; i < out.solutions.size(); ++i)
             if (out.solutions[i].from_surface) {
-                out.solutions[i].density *= m_settings->surface_weight;
-                out.solutions[i].weight = m_settings->surface_weight;
+                out.solutions[i].density *= c;
+                out.solutions[i].weight = c;
             }
+    }
     walk_counters::solutions_per_connection.add(uint32_t(out.solutions.size() - before));
 }
 
 namespace {
-// Whether the path x_1..x_k crosses the straight seed's shapes in its order (what a trial beside
-// a clear straight seed may find: solve()'s `foreign`).
-bool crosses_as_the_seed(const SurfaceInteraction* chain, int k, const std::vector<ManifoldVertex>& seed) {
+// Whether the path x_b, x_1..x_k, x_c crosses the straight seed's shapes in its order, refracting
+// at each (what a trial beside a clear straight seed may find: solve()'s `foreign`).
+bool crosses_as_the_seed(const Vec3& xb, const SurfaceInteraction* chain, int k, const Vec3& xc,
+                         const std::vector<ManifoldVertex>& seed) {
     if (size_t(k) != seed.size()) return false;
-    for (size_t i = 0; i < seed.size(); ++i)
-        if (chain[i].shape != seed[i].shape) return false;
+    for (int i = 0; i < k; ++i) {
+        if (chain[i].shape != seed[size_t(i)].shape) return false;
+        const Vec3 prev = i == 0 ? xb : chain[i - 1].p, next = i + 1 == k ? xc : chain[i + 1].p;
+        if (dot(prev - chain[i].p, chain[i].ng) * dot(next - chain[i].p, chain[i].ng) > 0) return false;
+    }
     return true;
 }
 }  // namespace
@@ -115,9 +124,19 @@ double MultiSolutionEstimator::density(const SurfaceInteraction& xb, const BSDF&
     const double reached = alg2_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed, &converged);
     if (reached > 0) return reached;
     if (!converged) {
+        const double c_f = m_settings->failed_walk_weight;
+        if (c_f > 0) {
+            // solve() weighs the trials' finds here c_f (the straight seed's shapes in its order).
+            if (!crosses_as_the_seed(xb.p, chain, k, xc, seed.chain)) return 0.0;
+            d.surface_path = true;
+            d.weight = c_f;
+            return surface_trials
+                       ? c_f * every_solution_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed)
+                       : 0.0;
+        }
         // The pilot's probes walk the trials here too (solve()): the density they find it with,
         // for the paths the trials may find (the straight seed's shapes in its order).
-        if (d.want_probe && crosses_as_the_seed(chain, k, seed.chain))
+        if (d.want_probe && crosses_as_the_seed(xb.p, chain, k, xc, seed.chain))
             d.probe = every_solution_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed);
         return 0.0;
     }

@@ -589,6 +589,15 @@ TEST(ConnectionAllocation, EveryEstimatorAgreesWithNeeOnABallOnAPlane) {
                                 {"fallback", std::string(R"(<string name="solutions" value="fallback"/>)") + fixed},
                                 {"keyed", std::string(R"(<string name="solutions" value="keyed"/>)") + fixed},
                                 {"learned allocation", kLearned},
+                                // The trials' finds beside a failed straight walk, at full
+                                // weight: the ball's post-fold light is theirs then.
+                                // Walks cut to four iterations: the straight walk then fails at
+                                // many light samples with a solution, and the trials carry them.
+                                {"unbiased, failed_walk_weight 1, four-iteration walks",
+                                 std::string(R"(<float name="failed_walk_weight" value="1"/>)") +
+                                     R"(<integer name="max_iterations" value="4"/>)" + fixed},
+                                {"learned allocation, failed_walk_weight 1",
+                                 std::string(kLearned) + R"(<float name="failed_walk_weight" value="1"/>)"},
                                 // Surface weight 0.9: the trials' paths weigh nearly their full
                                 // density, so a density that forgot the regions without them
                                 // would lose most of the post-fold light.

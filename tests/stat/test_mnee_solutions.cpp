@@ -415,6 +415,55 @@ TEST(ManifoldSolutions, SurfaceWeightScalesTheOtherSolutionsAlikeInSolveAndDensi
     EXPECT_GE(outside, 5);
 }
 
+// failed_walk_weight c_f: where the straight walk does not converge, the surface trials' finds
+// count too, weighing c_f times their solution density, and density() answers the same for the
+// same path; beside a converged straight walk they keep surface_weight's c. Walks cut to three
+// iterations make the straight walk fail at many light samples of the two-solution receiver.
+// Scaling on one side only, or by the wrong weight, fails here.
+TEST(ManifoldSolutions, FailedWalkWeightCountsTheTrialsWhereTheStraightWalkFails) {
+    size_t count = 0;
+    const Vec3 at = multi_solution_receiver(&count);
+    const LoadedScene ls = droplet(kSphereLight);
+    const Scene& scene = *ls.scene;
+    const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z);
+    MneeSettings st = all_solutions(1);
+    st.solutions = MneeSolutions::Unbiased;
+    st.surface_weight = 0.03;
+    st.failed_walk_weight = 0.5;
+    st.walk.max_iterations = 3;
+    MneeSettings full = st;
+    full.surface_weight = 1;
+    full.failed_walk_weight = 0;
+    const ManifoldTechnique technique(scene, st), sms(scene, full);
+    IndependentSampler smp(11);
+    smp.start_pixel_sample(0, 0, 0);
+    int failed = 0, converged = 0;
+    for (int n = 0; n < 6000 && failed < 40; ++n) {
+        LightPoint lp;
+        for (const ManifoldSolution& s : solve(scene, xb, st, smp, &lp).solutions) {
+            const std::vector<SurfaceInteraction> path = path_of(s);
+            const double d = density_of(technique, scene, xb, path, lp), d_full = density_of(sms, scene, xb, path, lp);
+            EXPECT_NEAR(d, s.density, 1e-5 * s.density);
+            if (!s.from_surface) continue;
+            const bool straight = straight_walk_converges(scene, st, xb, path, lp);
+            const double c = straight ? 0.03 : 0.5;
+            EXPECT_EQ(s.weight, c);
+            EXPECT_NEAR(d, c * d_full, 1e-9 * d_full);
+            // A region without surface trials gives them 0 here too.
+            DensityDetail detail;
+            EXPECT_EQ(technique.density(xb, *xb.bsdf(), path.data(), int(path.size()), *scene.lights()[0], 1.0, lp.p,
+                                        lp.n, 550, /*surface_trials=*/false, &detail),
+                      0.0);
+            EXPECT_TRUE(detail.surface_path);
+            EXPECT_EQ(detail.weight, c);
+            ++(straight ? converged : failed);
+        }
+    }
+    std::cout << "[failed_walk_weight] surface solutions beside a failed straight walk: " << failed
+              << ", beside a converged one: " << converged << "\n";
+    EXPECT_GE(failed, 40);
+}
+
 namespace {
 
 // Among receivers with several well-separated exact solutions, the one where the weaker

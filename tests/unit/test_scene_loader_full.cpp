@@ -311,6 +311,14 @@ TEST(SceneLoaderFull, MneeDefaultsAndSurfaceWeight) {
     expect_error(scene_with("<integrator type=\"mnee\">\n<string name=\"solutions\" value=\"one\"/><float "
                             "name=\"surface_weight\" value=\"0.1\"/></integrator>"),
                  "test.xml:4", "needs solutions=all or unbiased with seeding=straight+surface");
+    EXPECT_EQ(def.failed_walk_weight, 0.0);
+    EXPECT_EQ(settings(R"(<float name="failed_walk_weight" value="0.5"/>)").failed_walk_weight, 0.5);
+    expect_error(
+        scene_with("<integrator type=\"mnee\">\n<float name=\"failed_walk_weight\" value=\"2\"/></integrator>"),
+        "test.xml:4", "failed_walk_weight must lie in [0, 1]");
+    expect_error(scene_with("<integrator type=\"mnee\">\n<float name=\"surface_weight\" value=\"1\"/><float "
+                            "name=\"failed_walk_weight\" value=\"0.5\"/></integrator>"),
+                 "test.xml:4", "failed_walk_weight weighs the surface solutions where the straight walk fails");
     const MneeSettings keyed = settings(R"(<string name="solutions" value="keyed"/>)");
     EXPECT_EQ(keyed.solutions, MneeSolutions::Keyed);
     EXPECT_EQ(keyed.seeding, MneeSeeding::StraightAndSurface);
