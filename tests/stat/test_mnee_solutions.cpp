@@ -322,22 +322,47 @@ TEST(ManifoldSolutions, DensityOfEveryFoundSolutionMatches) {
     EXPECT_GE(multi, 5);  // light samples with both branches
 }
 
+namespace {
+
+// The droplet's receiver with several solutions (multi_solution_receiver), under the small
+// sphere light.
+struct TwoSolutionReceiver {
+    LoadedScene ls = droplet(kSphereLight);
+    SurfaceInteraction xb;
+    TwoSolutionReceiver() {
+        size_t count = 0;
+        const Vec3 at = multi_solution_receiver(&count);
+        xb = droplet_receiver(*ls.scene, at.x, at.z);
+    }
+};
+
+// The default estimator's weighting: unbiased, one trial a round, surface_weight 0.03.
+MneeSettings weighted_unbiased() {
+    MneeSettings st = all_solutions(1);
+    st.solutions = MneeSolutions::Unbiased;
+    st.surface_weight = 0.03;
+    return st;
+}
+
+// SMS's weighting of the same settings: every solution at its full density.
+MneeSettings sms_weighting(MneeSettings st) {
+    st.surface_weight = 1;
+    st.failed_walk_weight = 0;
+    return st;
+}
+
+}  // namespace
+
 // surface_weight c (the default estimator's MIS): beside a clear straight seed, a solution the
 // straight seed does not walk to weighs c times its solution density, the straight seed's own
 // the full density, and density() answers the same for the same path, as a BSDF-sampled copy
 // would query it, so MIS stays a partition of unity. Scaling on one side only fails here, and
 // so does either side's rule for light samples whose straight walk does not converge.
 TEST(ManifoldSolutions, SurfaceWeightScalesTheOtherSolutionsAlikeInSolveAndDensity) {
-    size_t count = 0;
-    const Vec3 at = multi_solution_receiver(&count);
-    const LoadedScene ls = droplet(kSphereLight);
-    const Scene& scene = *ls.scene;
-    const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z);
-    MneeSettings st = all_solutions(1);
-    st.solutions = MneeSolutions::Unbiased;
-    st.surface_weight = 0.03;
-    MneeSettings full = st;
-    full.surface_weight = 1;
+    const TwoSolutionReceiver r;
+    const Scene& scene = *r.ls.scene;
+    const SurfaceInteraction& xb = r.xb;
+    const MneeSettings st = weighted_unbiased(), full = sms_weighting(st);
     const ManifoldTechnique technique(scene, st), sms(scene, full);
     IndependentSampler smp(9);
     smp.start_pixel_sample(0, 0, 0);
@@ -421,19 +446,13 @@ TEST(ManifoldSolutions, SurfaceWeightScalesTheOtherSolutionsAlikeInSolveAndDensi
 // iterations make the straight walk fail at many light samples of the two-solution receiver.
 // Scaling on one side only, or by the wrong weight, fails here.
 TEST(ManifoldSolutions, FailedWalkWeightCountsTheTrialsWhereTheStraightWalkFails) {
-    size_t count = 0;
-    const Vec3 at = multi_solution_receiver(&count);
-    const LoadedScene ls = droplet(kSphereLight);
-    const Scene& scene = *ls.scene;
-    const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z);
-    MneeSettings st = all_solutions(1);
-    st.solutions = MneeSolutions::Unbiased;
-    st.surface_weight = 0.03;
+    const TwoSolutionReceiver r;
+    const Scene& scene = *r.ls.scene;
+    const SurfaceInteraction& xb = r.xb;
+    MneeSettings st = weighted_unbiased();
     st.failed_walk_weight = 0.5;
     st.walk.max_iterations = 3;
-    MneeSettings full = st;
-    full.surface_weight = 1;
-    full.failed_walk_weight = 0;
+    const MneeSettings full = sms_weighting(st);  // the techniques keep a pointer to their settings
     const ManifoldTechnique technique(scene, st), sms(scene, full);
     IndependentSampler smp(11);
     smp.start_pixel_sample(0, 0, 0);
