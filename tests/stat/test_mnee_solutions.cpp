@@ -324,18 +324,6 @@ TEST(ManifoldSolutions, DensityOfEveryFoundSolutionMatches) {
 
 namespace {
 
-// The droplet's receiver with several solutions (multi_solution_receiver), under the small
-// sphere light.
-struct TwoSolutionReceiver {
-    LoadedScene ls = droplet(kSphereLight);
-    SurfaceInteraction xb;
-    TwoSolutionReceiver() {
-        size_t count = 0;
-        const Vec3 at = multi_solution_receiver(&count);
-        xb = droplet_receiver(*ls.scene, at.x, at.z);
-    }
-};
-
 // The default estimator's weighting: unbiased, one trial a round, surface_weight 0.03.
 MneeSettings weighted_unbiased() {
     MneeSettings st = all_solutions(1);
@@ -353,41 +341,82 @@ MneeSettings sms_weighting(MneeSettings st) {
 
 }  // namespace
 
+namespace {
+
+// The droplet's receiver with several solutions (multi_solution_receiver), under the small
+// sphere light, with a weighted estimator `st` and SMS's weighting of the same settings.
+struct WeightedReceiver {
+    LoadedScene ls = droplet(kSphereLight);
+    const Scene& scene = *ls.scene;
+    SurfaceInteraction xb;
+    MneeSettings st, full;  // the techniques keep pointers to them
+    ManifoldTechnique technique, sms;
+    IndependentSampler smp;
+
+    WeightedReceiver(const MneeSettings& settings, uint64_t seed)
+        : st(settings), full(sms_weighting(settings)), technique(scene, st), sms(scene, full), smp(seed) {
+        size_t count = 0;
+        const Vec3 at = multi_solution_receiver(&count);
+        xb = droplet_receiver(scene, at.x, at.z);
+        smp.start_pixel_sample(0, 0, 0);
+    }
+
+    // Each solution solve() finds in up to `draws` light samples (until `done()`), with its path,
+    // its light point and density() of the path under st and under SMS's weighting, once
+    // density() under st is checked to answer what solve() reported.
+    template <class Done, class Visit>
+    void each_solution(int draws, Done done, Visit visit) {
+        for (int n = 0; n < draws && !done(); ++n) {
+            LightPoint lp;
+            for (const ManifoldSolution& s : solve(scene, xb, st, smp, &lp).solutions) {
+                const std::vector<SurfaceInteraction> path = path_of(s);
+                const double d = density_of(technique, scene, xb, path, lp),
+                             d_full = density_of(sms, scene, xb, path, lp);
+                EXPECT_NEAR(d, s.density, 1e-5 * s.density) << (s.from_surface ? "surface" : "straight") << " solution";
+                visit(s, path, lp, d, d_full);
+            }
+        }
+    }
+
+    // density() of `path` under st in a region without surface trials (ConnectionAllocation).
+    double density_without_trials(const std::vector<SurfaceInteraction>& path, const LightPoint& lp,
+                                  DensityDetail* detail) const {
+        return technique.density(xb, *xb.bsdf(), path.data(), int(path.size()), *scene.lights()[0], 1.0, lp.p, lp.n,
+                                 550, /*surface_trials=*/false, detail);
+    }
+};
+
+}  // namespace
+
 // surface_weight c (the default estimator's MIS): beside a clear straight seed, a solution the
 // straight seed does not walk to weighs c times its solution density, the straight seed's own
 // the full density, and density() answers the same for the same path, as a BSDF-sampled copy
 // would query it, so MIS stays a partition of unity. Scaling on one side only fails here, and
 // so does either side's rule for light samples whose straight walk does not converge.
 TEST(ManifoldSolutions, SurfaceWeightScalesTheOtherSolutionsAlikeInSolveAndDensity) {
-    const TwoSolutionReceiver r;
-    const Scene& scene = *r.ls.scene;
+    WeightedReceiver r(weighted_unbiased(), 9);
+    const Scene& scene = r.scene;
     const SurfaceInteraction& xb = r.xb;
-    const MneeSettings st = weighted_unbiased(), full = sms_weighting(st);
-    const ManifoldTechnique technique(scene, st), sms(scene, full);
-    IndependentSampler smp(9);
-    smp.start_pixel_sample(0, 0, 0);
+    const MneeSettings &st = r.st, &full = r.full;
+    IndependentSampler& smp = r.smp;
     int straight = 0, surface = 0;
-    for (int n = 0; n < 3000 && surface < 20; ++n) {
-        LightPoint lp;
-        for (const ManifoldSolution& s : solve(scene, xb, st, smp, &lp).solutions) {
-            const std::vector<SurfaceInteraction> path = path_of(s);
-            const double d = density_of(technique, scene, xb, path, lp), d_full = density_of(sms, scene, xb, path, lp);
-            EXPECT_NEAR(d, s.density, 1e-5 * s.density) << (s.from_surface ? "surface" : "straight") << " solution";
+    r.each_solution(
+        3000, [&] { return surface >= 20; },
+        [&](const ManifoldSolution& s, const std::vector<SurfaceInteraction>& path, const LightPoint& lp, double d,
+            double d_full) {
             EXPECT_NEAR(d, (s.from_surface ? 0.03 : 1.0) * d_full, 1e-9 * d_full);
             // A region without surface trials (ConnectionAllocation) gives their paths 0, and
             // density() says which paths are theirs.
             DensityDetail detail;
             detail.surface_path = !s.from_surface;
-            const double d_none = technique.density(xb, *xb.bsdf(), path.data(), int(path.size()), *scene.lights()[0],
-                                                    1.0, lp.p, lp.n, 550, /*surface_trials=*/false, &detail);
+            const double d_none = r.density_without_trials(path, lp, &detail);
             EXPECT_EQ(detail.surface_path, s.from_surface);
             // The pilot needs the density the trials draw a path with: c times less than its MIS density.
             EXPECT_EQ(detail.weight, s.from_surface ? 0.03 : 1.0);
             EXPECT_EQ(s.weight, s.from_surface ? 0.03 : 1.0);
             EXPECT_EQ(d_none, s.from_surface ? 0.0 : d);
             ++(s.from_surface ? surface : straight);
-        }
-    }
+        });
     EXPECT_GE(straight, 100);
     EXPECT_GE(surface, 20);  // post-fold solutions found by the surface trials
     // ... and solve() there counts the straight seed's solution alone.
@@ -446,38 +475,27 @@ TEST(ManifoldSolutions, SurfaceWeightScalesTheOtherSolutionsAlikeInSolveAndDensi
 // iterations make the straight walk fail at many light samples of the two-solution receiver.
 // Scaling on one side only, or by the wrong weight, fails here.
 TEST(ManifoldSolutions, FailedWalkWeightCountsTheTrialsWhereTheStraightWalkFails) {
-    const TwoSolutionReceiver r;
-    const Scene& scene = *r.ls.scene;
-    const SurfaceInteraction& xb = r.xb;
     MneeSettings st = weighted_unbiased();
     st.failed_walk_weight = 0.5;
     st.walk.max_iterations = 3;
-    const MneeSettings full = sms_weighting(st);  // the techniques keep a pointer to their settings
-    const ManifoldTechnique technique(scene, st), sms(scene, full);
-    IndependentSampler smp(11);
-    smp.start_pixel_sample(0, 0, 0);
+    WeightedReceiver r(st, 11);
     int failed = 0, converged = 0;
-    for (int n = 0; n < 6000 && failed < 40; ++n) {
-        LightPoint lp;
-        for (const ManifoldSolution& s : solve(scene, xb, st, smp, &lp).solutions) {
-            const std::vector<SurfaceInteraction> path = path_of(s);
-            const double d = density_of(technique, scene, xb, path, lp), d_full = density_of(sms, scene, xb, path, lp);
-            EXPECT_NEAR(d, s.density, 1e-5 * s.density);
-            if (!s.from_surface) continue;
-            const bool straight = straight_walk_converges(scene, st, xb, path, lp);
+    r.each_solution(
+        6000, [&] { return failed >= 40; },
+        [&](const ManifoldSolution& s, const std::vector<SurfaceInteraction>& path, const LightPoint& lp, double d,
+            double d_full) {
+            if (!s.from_surface) return;
+            const bool straight = straight_walk_converges(r.scene, r.st, r.xb, path, lp);
             const double c = straight ? 0.03 : 0.5;
             EXPECT_EQ(s.weight, c);
             EXPECT_NEAR(d, c * d_full, 1e-9 * d_full);
             // A region without surface trials gives them 0 here too.
             DensityDetail detail;
-            EXPECT_EQ(technique.density(xb, *xb.bsdf(), path.data(), int(path.size()), *scene.lights()[0], 1.0, lp.p,
-                                        lp.n, 550, /*surface_trials=*/false, &detail),
-                      0.0);
+            EXPECT_EQ(r.density_without_trials(path, lp, &detail), 0.0);
             EXPECT_TRUE(detail.surface_path);
             EXPECT_EQ(detail.weight, c);
             ++(straight ? converged : failed);
-        }
-    }
+        });
     std::cout << "[failed_walk_weight] surface solutions beside a failed straight walk: " << failed
               << ", beside a converged one: " << converged << "\n";
     EXPECT_GE(failed, 40);
