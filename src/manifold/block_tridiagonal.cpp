@@ -22,39 +22,42 @@ bool BlockLU::factor(const BlockTridiagonal& m) {
     return true;
 }
 
-std::vector<Vec2> BlockLU::solve(const std::vector<Vec2>& rhs) const {
+template <class T>
+void BlockLU::sweep(std::vector<T>& v) const {
     const BlockTridiagonal& m = *m_m;
     const size_t k = m.size();
     // Forward sweep: y_i = rhs_i - A_i Lambda_{i-1}^-1 y_{i-1}.
-    std::vector<Vec2> y(k);
-    for (size_t i = 0; i < k; ++i) y[i] = i == 0 ? rhs[0] : rhs[i] - m.A[i] * (m_lambda_inv[i - 1] * y[i - 1]);
+    for (size_t i = 1; i < k; ++i) v[i] = v[i] - m.A[i] * (m_lambda_inv[i - 1] * v[i - 1]);
     // Back substitution: x_i = Lambda_i^-1 (y_i - C_i x_{i+1}).
-    std::vector<Vec2> x(k);
-    for (size_t j = k; j-- > 0;) x[j] = m_lambda_inv[j] * (j + 1 < k ? y[j] - m.C[j] * x[j + 1] : y[j]);
+    for (size_t j = k; j-- > 0;) v[j] = m_lambda_inv[j] * (j + 1 < k ? v[j] - m.C[j] * v[j + 1] : v[j]);
+}
+
+void BlockLU::solve_in_place(std::vector<Vec2>& v) const { sweep(v); }
+
+// A 2-column right-hand side sweeps as two 2-vectors at once: Mat2 products act column by column.
+void BlockLU::solve_in_place(std::vector<Mat2>& v) const { sweep(v); }
+
+std::vector<Vec2> BlockLU::solve(const std::vector<Vec2>& rhs) const {
+    std::vector<Vec2> x = rhs;
+    solve_in_place(x);
     return x;
 }
 
 std::vector<Mat2> BlockLU::solve(const std::vector<Mat2>& rhs) const {
-    const size_t k = rhs.size();
-    std::vector<Vec2> c0(k), c1(k);
-    for (size_t i = 0; i < k; ++i) {
-        c0[i] = {rhs[i].a, rhs[i].c};
-        c1[i] = {rhs[i].b, rhs[i].d};
-    }
-    const std::vector<Vec2> x0 = solve(c0), x1 = solve(c1);
-    std::vector<Mat2> out(k);
-    for (size_t i = 0; i < k; ++i) out[i] = Mat2::from_columns(x0[i], x1[i]);
-    return out;
+    std::vector<Mat2> x = rhs;
+    solve_in_place(x);
+    return x;
 }
 
-bool solve_matrix_h_to_x(const BlockTridiagonal& m, const std::vector<Vec2>& c, std::vector<Vec2>* dx,
-                         double* abs_det) {
-    BlockLU lu;
-    if (!lu.factor(m)) return false;
-    std::vector<Vec2> rhs(c.size());
-    for (size_t i = 0; i < c.size(); ++i) rhs[i] = c[i] * -1.0;
-    *dx = lu.solve(rhs);
-    if (abs_det) *abs_det = lu.abs_det();
+bool solve_matrix_h_to_x(const BlockTridiagonal& m, const std::vector<Vec2>& c, std::vector<Vec2>* dx, double* abs_det,
+                         BlockLU* lu) {
+    BlockLU local;
+    BlockLU& f = lu ? *lu : local;
+    if (!f.factor(m)) return false;
+    dx->resize(c.size());
+    for (size_t i = 0; i < c.size(); ++i) (*dx)[i] = c[i] * -1.0;
+    f.solve_in_place(*dx);
+    if (abs_det) *abs_det = f.abs_det();
     return true;
 }
 

@@ -32,8 +32,16 @@ public:
     std::vector<Vec2> solve(const std::vector<Vec2>& rhs) const;
     /// Solves M X = R for a 2-column right-hand side given per block row as a 2x2 matrix.
     std::vector<Mat2> solve(const std::vector<Mat2>& rhs) const;
+    /// The same solves in place: v holds the right-hand side and receives the solution. Both
+    /// sweeps read only the row they write and its already-swept neighbour, so no second array is
+    /// needed, and a walk's iterations reuse one buffer (no allocation per Newton step).
+    void solve_in_place(std::vector<Vec2>& v) const;
+    void solve_in_place(std::vector<Mat2>& v) const;
 
 private:
+    template <class T>
+    void sweep(std::vector<T>& v) const;
+
     const BlockTridiagonal* m_m = nullptr;
     std::vector<Mat2> m_lambda_inv;
     double m_abs_det = 0;
@@ -41,7 +49,8 @@ private:
 
 /// Newton step of the manifold walk: the tangent offsets dX with M dX = -c (h_to_x).
 /// Returns false when the matrix is singular. `abs_det` receives |dH/dX| (Eq. 8) if non-null.
+/// `lu`, if given, is the factorisation's storage, kept by a caller that solves again and again.
 bool solve_matrix_h_to_x(const BlockTridiagonal& m, const std::vector<Vec2>& c, std::vector<Vec2>* dx,
-                         double* abs_det = nullptr);
+                         double* abs_det = nullptr, BlockLU* lu = nullptr);
 
 }  // namespace snell

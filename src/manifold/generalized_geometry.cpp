@@ -7,22 +7,33 @@
 
 namespace snell {
 
+namespace {
+// One thread's storage (as the walk's in manifold_walk.cpp): one evaluation per solution.
+struct JacobianWorkspace {
+    BlockTridiagonal m;
+    BlockLU lu;
+    std::vector<Vec2> c;
+    std::vector<Mat2> rhs;
+};
+thread_local JacobianWorkspace t_jacobians;
+}  // namespace
+
 ChainJacobians chain_jacobians(const Vec3& x_b, const std::vector<ManifoldVertex>& chain, const TangentBasis& x_c) {
     ChainJacobians out;
     const size_t k = chain.size();
     if (k == 0) return out;
-    BlockTridiagonal m;
-    std::vector<Vec2> c;
-    if (!build_constraints(x_b, chain, x_c, &m, &c)) return out;
-    BlockLU lu;
+    BlockTridiagonal& m = t_jacobians.m;
+    if (!build_constraints(x_b, chain, x_c, &m, &t_jacobians.c)) return out;
+    BlockLU& lu = t_jacobians.lu;
     if (!lu.factor(m)) return out;
     out.dH_dX = lu.abs_det();  // Eq. 8: product of the pivots' determinants
 
     // Transfer: with H fixed, M dX + D dx_c = 0 where D is zero except its last block row,
     // C_{k} = dc_k/dx_c. So dX/dx_c = -M^-1 D, and only the first block dx_1/dx_c is needed.
-    std::vector<Mat2> rhs(k, Mat2());
-    rhs[k - 1] = m.C[k - 1] * -1.0;
-    const std::vector<Mat2> dX = lu.solve(rhs);
+    std::vector<Mat2>& dX = t_jacobians.rhs;
+    dX.assign(k, Mat2());
+    dX[k - 1] = m.C[k - 1] * -1.0;
+    lu.solve_in_place(dX);
 
     // o_b = (x_1 - x_b) / |x_1 - x_b|; its differential in an orthonormal basis (e1, e2) of
     // the plane perpendicular to o_b: (I - o o^T) dx_1 / l.

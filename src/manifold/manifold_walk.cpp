@@ -15,6 +15,17 @@ namespace snell {
 namespace {
 // Largest step, as a fraction of a vertex's local length scale, taken in one iteration.
 constexpr double kTrustFraction = 0.5;
+
+// One thread's storage for its walks: a walk runs a few iterations, and a render millions of
+// walks, so heap allocations per walk showed as 5 % of a profile of the pool (issue 26, point 5).
+// A walk never starts another on its thread before it ends, so one set per thread suffices.
+struct WalkWorkspace {
+    BlockTridiagonal m;
+    BlockLU lu;
+    std::vector<Vec2> c, dx;
+    std::vector<ManifoldVertex> proposal;
+};
+thread_local WalkWorkspace t_walk;
 }  // namespace
 
 bool build_constraints(const Vec3& x_b, const std::vector<ManifoldVertex>& chain, const TangentBasis& x_c,
@@ -80,9 +91,13 @@ bool project_vertex(const Scene* scene, const ManifoldVertex& from, const Vec3& 
 WalkResult manifold_walk(const Scene* scene, const Vec3& x_b, std::vector<ManifoldVertex>& chain,
                          const TangentBasis& x_c, const WalkSettings& st) {
     WalkResult res;
-    BlockTridiagonal m;
-    std::vector<Vec2> c, dx;
-    std::vector<ManifoldVertex> proposal(chain.size());
+    BlockTridiagonal& m = t_walk.m;
+    std::vector<Vec2>& c = t_walk.c;
+    std::vector<Vec2>& dx = t_walk.dx;
+    // Every entry is written by its projection before it is read (a failed projection rejects
+    // the step), so stale entries from an earlier walk are harmless.
+    std::vector<ManifoldVertex>& proposal = t_walk.proposal;
+    proposal.resize(chain.size());
     double err = constraint_error(x_b, chain, x_c.p);
     double beta = 1.0;  // step size
     const double beta_max = st.allow_error_increase ? 2.0 : 1.0;
@@ -109,7 +124,7 @@ WalkResult manifold_walk(const Scene* scene, const Vec3& x_b, std::vector<Manifo
         // the chain as it was, so its offsets stand and only beta shrinks: they are computed
         // again only after the chain moved.
         if (!have_dx) {
-            if (!build_constraints(x_b, chain, x_c, &m, &c) || !solve_matrix_h_to_x(m, c, &dx)) {
+            if (!build_constraints(x_b, chain, x_c, &m, &c) || !solve_matrix_h_to_x(m, c, &dx, nullptr, &t_walk.lu)) {
                 res.outcome = WalkOutcome::SingularMatrix;
                 res.error = err;
                 return res;
