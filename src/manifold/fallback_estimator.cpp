@@ -30,7 +30,7 @@ double FallbackEstimator::density(const SurfaceInteraction& xb, const BSDF& bsdf
     // The straight seed's technique where the seed is clear of opaque surfaces (Alg. 2), the
     // surface seeds' where one blocks it; the seed is traced once for either.
     const StraightSeed s = trace_straight_seed(*m_scene, xb, xc, lambda, *m_settings);
-    if (s.status == SeedStatus::BlockedRefractive)
+    if (s.status == SeedStatus::Blocked)
         return every_solution_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &s);
     return alg2_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &s);
 }

@@ -75,7 +75,7 @@ ManifoldConnection ManifoldTechnique::connect(const ManifoldQuery& query, Sample
         case SeedStatus::Occluded:
             ++walk_counters::seeds_occluded;
             return c;
-        case SeedStatus::BlockedRefractive:
+        case SeedStatus::Blocked:
             // (Multi-solution estimators only.) The straight seed is blocked; the surface seeds
             // may still find refracted paths around the blocker (an object inside glass).
             ++walk_counters::seeds_occluded;

@@ -32,7 +32,7 @@ struct ManifoldQuery {
     MediumStack media;       ///< the medium at x_b
     bool hero_only = false;  ///< the path's throughput already carries the hero wavelength alone
     /// The straight seed may be walked (false: an opaque surface blocks the segment x_b -> x_c,
-    /// SeedStatus::BlockedRefractive; only surface seeds are tried). connect() sets it.
+    /// SeedStatus::Blocked; only surface seeds are tried). connect() sets it.
     bool straight_seed = true;
     /// connect(): q, the probability with which a connection to a light that BSDF sampling can
     /// hit is made (ConnectionAllocation; 0: not at all, its light is left to BSDF sampling).

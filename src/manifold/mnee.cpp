@@ -351,7 +351,7 @@ double solution_density(const Scene& scene, const MneeSettings& st, const Surfac
     // The domain: refractive interfaces lie on the straight segment x_b -> x_c, blocked by an
     // opaque surface or not (the integrator runs the surface seeds for both).
     const SeedStatus status = traced ? traced->status : trace_straight_seed(scene, xb, xc, lambda, st).status;
-    return status == SeedStatus::Refractive || status == SeedStatus::BlockedRefractive ? p : 0.0;
+    return status == SeedStatus::Refractive || status == SeedStatus::Blocked ? p : 0.0;
 }
 
 double mnee_pdf(const Scene& scene, const MneeSettings& st, const SurfaceInteraction& xb, const BSDF& bsdf_b,

@@ -27,7 +27,11 @@ SeedStatus trace_seed_path(const Scene& scene, const SurfaceInteraction& xb, con
         }
         ray = scene.spawn_ray_to(si, xc);
     }
-    if (blocked) return chain->empty() ? SeedStatus::Occluded : SeedStatus::BlockedRefractive;
+    // Blocked even with no glass on the segment: the surface seeds may find a refracted path
+    // around the blocker. Without them the environment-lit pool's floor near its walls was
+    // BSDF sampling's alone, and the biased mode, which drops what MNEE cannot reach, kept 0.91
+    // of its caustic (issue 26, point 6; docs/experiments.md).
+    if (blocked) return SeedStatus::Blocked;
     return chain->empty() ? SeedStatus::Clear : SeedStatus::Refractive;
 }
 

@@ -363,7 +363,7 @@ double mnee_share(const std::string& xml) {
 
 // Glass around an opaque object: a straight seed through the object is blocked, but refracted
 // paths pass beside it. The paper's MNEE gives those up to BSDF sampling; the multi-solution
-// estimators still run their surface seeds there (SeedStatus::BlockedRefractive) and deliver
+// estimators still run their surface seeds there (SeedStatus::Blocked) and deliver
 // most of that light (0.86 against the paper's 0.69 here), and stay unbiased: they agree with nee. (Before surface
 // seeds ran for blocked straight seeds, the glass sphere scene's floor caustic got 0.1 % of its light from MNEE;
 // docs/experiments.md.)

@@ -75,7 +75,7 @@ SolutionSet solve(const Scene& scene, const SurfaceInteraction& xb, const MneeSe
     if (lp_out) *lp_out = lp;
     std::vector<ManifoldVertex> chain;
     const SeedStatus status = trace_seed_path(scene, xb, lp.p, 550, st, &chain);
-    if (status != SeedStatus::Refractive && status != SeedStatus::BlockedRefractive) return {};
+    if (status != SeedStatus::Refractive && status != SeedStatus::Blocked) return {};
     const ManifoldQuery q{&xb,
                           xb.bsdf(),
                           BSDFContext{wl, TransportMode::Radiance},
@@ -151,7 +151,7 @@ TEST(ManifoldSolutions, AllFindsEveryExactSolutionOnASphereOnAPlane) {
 }
 
 // An opaque ball inside the droplet blocks the straight segment from a receiver to the light
-// (SeedStatus::BlockedRefractive): the paper's MNEE gives up, but the surface seeds find every
+// (SeedStatus::Blocked): the paper's MNEE gives up, but the surface seeds find every
 // exact solution whose path passes beside the ball, and none that the ball blocks.
 TEST(ManifoldSolutions, SurfaceSeedsFindThePathsBesideABlockedStraightSeed) {
     // A receiver with two well-separated paths: a ball near the straight segment can block one.
@@ -187,7 +187,7 @@ TEST(ManifoldSolutions, SurfaceSeedsFindThePathsBesideABlockedStraightSeed) {
     visible = visible_roots(ball, xb.p);
     ASSERT_GE(visible.size(), 1u);
     std::vector<ManifoldVertex> seed;
-    ASSERT_EQ(trace_seed_path(*ls.scene, xb, kLight, 550, all_solutions(1), &seed), SeedStatus::BlockedRefractive);
+    ASSERT_EQ(trace_seed_path(*ls.scene, xb, kLight, 550, all_solutions(1), &seed), SeedStatus::Blocked);
     ASSERT_EQ(trace_seed_path(*ls.scene, xb, kLight, 550, MneeSettings(), &seed), SeedStatus::Occluded);
 
     EXPECT_TRUE(solve(*ls.scene, xb, MneeSettings(), 7).solutions.empty()) << "the paper's seed is blocked";
@@ -208,6 +208,88 @@ TEST(ManifoldSolutions, SurfaceSeedsFindThePathsBesideABlockedStraightSeed) {
         for (const ManifoldSolution& s : solve(*ls.scene, xb, fallback, seed).solutions) found += s.from_surface;
     // (One trial per light sample, and the free paths' basins are small here: 2 in 50.)
     EXPECT_GT(found, 0u) << "fallback's surface trials never ran behind the blocker";
+}
+
+// A pool's edge: the straight segment from a floor point to the light meets an opaque wall under
+// the water, and beyond the wall no water lies on it (SeedStatus::Blocked with an empty chain),
+// yet the refracted path, steeper in the water, leaves the surface before the wall and passes
+// over it. The surface seeds must look there too: before issue 26 such a segment was Occluded,
+// and the multi-solution estimators left its light to BSDF sampling, which the biased mode then
+// dropped (the environment-lit pool kept 0.91 of its caustic).
+namespace {
+// Water (y = 1, x < 0.8) over a floor, ending at an opaque wall (x = 0.8, y in [0, 1]); `light`
+// at (5, 5, 0).
+LoadedScene pool_edge(const std::string& light) {
+    std::string xml = R"(<scene version="3.0.0"><integrator type="mnee"/>
+  <sensor type="perspective"><transform name="to_world"><lookat origin="0,3,3" target="0,0,0" up="0,1,0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>
+  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><scale value="4"/></transform></shape>
+  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><scale x="1.4" y="1" z="2"/>
+    <translate x="-0.6" y="1" z="0"/></transform>
+    <bsdf type="dielectric"><float name="int_ior" value="1.33"/><float name="ext_ior" value="1"/></bsdf></shape>
+  <shape type="rectangle"><transform name="to_world"><scale x="2" y="0.5" z="1"/><rotate y="1" angle="90"/>
+    <translate x="0.8" y="0.5" z="0"/></transform></shape>
+  $light
+</scene>)";
+    xml.replace(xml.find("$light"), 6, light);
+    return load_xml(xml);
+}
+}  // namespace
+
+TEST(ManifoldSolutions, SurfaceSeedsFindAPathAroundABlockerWithNoGlassOnTheSegment) {
+    const LoadedScene ls = pool_edge(
+        R"(<emitter type="point"><point name="position" x="5" y="5" z="0"/><rgb name="intensity" value="4, 4, 4"/></emitter>)");
+    const Vec3 light(5, 5, 0);
+    const SurfaceInteraction xb = droplet_receiver(*ls.scene, 0, 0);
+    ASSERT_LT(length(xb.p), 1e-9);
+    // The exact path: it leaves the water (y = 1) at x_r, where Snell's law holds (bisection).
+    const auto snell_residual = [&](double x) {
+        return std::sin(std::atan((light.x - x) / (light.y - 1))) - 1.33 * std::sin(std::atan(x));
+    };
+    double lo = 0, hi = 0.8;
+    for (int i = 0; i < 80; ++i) (snell_residual(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
+    const Vec3 exact(0.5 * (lo + hi), 1, 0);
+    ASSERT_LT(exact.x, 0.75) << "the refracted path must leave the water before the wall";
+
+    std::vector<ManifoldVertex> seed;
+    ASSERT_EQ(trace_seed_path(*ls.scene, xb, light, 550, MneeSettings(), &seed), SeedStatus::Occluded);
+    ASSERT_EQ(trace_seed_path(*ls.scene, xb, light, 550, all_solutions(1), &seed), SeedStatus::Blocked);
+    EXPECT_TRUE(seed.empty()) << "no glass lies on the straight segment";
+
+    EXPECT_TRUE(solve(*ls.scene, xb, MneeSettings(), 7).solutions.empty()) << "the paper's seed is blocked";
+    const SolutionSet set = solve(*ls.scene, xb, all_solutions(64), 7);
+    ASSERT_EQ(set.solutions.size(), 1u);
+    const ManifoldSolution& s = set.solutions[0];
+    ASSERT_EQ(s.chain.size(), 1u);
+    EXPECT_LT(length(s.chain[0].p - exact), 1e-6);
+    EXPECT_TRUE(s.from_surface);
+    EXPECT_GT(s.value[0], 0.0);
+
+    // Under a small sphere light the solutions' estimate equals BSDF sampling's of the light
+    // through the water (the direct path is blocked by the wall).
+    const LoadedScene lit = pool_edge(R"(<shape type="sphere"><point name="center" x="5" y="5" z="0"/>
+        <float name="radius" value="0.2"/><emitter type="area"><rgb name="radiance" value="50, 50, 50"/></emitter></shape>)");
+    const SurfaceInteraction xb2 = droplet_receiver(*lit.scene, 0, 0);
+    const BSDFContext ctx{SampledWavelengths::single(550), TransportMode::Radiance};
+    IndependentSampler smp(23);
+    smp.start_pixel_sample(0, 0, 0);
+    Mean all, bsdf;
+    for (int n = 0; n < 2000; ++n) {
+        double v = 0;
+        for (const ManifoldSolution& sol : solve(*lit.scene, xb2, all_solutions(16), smp).solutions)
+            v += sol.count * sol.value[0];
+        all.add(v);
+    }
+    for (int n = 0; n < 2000000; ++n)
+        bsdf.add(refracted_light_sample(
+            *lit.scene, xb2, ctx, smp,
+            [](const std::vector<SurfaceInteraction>& chain, const SurfaceInteraction&) { return !chain.empty(); }));
+    const double se = std::sqrt(sqr(all.stderr_()) + sqr(bsdf.stderr_()));
+    std::cout << "[solutions] pool edge: all " << all.mean() << " +- " << all.stderr_() << ", BSDF sampling "
+              << bsdf.mean() << " +- " << bsdf.stderr_() << "\n";
+    EXPECT_GT(all.mean(), 0.0);
+    EXPECT_NEAR(all.mean(), bsdf.mean(), 4.5 * se);
+    EXPECT_LT(4.5 * se, 0.3 * bsdf.mean());
 }
 
 // Where the straight seed is clear, fallback (the biased mode's default) is the paper's estimator: at a
