@@ -28,7 +28,8 @@
 #       crop like the table: results/gallery/LABEL/<case>_NAME.exr, a row each in variants.md
 # CASES="ball_plane pool" limits the cases; TECHNIQUES (nee,mnee-paper,mnee,mnee-biased) the
 # techniques compared; REF_INTEGRATOR overrides the manifest's reference technique (bdpt, pt,
-# or mnee-paper / mnee-all where no path-space technique converges; gallery.tsv says why);
+# or mnee-paper / mnee-trials / mnee-all where no path-space technique converges; gallery.tsv
+# says why);
 # THREADS (2); SEED (1) the compared renders' seed; SNELL=path another build;
 # SNELL_LAUNCH="cmd" runs every snell under cmd.
 source "$(dirname "$0")/common.sh"
@@ -76,7 +77,8 @@ ref_key() {
 }
 # with_integrator FILE TECHNIQUE: the scene file made ready for TECHNIQUE (mnee-all: mnee with
 # every solution 16 surface trials find, walked everywhere; mnee-paper: the paper's estimator,
-# solutions=one, walked everywhere); prints the integrator type to render it with.
+# solutions=one, walked everywhere; mnee-trials: the unbiased estimator walked everywhere, with
+# surface trials beside failed straight walks too); prints the integrator type to render it with.
 with_integrator() {
   case $2 in
     mnee-all)
@@ -84,6 +86,9 @@ with_integrator() {
       echo mnee ;;
     mnee-paper)
       sed -i "s|<integer name=\"max_depth\" value=\"\$max_depth\"/>|&<string name=\"solutions\" value=\"one\"/>|" "$1"
+      echo mnee ;;
+    mnee-trials)
+      sed -i "s|<integer name=\"max_depth\" value=\"\$max_depth\"/>|&<string name=\"allocation\" value=\"fixed\"/><float name=\"failed_walk_weight\" value=\"1\"/>|" "$1"
       echo mnee ;;
     *) echo "$2" ;;
   esac

@@ -31,7 +31,10 @@ SeedStatus trace_seed_path(const Scene& scene, const SurfaceInteraction& xb, con
     // around the blocker. Without them the environment-lit pool's floor near its walls was
     // BSDF sampling's alone, and the biased mode, which drops what MNEE cannot reach, kept 0.91
     // of its caustic (issue 26, point 6; docs/experiments.md).
-    if (blocked) return SeedStatus::Blocked;
+    // A scene without glass has nothing to find there: Occluded, so that MNEE stays NEE sample for
+    // sample (Sec. 3.1).
+    if (blocked)
+        return chain->empty() && scene.refractive_casters().empty() ? SeedStatus::Occluded : SeedStatus::Blocked;
     return chain->empty() ? SeedStatus::Clear : SeedStatus::Refractive;
 }
 

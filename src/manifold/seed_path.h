@@ -22,7 +22,7 @@ enum class SeedStatus {
     /// inside glass), or beside it with no glass on the segment at all (a pool floor's line to a
     /// low sun meets the wall under water, while the refracted path leaves the water first).
     /// Surface seeds look for them. The chain holds the refractive vertices on the segment, if
-    /// any, the blockers passed through.
+    /// any, the blockers passed through. (Occluded where the scene holds no glass at all.)
     Blocked,
     TooMany,  ///< more refractive vertices than max_vertices
 };
