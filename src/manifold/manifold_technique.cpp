@@ -121,11 +121,12 @@ SolutionSet ManifoldTechnique::solve(const ManifoldQuery& q, const Light& light,
 
 double ManifoldTechnique::density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain,
                                   int k, const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda,
-                                  bool surface_trials, DensityDetail* detail) const {
+                                  bool surface_trials, DensityDetail* detail, bool failed_walk_trials) const {
     return with_estimator(*m_scene, *m_settings, [&](const auto& estimator) {
         // Only the multi-solution estimators weigh their surface solutions apart.
         if constexpr (std::is_base_of_v<MultiSolutionEstimator, std::decay_t<decltype(estimator)>>)
-            return estimator.density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, surface_trials, detail);
+            return estimator.density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, surface_trials, detail,
+                                     failed_walk_trials);
         else
             return estimator.density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda);
     });

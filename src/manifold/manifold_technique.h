@@ -50,6 +50,10 @@ struct ManifoldQuery {
     /// weighed apart: the straight seed's solution alone, and density() gives the trials' paths
     /// 0 for the same region).
     bool surface_trials = true;
+    /// The region runs the surface trials beside failed straight walks too, their finds weighed 1
+    /// in MIS (ConnectionAllocation's third kind; as `failed_walk_weight` 1 there, whatever the
+    /// setting). density() is told the same for the same region.
+    bool failed_walk_trials = false;
     /// The allocation's pilot: where surface solutions are weighed apart and the straight walk
     /// fails beside a clear seed, the surface trials still run, as probes: what they find is
     /// not counted (SolutionSet::probes), but tells the pilot the variance BSDF sampling alone
@@ -133,9 +137,10 @@ public:
     /// Where surface solutions are weighed apart (MneeSettings::splits_surface_solutions),
     /// `surface_trials` false (a region without them) gives the paths only the trials reach 0,
     /// and `detail` tells whether the path is one of those, and more (DensityDetail).
+    /// `failed_walk_trials`: the region's ManifoldQuery::failed_walk_trials.
     double density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain, int k,
                    const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda,
-                   bool surface_trials = true, DensityDetail* detail = nullptr) const;
+                   bool surface_trials = true, DensityDetail* detail = nullptr, bool failed_walk_trials = false) const;
 
 private:
     const Scene* m_scene;

@@ -113,6 +113,14 @@ MneeSettings MneeSettings::from_props(const Props& p) {
         p.raise_param("trial_allocation",
                       "trial_allocation needs allocation=learned and surface solutions weighed apart "
                       "(solutions=unbiased or all, seeding=straight+surface, surface_weight < 1)");
+    s.failed_walk_trials =
+        p.get_choice("failed_walk_trials", s.failed_walk_trials, {{"learned", true}, {"never", false}});
+    if (p.has("failed_walk_trials") && !(s.learned_allocation && s.splits_surface_solutions() &&
+                                         s.trial_allocation == TrialAllocation::Learned && !(s.failed_walk_weight > 0)))
+        p.raise_param("failed_walk_trials",
+                      "failed_walk_trials lets each region choose the trials beside failed straight walks: it needs "
+                      "allocation=learned, trial_allocation=learned, surface solutions weighed apart and "
+                      "failed_walk_weight 0 (which runs them in every region)");
     s.work_price =
         p.get_choice("work_price", s.work_price, {{"image", WorkPrice::Image}, {"region", WorkPrice::Region}});
     if (p.has("work_price") && !s.learned_allocation)

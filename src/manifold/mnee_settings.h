@@ -123,6 +123,13 @@ struct MneeSettings {
     /// rarely find a solution the straight seed misses); `always`: every region runs them;
     /// `never`: none does (their paths are left to BSDF sampling, as Alg. 2 leaves them).
     TrialAllocation trial_allocation = TrialAllocation::Learned;
+    /// (failed_walk_trials) with trial_allocation `learned` and failed_walk_weight 0: `learned`,
+    /// a region may also choose to run its surface trials beside failed straight walks, their
+    /// finds weighed 1 (as failed_walk_weight 1 there), judged by the pilot's probes; `never`:
+    /// no region does. Where a fold is in view (a ball on a plane) the trials there pay several
+    /// times over; on the object inside glass they do not (docs/mnee.md, "Trials where the
+    /// straight walk fails").
+    bool failed_walk_trials = true;
     /// (work_price) `image`: at equal time every pixel pays for every region's walks, so a
     /// region walks where the relative variance it saves beats what that work would buy the
     /// image (one exchange rate, learned from a lattice of regions); `region`: each region

@@ -46,7 +46,7 @@ void MultiSolutionEstimator::solve(const ManifoldQuery& q, const BSDFContext& ct
     };
     // Where the straight walk failed the trials' finds weigh failed_walk_weight; at 0 they are
     // BSDF sampling's.
-    const double c_f = m_settings->failed_walk_weight;
+    const double c_f = q.failed_walk_trials ? 1.0 : m_settings->failed_walk_weight;
     if (weighted && !straight_converged && !(c_f > 0)) {
         // The pilot's probes: the paths found here stay BSDF sampling's (density() gives them 0),
         // but the pilot judges BSDF sampling's variance for them from these finds
@@ -98,7 +98,7 @@ bool crosses_as_the_seed(const Vec3& xb, const SurfaceInteraction* chain, int k,
 double MultiSolutionEstimator::density(const SurfaceInteraction& xb, const BSDF& bsdf_b,
                                        const SurfaceInteraction* chain, int k, const Light& light, double pmf,
                                        const Vec3& xc, const Vec3& nc, double lambda, bool surface_trials,
-                                       DensityDetail* detail) const {
+                                       DensityDetail* detail, bool failed_walk_trials) const {
     DensityDetail none;
     DensityDetail& d = detail ? *detail : none;
     d.surface_path = false;
@@ -124,7 +124,7 @@ double MultiSolutionEstimator::density(const SurfaceInteraction& xb, const BSDF&
     const double reached = alg2_density(xb, bsdf_b, chain, k, light, pmf, xc, nc, lambda, &seed, &converged);
     if (reached > 0) return reached;
     if (!converged) {
-        const double c_f = m_settings->failed_walk_weight;
+        const double c_f = failed_walk_trials ? 1.0 : m_settings->failed_walk_weight;
         if (c_f > 0) {
             // solve() weighs the trials' finds here c_f (the straight seed's shapes in its order).
             if (!crosses_as_the_seed(xb.p, chain, k, xc, seed.chain)) return 0.0;

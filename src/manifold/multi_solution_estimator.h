@@ -24,7 +24,7 @@ public:
     /// path is theirs, with the rest of DensityDetail.
     double density(const SurfaceInteraction& xb, const BSDF& bsdf_b, const SurfaceInteraction* chain, int k,
                    const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda,
-                   bool surface_trials = true, DensityDetail* detail = nullptr) const;
+                   bool surface_trials = true, DensityDetail* detail = nullptr, bool failed_walk_trials = false) const;
 
 protected:
     /// The estimator's use of the surface trials on one caster.

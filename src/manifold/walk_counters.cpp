@@ -39,6 +39,9 @@ StatHistogram allocation_regions{"mnee.allocation_regions",
                                  "image regions by the connect probability they chose (0, 1/64 .. 1/2, 1)", 8};
 StatCounter allocation_regions_without_trials{"mnee.allocation_regions_without_trials",
                                               "image regions connecting without surface trials"};
+StatCounter allocation_regions_failed_walk_trials{
+    "mnee.allocation_regions_failed_walk_trials",
+    "image regions whose surface trials run beside failed straight walks too"};
 
 const char* walk_end_name(WalkEnd e) {
     switch (e) {

@@ -64,6 +64,9 @@ extern StatHistogram walk_end_alg2;        ///< "mnee.walk_end_alg2": Alg. 2 wal
 extern StatHistogram allocation_regions;
 /// "mnee.allocation_regions_without_trials": regions with q > 0 that run no surface trials.
 extern StatCounter allocation_regions_without_trials;
+/// "mnee.allocation_regions_failed_walk_trials": regions with q > 0 whose trials run beside
+/// failed straight walks too (ConnectionAllocation's third kind).
+extern StatCounter allocation_regions_failed_walk_trials;
 
 /// Counts one ended walk of Alg. 1 (`alg2` false) or Alg. 2.
 inline void count_walk_end(bool alg2, WalkEnd e) { (alg2 ? walk_end_alg2 : walk_end_alg1).add(uint32_t(e)); }

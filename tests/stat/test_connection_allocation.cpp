@@ -97,6 +97,7 @@ TEST(ConnectionAllocation, ProbesJudgeBsdfSamplingWhereTheStraightWalkFails) {
     std::uniform_real_distribution<double> u(0, 1);
     const int n = 400000;
     double sum = 0, sum2 = 0, realized = 0;
+    std::array<double, kCandidateCount> fw_sum{}, fw_sum2{};
     for (int i = 0; i < n; ++i) {
         PilotSample s;
         if (u(rng) < q_pilot && u(rng) < find) {
@@ -107,6 +108,10 @@ TEST(ConnectionAllocation, ProbesJudgeBsdfSamplingWhereTheStraightWalkFails) {
         }
         const double y = u(rng);
         s.add_probe_other(f_toy(y), 1.0, 2 * y, 1.0, q_pilot);
+        for (int j = 0; j < kCandidateCount; ++j) {
+            fw_sum[size_t(j)] += s.m2_failed_walk[size_t(j)];
+            fw_sum2[size_t(j)] += sqr(s.m2_failed_walk[size_t(j)]);
+        }
         for (int j = 1; j < kCandidateCount; ++j) ASSERT_EQ(s.m2[size_t(j)], s.m2[0]);
         for (int j = 0; j < kCandidateCount; ++j) ASSERT_EQ(s.m2_no_trials[size_t(j)], s.m2[0]);
         sum += s.m2[0];
@@ -116,6 +121,13 @@ TEST(ConnectionAllocation, ProbesJudgeBsdfSamplingWhereTheStraightWalkFails) {
     const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
     EXPECT_NEAR(mean, second_moment(Toy{1.0, 1.0}, 0.0), 4 * se);
     EXPECT_EQ(realized, 0.0);  // a BSDF hit at MNEE density 0 has weight 1; a probe's find is not counted
+    // The third kind (the trials beside failed walks too, weighed 1) gives those paths to MNEE at
+    // density q p_s: the same probes judge its second moment at every q.
+    for (int j = 0; j < kCandidateCount; ++j) {
+        const double q = kConnectCandidates[size_t(j)];
+        const double m = fw_sum[size_t(j)] / n, e = std::sqrt((fw_sum2[size_t(j)] / n - m * m) / n);
+        EXPECT_NEAR(m, second_moment(Toy{1.0, find}, q), 4 * e + 1e-9) << "q = " << q;
+    }
 }
 
 namespace {
@@ -247,6 +259,49 @@ TEST(ConnectionAllocation, RegionsRunSurfaceTrialsWhereTheyPay) {
         for (int x = 0; x < 16; ++x) feed_trials(never, x, y, 4, 1e-3, false, 20);
     never.fit();
     EXPECT_FALSE(never.surface_trials(5, 5));
+}
+
+namespace {
+// n pilot samples (q_pilot = 1) of pixel (x, y) with one straight connection (p_m = 1, BSDF
+// sampling's p_other 1e-3) and, beside a failed straight walk, a path the probes find (p_s = 1,
+// work `probe_work`) that BSDF sampling finds with density p_fail.
+void feed_probes(ConnectionAllocation& a, int x, int y, int n, double p_fail, double probe_work) {
+    for (int i = 0; i < n; ++i) {
+        PilotSample s;
+        s.add_connection(1.0, 1.0, 1.0, 1.0, 1e-3, 1.0);
+        s.add_probe(1.0, 1.0, 1.0, p_fail, 1.0);
+        s.work_connect = 1.0;
+        s.work_probe = probe_work;
+        a.add(x, y, s, 1.0 + 0.5 * (i % 2), 2.0 + probe_work);
+    }
+}
+}  // namespace
+
+// With the third kind allowed, a region runs the trials beside failed straight walks too where
+// BSDF sampling hardly finds what they find and they cost little, and not where it finds those
+// paths as often or they cost far more; never without the choice.
+TEST(ConnectionAllocation, RegionsRunTrialsBesideFailedWalksWhereTheyPay) {
+    for (bool allowed : {true, false}) {
+        ConnectionAllocation a(48, 16, 0, 0, 16, 1.0, TrialAllocation::Learned, WorkPrice::Region, allowed);
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x) {
+                feed_probes(a, x, y, 4, 1e-3, 1.0);       // rare for BSDF sampling, cheap trials
+                feed_probes(a, x + 16, y, 4, 1.0, 1.0);   // BSDF sampling finds them as often
+                feed_probes(a, x + 32, y, 4, 1e-3, 1e5);  // trials far too costly
+            }
+        a.fit();
+        EXPECT_EQ(a.failed_walk_trials(5, 5), allowed);
+        EXPECT_TRUE(a.surface_trials(5, 5));
+        EXPECT_FALSE(a.failed_walk_trials(20, 5));
+        EXPECT_FALSE(a.failed_walk_trials(40, 5));
+        EXPECT_EQ(a.regions_with_failed_walk_trials(), allowed ? 1u : 0u);
+    }
+    // Only a learned trial allocation offers it.
+    ConnectionAllocation always(16, 16, 0, 0, 16, 1.0, TrialAllocation::Always, WorkPrice::Region, true);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) feed_probes(always, x, y, 4, 1e-3, 1.0);
+    always.fit();
+    EXPECT_FALSE(always.failed_walk_trials(5, 5));
 }
 
 // Regions are squares of the full film: a crop chooses as the full film does in every region

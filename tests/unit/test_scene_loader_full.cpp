@@ -319,6 +319,14 @@ TEST(SceneLoaderFull, MneeDefaultsAndSurfaceWeight) {
     expect_error(scene_with("<integrator type=\"mnee\">\n<float name=\"surface_weight\" value=\"1\"/><float "
                             "name=\"failed_walk_weight\" value=\"0.5\"/></integrator>"),
                  "test.xml:4", "failed_walk_weight weighs the surface solutions where the straight walk fails");
+    EXPECT_TRUE(def.failed_walk_trials);
+    EXPECT_FALSE(settings(R"(<string name="failed_walk_trials" value="never"/>)").failed_walk_trials);
+    expect_error(scene_with("<integrator type=\"mnee\">\n<string name=\"trial_allocation\" value=\"always\"/><string "
+                            "name=\"failed_walk_trials\" value=\"learned\"/></integrator>"),
+                 "test.xml:4", "failed_walk_trials lets each region choose");
+    expect_error(scene_with("<integrator type=\"mnee\">\n<float name=\"failed_walk_weight\" value=\"1\"/><string "
+                            "name=\"failed_walk_trials\" value=\"learned\"/></integrator>"),
+                 "test.xml:4", "failed_walk_trials lets each region choose");
     const MneeSettings keyed = settings(R"(<string name="solutions" value="keyed"/>)");
     EXPECT_EQ(keyed.solutions, MneeSolutions::Keyed);
     EXPECT_EQ(keyed.seeding, MneeSeeding::StraightAndSurface);

@@ -24,6 +24,19 @@ int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
 double finite_or_zero(double v) { return std::isfinite(v) ? v : 0.0; }
 
+// The power heuristic's second moment of a path of integrand f at candidate q, technique by
+// technique (PilotSample::add_path): MNEE weighs it by a = q p_m and draws it with density q p_s
+// (counted n times), the other techniques with p_other; `pilot` is the pilot's own density of the
+// path, over which every pilot sample estimates the other techniques' share.
+double second_moment(double f, double n, double a, double q, double p_s, double p_other, double pilot, double q_pilot,
+                     bool own) {
+    const double sum = a * a + p_other * p_other;
+    if (!(sum > 0)) return 0.0;
+    double m = n * f * f * p_other * p_other * p_other / (sum * sum * pilot);
+    if (own && a > 0) m += n * n * f * f * a * a * a * a / (sum * sum * q * p_s * q_pilot * p_s);
+    return finite_or_zero(m);
+}
+
 }  // namespace
 
 void PilotSample::add_path(double f, double n, double p_m, double p_s, double p_other, double q_pilot, bool surface,
@@ -39,17 +52,14 @@ void PilotSample::add_path(double f, double n, double p_m, double p_s, double p_
     // (its counts N are theirs).
     const double pilot = q_pilot * p_s + p_other;
     const auto second = [&](double q, double pm) {
-        const double a = q * pm, sum = a * a + p_other * p_other;
-        if (!(sum > 0)) return 0.0;
-        double m = n * f * f * p_other * p_other * p_other / (sum * sum * pilot);
-        if (own && a > 0) m += n * n * f * f * a * a * a * a / (sum * sum * q * p_s * q_pilot * p_s);
-        return finite_or_zero(m);
+        return second_moment(f, n, q * pm, q, p_s, p_other, pilot, q_pilot, own);
     };
     for (int j = 0; j < kCandidateCount; ++j) {
         const double q = kConnectCandidates[size_t(j)];
         m2[size_t(j)] += second(q, p_m);
         // Without surface trials their paths have MNEE density 0.
         m2_no_trials[size_t(j)] += second(q, surface ? 0.0 : p_m);
+        m2_failed_walk[size_t(j)] += second(q, p_m);
     }
     if (surface && !(p_other > 0)) needs_trials = true;
     m2_pilot += finite_or_zero(realized * realized);
@@ -68,14 +78,22 @@ void PilotSample::add_other(double value, double p_t, double p_m, double weight,
              value * power_heuristic(p_t, {q_pilot * p_m, p_other - p_t}));
 }
 
-void PilotSample::add_common(double f, double n, double p_s, double p_other, double q_pilot, double realized) {
+void PilotSample::add_common(double f, double n, double p_s, double p_other, double q_pilot, bool own,
+                             double realized) {
     m2_pilot += finite_or_zero(realized * realized);
-    if (!(f > 0) || !std::isfinite(f) || !(p_s > 0) || !(p_other > 0)) return;
-    // BSDF sampling's share, f^2 / p_other, under every candidate, estimated over the pilot's
-    // density of the path (the probes' and the other techniques'): where BSDF sampling finds
-    // these paths rarely (near a fold, where the straight walk fails) its own hits are too few in
-    // a pilot to show their variance, and the region would take a costly q for nothing.
-    const double m = finite_or_zero(n * f * f / (p_other * (q_pilot * p_s + p_other)));
+    if (!(f > 0) || !std::isfinite(f) || !(p_s > 0)) return;
+    const double pilot = q_pilot * p_s + p_other;
+    for (int j = 0; j < kCandidateCount; ++j) {
+        // The third kind gives them to MNEE at density q p_s (weight 1).
+        const double q = kConnectCandidates[size_t(j)];
+        m2_failed_walk[size_t(j)] += second_moment(f, n, q * p_s, q, p_s, p_other, pilot, q_pilot, own);
+    }
+    if (!(p_other > 0)) return;
+    // BSDF sampling's share, f^2 / p_other, under every other candidate, estimated over the
+    // pilot's density of the path (the probes' and the other techniques'): where BSDF sampling
+    // finds these paths rarely (near a fold, where the straight walk fails) its own hits are too
+    // few in a pilot to show their variance, and the region would take a costly q for nothing.
+    const double m = finite_or_zero(n * f * f / (p_other * pilot));
     for (int j = 0; j < kCandidateCount; ++j) {
         m2[size_t(j)] += m;
         m2_no_trials[size_t(j)] += m;
@@ -83,15 +101,15 @@ void PilotSample::add_common(double f, double n, double p_s, double p_other, dou
 }
 
 void PilotSample::add_probe(double value, double count, double p_s, double p_other, double q_pilot) {
-    add_common(value / count * p_s, count, p_s, p_other, q_pilot, 0.0);
+    add_common(value / count * p_s, count, p_s, p_other, q_pilot, /*own=*/true, 0.0);
 }
 
 void PilotSample::add_probe_other(double value, double p_t, double p_s, double p_other, double q_pilot) {
-    add_common(value * p_t, 1.0, p_s, p_other, q_pilot, value * power_heuristic(p_t, {p_other - p_t}));
+    add_common(value * p_t, 1.0, p_s, p_other, q_pilot, /*own=*/false, value * power_heuristic(p_t, {p_other - p_t}));
 }
 
 ConnectionAllocation::ConnectionAllocation(int width, int height, int crop_x, int crop_y, int block, double q_pilot,
-                                           TrialAllocation trials, WorkPrice price)
+                                           TrialAllocation trials, WorkPrice price, bool failed_walk_kind)
     : m_width(width),
       m_height(height),
       m_crop_x(crop_x),
@@ -100,6 +118,7 @@ ConnectionAllocation::ConnectionAllocation(int width, int height, int crop_x, in
       m_q_pilot(q_pilot),
       m_trial_allocation(trials),
       m_price(price),
+      m_failed_walk_kind(failed_walk_kind && trials == TrialAllocation::Learned),
       m_pixels(size_t(std::max(0, width)) * size_t(std::max(0, height))) {
     m_rx0 = floor_div(crop_x, m_block);
     m_ry0 = floor_div(crop_y, m_block);
@@ -130,6 +149,11 @@ bool ConnectionAllocation::surface_trials(int x, int y) const {
     return !m_fitted || r < 0 || m_trials[size_t(r)] != 0;
 }
 
+bool ConnectionAllocation::failed_walk_trials(int x, int y) const {
+    const int r = region_of(x, y);
+    return m_fitted && r >= 0 && m_trials[size_t(r)] == 2;
+}
+
 void ConnectionAllocation::add(int x, int y, const PilotSample& s, double value, double work) {
     const int lx = x - m_crop_x, ly = y - m_crop_y;
     if (m_fitted || lx < 0 || ly < 0 || lx >= m_width || ly >= m_height) return;
@@ -137,10 +161,12 @@ void ConnectionAllocation::add(int x, int y, const PilotSample& s, double value,
     bool finite = std::isfinite(value) && std::isfinite(s.m2_pilot);
     for (double m : s.m2) finite = finite && std::isfinite(m);
     for (double m : s.m2_no_trials) finite = finite && std::isfinite(m);
+    for (double m : s.m2_failed_walk) finite = finite && std::isfinite(m);
     if (!finite) return;  // the film drops such a sample too
     for (int j = 0; j < kCandidateCount; ++j) {
         p.m2[size_t(j)] += s.m2[size_t(j)];
         p.m2_no_trials[size_t(j)] += s.m2_no_trials[size_t(j)];
+        p.m2_failed_walk[size_t(j)] += s.m2_failed_walk[size_t(j)];
     }
     p.m2_pilot += s.m2_pilot;
     p.sum += value;
@@ -187,7 +213,7 @@ std::vector<std::array<int, 4>> ConnectionAllocation::lattice_outside(int x0, in
 }
 
 namespace {
-constexpr size_t kPilotValues = 2 * kCandidateCount + 12;  // PixelStats as doubles
+constexpr size_t kPilotValues = 3 * kCandidateCount + 12;  // PixelStats as doubles
 }  // namespace
 
 std::vector<double> ConnectionAllocation::pilot_state() const {
@@ -198,8 +224,9 @@ std::vector<double> ConnectionAllocation::pilot_state() const {
         for (int j = 0; j < kCandidateCount; ++j) {
             d[j] = p.m2[size_t(j)];
             d[kCandidateCount + j] = p.m2_no_trials[size_t(j)];
+            d[2 * kCandidateCount + j] = p.m2_failed_walk[size_t(j)];
         }
-        d += 2 * kCandidateCount;
+        d += 3 * kCandidateCount;
         d[0] = p.m2_pilot;
         d[1] = p.sum;
         d[2] = p.sum2;
@@ -224,8 +251,9 @@ void ConnectionAllocation::set_pilot_state(const std::vector<double>& v) {
         for (int j = 0; j < kCandidateCount; ++j) {
             p.m2[size_t(j)] = d[j];
             p.m2_no_trials[size_t(j)] = d[kCandidateCount + j];
+            p.m2_failed_walk[size_t(j)] = d[2 * kCandidateCount + j];
         }
-        d += 2 * kCandidateCount;
+        d += 3 * kCandidateCount;
         p.m2_pilot = d[0];
         p.sum = d[1];
         p.sum2 = d[2];
@@ -244,8 +272,10 @@ void ConnectionAllocation::set_pilot_state(const std::vector<double>& v) {
 void ConnectionAllocation::fit() {
     if (m_fitted) return;
     const size_t regions = m_choice.size();
-    // Candidates: (with trials, q_j) then (without, q_j); with first, so that a tie keeps them.
-    constexpr int kKinds = 2;
+    // Candidates: (with trials, q_j), (without, q_j), then (with trials beside failed straight
+    // walks too, q_j); with first, so that a tie keeps them, and the third only where it is
+    // strictly better.
+    constexpr int kKinds = 3;
     using PerCandidate = std::array<std::array<double, kCandidateCount>, kKinds>;
     std::vector<PerCandidate> variance(regions), work(regions);
     std::vector<bool> needs_mnee(regions, false), needs_trials(regions, false);
@@ -291,8 +321,10 @@ void ConnectionAllocation::fit() {
             const double mean = p.sum / n;
             const double weight = mean > level[r] && level[r] > 0 ? sqr(level[r] / mean) : 1.0;
             for (int kind = 0; kind < kKinds; ++kind) {
-                const auto& m2 = kind == 0 ? p.m2 : p.m2_no_trials;
-                const double connect = p.work_connect - (kind == 0 ? 0.0 : p.work_trials);
+                const auto& m2 = kind == 0 ? p.m2 : kind == 1 ? p.m2_no_trials : p.m2_failed_walk;
+                // The third kind's extra trials are the pilot's probes (made at the pilot's q).
+                const double connect =
+                    p.work_connect - (kind == 1 ? p.work_trials : 0.0) + (kind == 2 ? p.work_probe : 0.0);
                 for (int j = 0; j < kCandidateCount; ++j) {
                     const double q = kConnectCandidates[size_t(j)];
                     variance[r][size_t(kind)][size_t(j)] += weight * (rest + m2[size_t(j)] / n);
@@ -315,7 +347,7 @@ void ConnectionAllocation::fit() {
     const auto choose = [&](size_t r, auto cost) {
         const std::array<bool, kKinds> allowed = {
             m_trial_allocation != TrialAllocation::Never,
-            m_trial_allocation == TrialAllocation::Never || (learned && !needs_trials[r])};
+            m_trial_allocation == TrialAllocation::Never || (learned && !needs_trials[r]), m_failed_walk_kind};
         double vmax = 0;
         for (int kind = 0; kind < kKinds; ++kind)
             if (allowed[size_t(kind)])
@@ -335,10 +367,11 @@ void ConnectionAllocation::fit() {
                 }
             }
         }
-        const bool changed = m_choice[r] != best || m_trials[r] != int8_t(best_kind == 0 ? 1 : 0);
+        const int8_t trials = int8_t(best_kind == 0 ? 1 : best_kind == 1 ? 0 : 2);
+        const bool changed = m_choice[r] != best || m_trials[r] != trials;
         m_choice[r] = int8_t(best);
         // q = 0 makes no connection: whether it would run trials does not matter.
-        m_trials[r] = int8_t(best_kind == 0 ? 1 : 0);
+        m_trials[r] = trials;
         return changed;
     };
     // Variance x work is a region's inverse efficiency; where the pilot saw no variance at all
@@ -375,7 +408,7 @@ void ConnectionAllocation::fit() {
                 double sv = 0, sw = 0;
                 for (size_t r = 0; r < regions; ++r)
                     if (in_lattice(r)) {
-                        const size_t kind = m_trials[r] ? 0 : 1, j = size_t(m_choice[r]);
+                        const size_t kind = m_trials[r] == 1 ? 0 : m_trials[r] == 0 ? 1 : 2, j = size_t(m_choice[r]);
                         sv += rho[r] * variance[r][kind][j];
                         sw += work[r][kind][j];
                     }
@@ -390,6 +423,12 @@ void ConnectionAllocation::fit() {
     }
     m_fitted = true;
     m_pixels = {};
+}
+
+uint64_t ConnectionAllocation::regions_with_failed_walk_trials() const {
+    uint64_t n = 0;
+    for (size_t r = 0; r < m_choice.size(); ++r) n += m_choice[r] > 0 && m_trials[r] == 2;
+    return n;
 }
 
 uint64_t ConnectionAllocation::regions_without_trials() const {

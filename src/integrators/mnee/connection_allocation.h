@@ -48,6 +48,9 @@ struct PilotSample {
     std::array<double, kCandidateCount> m2{};
     /// The same without surface trials: the surface trials' paths at MNEE density 0.
     std::array<double, kCandidateCount> m2_no_trials{};
+    /// The same with the surface trials beside failed straight walks too, their finds weighed 1:
+    /// the probes' paths at MNEE density q p_s (ConnectionAllocation's third kind).
+    std::array<double, kCandidateCount> m2_failed_walk{};
     double m2_pilot = 0;      ///< the squares of the paths' contributions under the pilot's q
     double work_connect = 0;  ///< work of the MNEE connections made (at the pilot's q)
     double work_trials = 0;   ///< ... of which their surface trials
@@ -85,9 +88,10 @@ private:
     /// contribution to the pilot's sample.
     void add_path(double f, double n, double p_m, double p_s, double p_other, double q_pilot, bool surface, bool own,
                   double realized);
-    /// A path of integrand f that no candidate gives to MNEE, drawn by the probes (counted n
-    /// times) or another technique (n = 1), which the probes find with density p_s.
-    void add_common(double f, double n, double p_s, double p_other, double q_pilot, double realized);
+    /// A path of integrand f that only the third kind gives to MNEE, drawn by the probes
+    /// (`own`, counted n times) or another technique (n = 1), which the probes find with
+    /// density p_s.
+    void add_common(double f, double n, double p_s, double p_other, double q_pilot, bool own, double realized);
 };
 
 class ConnectionAllocation {
@@ -99,8 +103,11 @@ public:
     /// runs them (Always) or none does (Never).
     /// `price`: whether each region pays the image's price for its work (Image) or its own
     /// (Region: least variance x work, region by region).
+    /// `failed_walk_kind`: with learned trials, a region may also choose to run them beside
+    /// failed straight walks, their finds weighed 1 (the pilot's probes tell their variance).
     ConnectionAllocation(int width, int height, int crop_x, int crop_y, int block, double q_pilot,
-                         TrialAllocation trials = TrialAllocation::Always, WorkPrice price = WorkPrice::Region);
+                         TrialAllocation trials = TrialAllocation::Always, WorkPrice price = WorkPrice::Region,
+                         bool failed_walk_kind = false);
 
     bool learning() const { return !m_fitted; }
     double q_pilot() const { return m_q_pilot; }
@@ -108,6 +115,8 @@ public:
     double q(int x, int y) const;
     /// Whether a sample of full-film pixel (x, y) runs the surface trials: always while learning.
     bool surface_trials(int x, int y) const;
+    /// Whether it runs them beside failed straight walks too: never while learning.
+    bool failed_walk_trials(int x, int y) const;
     /// One pilot sample of full-film pixel (x, y): what it recorded, its value (mean over
     /// wavelengths) and its whole work. Only the thread rendering the pixel may call this.
     void add(int x, int y, const PilotSample& s, double value, double work);
@@ -138,12 +147,14 @@ public:
     std::array<uint64_t, kCandidateCount> histogram() const;
     /// Regions that run no surface trials, for the statistics.
     uint64_t regions_without_trials() const;
+    /// Regions that run the trials beside failed straight walks too, for the statistics.
+    uint64_t regions_with_failed_walk_trials() const;
     /// The candidate index chosen by the region of full-film pixel (x, y) (-1 while learning).
     int choice(int x, int y) const;
 
 private:
     struct PixelStats {
-        std::array<double, kCandidateCount> m2{}, m2_no_trials{};
+        std::array<double, kCandidateCount> m2{}, m2_no_trials{}, m2_failed_walk{};
         double m2_pilot = 0;
         double sum = 0, sum2 = 0;  ///< the samples' values and squares
         double work = 0, work_connect = 0, work_trials = 0, work_density = 0, work_seed = 0, work_probe = 0;
@@ -157,10 +168,13 @@ private:
     double m_q_pilot;
     TrialAllocation m_trial_allocation;
     WorkPrice m_price;
+    bool m_failed_walk_kind;
     bool m_fitted = false;
     std::vector<PixelStats> m_pixels;  ///< freed by fit()
     std::vector<int8_t> m_choice;      ///< per region
-    std::vector<int8_t> m_trials;      ///< per region: runs the surface trials
+    /// per region: 0 no surface trials, 1 the trials (beside converged straight walks where
+    /// surface solutions are weighed apart), 2 the trials beside failed straight walks too
+    std::vector<int8_t> m_trials;
 };
 
 }  // namespace snell

@@ -26,7 +26,8 @@ public:
         // Regions may do without the surface trials only where their solutions are weighed apart.
         m_allocation = std::make_unique<ConnectionAllocation>(
             film.out_width(), film.out_height(), film.crop_x, film.crop_y, st.allocation_block, st.connect_probability,
-            st.splits_surface_solutions() ? st.trial_allocation : TrialAllocation::Always, st.work_price);
+            st.splits_surface_solutions() ? st.trial_allocation : TrialAllocation::Always, st.work_price,
+            st.splits_surface_solutions() && st.failed_walk_trials && !(st.failed_walk_weight > 0));
     }
 
     SampleEstimate li_splat(const CameraSample& cs, const Ray& ray, const Scene& scene, Sampler& sampler,
@@ -35,7 +36,8 @@ public:
         const int x = int(std::floor(cs.pixel_centre.x)), y = int(std::floor(cs.pixel_centre.y));
         const double q = m_allocation->q(x, y);
         const bool trials = m_allocation->surface_trials(x, y);
-        if (!m_allocation->learning()) return path(scene, cs, ray, q, nullptr, trials).trace(sampler);
+        if (!m_allocation->learning())
+            return path(scene, cs, ray, q, nullptr, trials, m_allocation->failed_walk_trials(x, y)).trace(sampler);
         // A pilot sample: its pixel's statistics are written by the one thread rendering it.
         PilotSample record;
         const double w0 = work_so_far();
@@ -49,6 +51,7 @@ public:
         const auto h = m_allocation->histogram();
         for (size_t j = 0; j < h.size(); ++j) walk_counters::allocation_regions.add(int64_t(j), h[j]);
         walk_counters::allocation_regions_without_trials += m_allocation->regions_without_trials();
+        walk_counters::allocation_regions_failed_walk_trials += m_allocation->regions_with_failed_walk_trials();
     }
     bool learning() const override { return m_allocation && m_allocation->learning(); }
     uint64_t pilot_samples() const override { return m_allocation ? m_pilot_spp : 0; }
@@ -73,9 +76,10 @@ public:
     std::vector<std::string> technique_names() const override { return path_technique_names(); }
 
 private:
-    MneePath path(const Scene& scene, const CameraSample& cs, const Ray& ray, double q, PilotSample* pilot,
-                  bool trials) const {
-        return MneePath(scene, m_mnee.settings(), m_mnee.mnee_settings(), cs.wl, ray, nullptr, q, pilot, trials);
+    MneePath path(const Scene& scene, const CameraSample& cs, const Ray& ray, double q, PilotSample* pilot, bool trials,
+                  bool failed_walk_trials = false) const {
+        return MneePath(scene, m_mnee.settings(), m_mnee.mnee_settings(), cs.wl, ray, nullptr, q, pilot, trials,
+                        failed_walk_trials);
     }
 
     const MneeIntegrator& m_mnee;

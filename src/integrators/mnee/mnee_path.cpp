@@ -33,7 +33,8 @@ StatMoments by_vertex[] = {
 }  // namespace
 
 MneePath::MneePath(const Scene& scene, const PathSettings& path, const MneeSettings& mnee, const SampledWavelengths& wl,
-                   const Ray& camera_ray, PathObserver* observer, double q, PilotSample* pilot, bool surface_trials)
+                   const Ray& camera_ray, PathObserver* observer, double q, PilotSample* pilot, bool surface_trials,
+                   bool failed_walk_trials)
     : m_scene(&scene),
       m_path(&path),
       m_mnee(&mnee),
@@ -43,6 +44,7 @@ MneePath::MneePath(const Scene& scene, const PathSettings& path, const MneeSetti
       m_q(q),
       m_pilot(pilot),
       m_surface_trials(surface_trials),
+      m_failed_walk_trials(failed_walk_trials),
       // Delta lights keep q = 1 in every region (ManifoldTechnique::connect), so NEE at a rough
       // interface is weighed against MNEE for them even where q = 0.
       m_weighs_mnee(q != 0 || scene.has_delta_lights()) {
@@ -102,6 +104,7 @@ void MneePath::connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSD
     query.meter_work = m_pilot != nullptr;
     query.probes = m_pilot != nullptr;
     query.surface_trials = m_surface_trials;
+    query.failed_walk_trials = m_failed_walk_trials;
     query.directions = &m_walk.directions();
     const ManifoldConnection c = m_technique.connect(query, sampler);
     // q = 0 would have made one shadow ray in place of the seed (ManifoldTechnique::connect).
@@ -272,7 +275,7 @@ double MneePath::mnee_density(bool last_refracts, const Light& light, double pmf
     }
     const double w0 = m_pilot ? work_so_far() : 0.0;
     const double d = m_technique.density(s.xb, *s.xb.bsdf(), s.chain.data(), s.k, light, pmf, p, n, m_ctx.hero(),
-                                         m_surface_trials, detail);
+                                         m_surface_trials, detail, m_failed_walk_trials);
     // A cut density's work is charged as if it ran, so that the allocation chooses as without
     // the cutoff: charged only at the pilot's q, the walks looked cheap at small q, and the balls
     // on a plane walked in more regions, where walks do not pay (docs/mnee.md, "The MIS cutoff").

@@ -17,9 +17,11 @@ class MneePath {
 public:
     /// `q`: the connection probability of this sample's region (ConnectionAllocation; < 0:
     /// MneeSettings::connect_probability); `surface_trials`: whether the region runs the surface
-    /// trials. `pilot`: the allocation's pilot records this sample.
+    /// trials, `failed_walk_trials` whether also beside failed straight walks (ManifoldQuery).
+    /// `pilot`: the allocation's pilot records this sample.
     MneePath(const Scene& scene, const PathSettings& path, const MneeSettings& mnee, const SampledWavelengths& wl,
-             const Ray& camera_ray, PathObserver* observer, double q, PilotSample* pilot, bool surface_trials = true);
+             const Ray& camera_ray, PathObserver* observer, double q, PilotSample* pilot, bool surface_trials = true,
+             bool failed_walk_trials = false);
 
     /// The sample's radiance (all randomness from `sampler`).
     SampleEstimate trace(Sampler& sampler);
@@ -76,6 +78,7 @@ private:
     double m_q;
     PilotSample* m_pilot;
     bool m_surface_trials;
+    bool m_failed_walk_trials;
     /// Whether any MIS weight reads MNEE's density: q != 0, or a delta light in the scene. Where
     /// neither, no connection competes with BSDF sampling or with NEE at a rough interface, their
     /// weights are the path tracer's, and the suffix keeps only its counters (docs/experiments.md,
