@@ -66,7 +66,7 @@ MneeSettings fallback_settings() {
 
 // One light sample's solutions (an empty set when the straight seed does not refract).
 SolutionSet solve(const Scene& scene, const SurfaceInteraction& xb, const MneeSettings& st, Sampler& smp,
-                  LightPoint* lp_out = nullptr, bool surface_trials = true) {
+                  LightPoint* lp_out = nullptr, bool surface_trials = true, bool failed_walk_trials = false) {
     const Light& light = *scene.lights()[0];
     const SampledWavelengths wl = SampledWavelengths::single(550);
     const auto ls = light.sample_li({xb.p, xb.n}, smp.next_2d(), wl);
@@ -84,6 +84,7 @@ SolutionSet solve(const Scene& scene, const SurfaceInteraction& xb, const MneeSe
                           /*straight_seed=*/status == SeedStatus::Refractive};
     ManifoldQuery query = q;
     query.surface_trials = surface_trials;
+    query.failed_walk_trials = failed_walk_trials;
     return ManifoldTechnique(scene, st).solve(query, light, 1.0, lp, chain, smp);
 }
 
@@ -580,6 +581,42 @@ TEST(ManifoldSolutions, FailedWalkWeightCountsTheTrialsWhereTheStraightWalkFails
         });
     std::cout << "[failed_walk_weight] surface solutions beside a failed straight walk: " << failed
               << ", beside a converged one: " << converged << "\n";
+    EXPECT_GE(failed, 40);
+}
+
+// A region that chose the trials beside failed straight walks (ConnectionAllocation's third
+// kind, failed_walk_trials) weighs their finds 1 with failed_walk_weight 0, in solve() and in
+// density() told the same; a region that did not gives those paths 0. Telling only one side
+// fails here.
+TEST(ManifoldSolutions, ARegionsFailedWalkTrialsWeighTheirFindsAlikeInSolveAndDensity) {
+    MneeSettings st = weighted_unbiased();
+    st.walk.max_iterations = 3;
+    ASSERT_EQ(st.failed_walk_weight, 0.0);
+    WeightedReceiver r(st, 13);
+    const Light& light = *r.scene.lights()[0];
+    int failed = 0;
+    for (int n = 0; n < 6000 && failed < 40; ++n) {
+        LightPoint lp;
+        for (const ManifoldSolution& s :
+             solve(r.scene, r.xb, st, r.smp, &lp, true, /*failed_walk_trials=*/true).solutions) {
+            if (!s.from_surface) continue;
+            const std::vector<SurfaceInteraction> path = path_of(s);
+            const auto density = [&](bool failed_walk_trials) {
+                return r.technique.density(r.xb, *r.xb.bsdf(), path.data(), int(path.size()), light, 1.0, lp.p, lp.n,
+                                           550, true, nullptr, failed_walk_trials);
+            };
+            const double d_full = density_of(r.sms, r.scene, r.xb, path, lp);
+            const bool straight = straight_walk_converges(r.scene, st, r.xb, path, lp);
+            const double c = straight ? 0.03 : 1.0;
+            EXPECT_EQ(s.weight, c);
+            EXPECT_NEAR(density(true), s.density, 1e-5 * s.density);
+            EXPECT_NEAR(density(true), c * d_full, 1e-9 * d_full);
+            if (!straight) {
+                EXPECT_EQ(density(false), 0.0);
+                ++failed;
+            }
+        }
+    }
     EXPECT_GE(failed, 40);
 }
 
