@@ -1,8 +1,10 @@
 #include "manifold/fallback_estimator.h"
 
+#include "geometry/shape.h"
 #include "manifold/seed_path.h"
 #include "manifold/surface_seed.h"
 #include "manifold/walk_counters.h"
+#include "scene/scene.h"
 
 namespace snell {
 
@@ -18,8 +20,9 @@ void FallbackEstimator::solve(const ManifoldQuery& q, const BSDFContext& ctx, in
     // Blocked: the surface seeds run, their solutions counted as the unbiased estimator counts them.
     const Foreign none = [](const std::vector<ManifoldVertex>&) { return false; };
     PCG32 rng = trial_stream(sampler);
-    for (const Shape* caster : manifold_casters(*m_scene, ctx.hero()))
-        count_trials_to_refind(q, ctx, slot, light, pmf, lp, *caster, rng, draws, max_k, none, before, out);
+    for (const Shape* caster : m_scene->manifold_casters())
+        if (is_manifold_interface(caster->bsdf(), ctx.hero()))
+            count_trials_to_refind(q, ctx, slot, light, pmf, lp, *caster, rng, draws, max_k, none, before, out);
     walk_counters::solutions_per_connection.add(uint32_t(out.solutions.size() - before));
 }
 

@@ -6,6 +6,7 @@
 #include "manifold/seed_path.h"
 #include "manifold/surface_seed.h"
 #include "manifold/walk_counters.h"
+#include "scene/scene.h"
 
 namespace snell {
 
@@ -22,8 +23,9 @@ void KeyedTrialsEstimator::solve(const ManifoldQuery& q, const BSDFContext& ctx,
     HalfVectorDraws draws(sampler);
     if (q.straight_seed && walks_straight_seed())
         add_solution(q, ctx, slot, light, pmf, lp, seed, draws, max_k, false, true, out);
-    const std::vector<const Shape*> casters = manifold_casters(*m_scene, ctx.hero());
+    const std::vector<const Shape*>& casters = m_scene->manifold_casters();
     for (size_t c = 0; c < casters.size(); ++c) {
+        if (!is_manifold_interface(casters[c]->bsdf(), ctx.hero())) continue;
         PCG32 rng = keyed_trial_stream(q.xb->p, lp.p, ctx.hero(), c);
         for (int j = 0; j < m_settings->trials; ++j) {
             // Traced about the shading normals and chosen without max_k, so that density()
@@ -66,8 +68,9 @@ double KeyedTrialsEstimator::density(const SurfaceInteraction& xb, const BSDF& b
     LightPoint lp;
     lp.p = xc;
     lp.n = nc;
-    const std::vector<const Shape*> casters = manifold_casters(*m_scene, lambda);
+    const std::vector<const Shape*>& casters = m_scene->manifold_casters();
     for (size_t c = 0; c < casters.size(); ++c) {
+        if (!is_manifold_interface(casters[c]->bsdf(), lambda)) continue;
         PCG32 rng = keyed_trial_stream(xb.p, xc, lambda, c);
         for (int j = 0; j < m_settings->trials; ++j) {
             std::vector<ManifoldVertex> found;

@@ -22,7 +22,7 @@ public:
                    const Light& light, double pmf, const Vec3& xc, const Vec3& nc, double lambda) const;
 };
 
-/// The keyed trials' stream on caster number `caster` (in manifold_casters' order) for the
+/// The keyed trials' stream on caster number `caster` (in Scene::manifold_casters' order) for the
 /// connection x_b -> x_c at wavelength `lambda`: a function of those alone.
 PCG32 keyed_trial_stream(const Vec3& xb, const Vec3& xc, double lambda, size_t caster);
 

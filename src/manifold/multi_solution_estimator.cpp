@@ -5,6 +5,7 @@
 #include "manifold/surface_seed.h"
 #include "manifold/walk_counters.h"
 #include "manifold/work_meter.h"
+#include "scene/scene.h"
 
 namespace snell {
 
@@ -39,10 +40,16 @@ void MultiSolutionEstimator::solve(const ManifoldQuery& q, const BSDFContext& ct
             if (chain[i].shape != seed[i].shape || chain[i].reflect) return true;
         return false;
     };
+    // A trial's chain starts on the caster it drew a point on (trace_surface_seed), so where
+    // only the straight seed's shapes count, only its first shape's trials can find one: the
+    // other casters' would all be foreign. That keeps a scene's other glass from costing every
+    // connection their trials.
+    const Shape* only = weighted && !seed.empty() ? seed.front().shape : nullptr;
     const auto run_trials = [&](size_t first, SolutionSet& into) {
         PCG32 rng = trial_stream(sampler);
-        for (const Shape* caster : manifold_casters(*m_scene, ctx.hero()))
-            trials_on(q, ctx, slot, light, pmf, lp, *caster, rng, draws, max_k, foreign, first, into);
+        for (const Shape* caster : m_scene->manifold_casters())
+            if ((!only || caster == only) && is_manifold_interface(caster->bsdf(), ctx.hero()))
+                trials_on(q, ctx, slot, light, pmf, lp, *caster, rng, draws, max_k, foreign, first, into);
     };
     // Where the straight walk failed the trials' finds weigh failed_walk_weight; at 0 they are
     // BSDF sampling's.

@@ -12,13 +12,6 @@
 
 namespace snell {
 
-std::vector<const Shape*> manifold_casters(const Scene& scene, double lambda) {
-    std::vector<const Shape*> out;
-    for (const auto& s : scene.shapes())
-        if (!s->emitter() && is_manifold_interface(s->bsdf(), lambda)) out.push_back(s.get());
-    return out;
-}
-
 namespace {
 
 // Refraction of the travel direction d about the unit normal m (either orientation) from IOR n1

@@ -24,10 +24,6 @@ enum class SurfaceSeedEnd {
     TooMany,                  ///< more refractive vertices than max_vertices
 };
 
-/// The shapes a manifold chain can lie on: refractive interfaces (is_manifold_interface) that
-/// are not emitters.
-std::vector<const Shape*> manifold_casters(const Scene& scene, double lambda);
-
 /// Draws y on `caster` as seen from x_b (u), traces x_b -> y, and refracts at every refractive
 /// interface hit about the vertex's target half vector (slot i of `draws`: the shading normal for
 /// smooth vertices, and for every vertex without `draws`), until the ray meets anything else or

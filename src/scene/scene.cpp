@@ -157,9 +157,13 @@ void Scene::build() {
     }
     m_light_sampler = LightSampler(m_lights);
     m_refractive_casters.clear();
-    for (const auto& s : m_shapes)
-        if (!s->emitter() && s->bsdf() && s->bsdf()->is_refractive_interface(550.0))
-            m_refractive_casters.push_back(s->bounding_sphere());
+    m_manifold_casters.clear();
+    for (const auto& s : m_shapes) {
+        const BSDF* b = s->emitter() ? nullptr : s->bsdf();
+        if (!b || !b->is_transmissive() || !(b->has_delta() || b->has_microfacet())) continue;
+        m_manifold_casters.push_back(s.get());
+        if (b->is_refractive_interface(550.0)) m_refractive_casters.push_back(s->bounding_sphere());
+    }
     m_bounded_lights.clear();
     double bounded_power = 0, environment_power = 0;
     for (const auto& l : m_lights) {

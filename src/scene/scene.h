@@ -93,6 +93,11 @@ public:
     /// Spheres holding the shapes that refract light (BSDF::is_refractive_interface at 550 nm,
     /// emitters excluded): caster sampling's cones (scene/caster_sampling.h).
     const std::vector<BoundingSphere>& refractive_casters() const { return m_refractive_casters; }
+    /// The shapes a manifold chain can lie on at some wavelength (not emitters; transmissive,
+    /// smooth or microfacet BSDF), in shapes()' order. Whether at a given wavelength:
+    /// is_manifold_interface (the IOR may be 1 there). Built once, so that the surface trials of
+    /// each connection visit the glass alone, not every shape of a large scene.
+    const std::vector<const Shape*>& manifold_casters() const { return m_manifold_casters; }
     /// Where the lights are, for caster sampling's shadow test. Environments are left out where
     /// the other lights outshine them (by Light::power); empty where they do not, or where there
     /// are more than CasterSampling::kMaxLights.
@@ -115,6 +120,7 @@ private:
     std::vector<const Light*> m_infinite;
     bool m_has_delta_lights = false;
     std::vector<BoundingSphere> m_refractive_casters;
+    std::vector<const Shape*> m_manifold_casters;
     std::vector<LightBounds> m_bounded_lights;
     LightSampler m_light_sampler;
     std::shared_ptr<Camera> m_camera;

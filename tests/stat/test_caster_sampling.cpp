@@ -5,9 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "bsdf/bsdf.h"
+#include "geometry/shape.h"
 #include "scene/caster_sampling.h"
+#include "scene/scene.h"
 #include "stat/chi2.h"
 #include "stat/render_stats.h"
 
@@ -208,4 +211,25 @@ TEST(CasterSampling, AimsOnlyAtCastersInFrontOfALight) {
     SurfaceInteraction lit;
     ASSERT_TRUE(ls.scene->intersect(Ray(Vec3(3, 1, -3), Vec3(0, -1, 0)), &lit));
     EXPECT_TRUE(CasterSampling(*ls.scene, c).applies(lit, *lit.bsdf()));
+}
+
+// Scene::manifold_casters (the shapes whose surface trials MNEE runs at every trial connection)
+// holds the glass alone, in shapes()' order: not the diffuse floor, not an emitter with a glass
+// BSDF, not a rough conductor; a rough dielectric is one. Built once at build(), so a scene of
+// thousands of opaque shapes no longer costs each connection a scan of them all.
+TEST(CasterSampling, ManifoldCastersAreTheSceneGlassAlone) {
+    const LoadedScene ls = load_xml(casters_scene(R"(<bsdf type="diffuse"/>)", R"(
+  <shape type="sphere"><point name="center" x="3" y="3" z="0"/><float name="radius" value="0.2"/>
+    <bsdf type="roughdielectric"><float name="alpha" value="0.1"/></bsdf></shape>
+  <shape type="sphere"><point name="center" x="-3" y="3" z="0"/><float name="radius" value="0.2"/>
+    <bsdf type="roughconductor"><float name="alpha" value="0.1"/></bsdf></shape>
+  <shape type="sphere"><point name="center" x="0" y="3" z="-3"/><float name="radius" value="0.2"/>
+    <bsdf type="dielectric"/><emitter type="area"><rgb name="radiance" value="1, 1, 1"/></emitter></shape>)"));
+    const Scene& scene = *ls.scene;
+    std::vector<const Shape*> glass;
+    for (const auto& s : scene.shapes())
+        if (!s->emitter() && s->bsdf() && s->bsdf()->is_refractive_interface(550.0)) glass.push_back(s.get());
+    ASSERT_EQ(glass.size(), 5u);  // the four spheres and the rough one
+    EXPECT_EQ(scene.manifold_casters(), glass);
+    EXPECT_EQ(scene.refractive_casters().size(), glass.size());
 }

@@ -899,7 +899,7 @@ TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
     IndependentSampler smp(3);
     smp.start_pixel_sample(0, 0, 0);
     const LightPoint lp = first_light_point(scene, xb, smp);
-    const Shape* glass = manifold_casters(scene, 550).at(0);
+    const Shape* glass = scene.manifold_casters().at(0);
 
     // Basins: a 300 x 300 grid of seeds (cell centres), each walked to its solution.
     MneeSettings st = all_solutions(1);
@@ -1214,4 +1214,58 @@ TEST(ManifoldSolutions, ReflectionsMatchBruteForceBehindAGlassSphere) {
     }
     std::cout << "[reflections] found " << found << " of " << count << " exact paths\n";
     EXPECT_EQ(size_t(std::count(matched.begin(), matched.end(), true)), count) << "an exact path not found";
+}
+
+// Beside a clear straight seed only chains on the seed's shapes are the technique's, and a
+// trial's chain starts on the caster it drew, so the trials run on the seed's first shape alone.
+// Another glass sphere elsewhere in the scene (listed first, inside the scene's bounds so that no
+// tolerance moves) then changes no solution and no count at any receiver: with trials on every
+// caster its trials drew from the same stream first, and every count past them changed.
+TEST(ManifoldSolutions, OtherGlassLeavesTheSolutionsBesideAClearSeedAlone) {
+    const LoadedScene one = glass_sphere();
+    const LoadedScene two = load_xml(R"(<scene version="3.0.0"><integrator type="mnee"/>
+  <sensor type="perspective"><transform name="to_world"><lookat origin="0,3,5" target="0,0,0" up="0,1,0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>
+  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><scale value="10"/></transform></shape>
+  <shape type="sphere"><point name="center" x="7" y="1" z="7"/><float name="radius" value="0.5"/>
+    <bsdf type="dielectric"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/></bsdf></shape>
+  <shape type="sphere"><point name="center" x="0" y="1" z="0"/><float name="radius" value="1"/>
+    <bsdf type="dielectric"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/></bsdf></shape>
+  <emitter type="point"><point name="position" x="-3" y="6" z="-2"/><rgb name="intensity" value="40, 40, 40"/></emitter>
+</scene>)");
+    ASSERT_EQ(two.scene->manifold_casters().size(), 2u);
+    ASSERT_EQ(length(one.scene->bounds().extent() - two.scene->bounds().extent()), 0.0);
+    const Vec3 at = glass_receiver_with_most_paths().at;
+    const SampledWavelengths wl = SampledWavelengths::single(550);
+    int from_surface = 0, compared = 0;
+    for (int r = 0; r < 24; ++r) {
+        // Receivers on a line through the caustic's fold, in the sphere's shadow.
+        const double x = at.x + 0.05 * (r - 12), z = at.z + 0.03 * (r - 12);
+        std::vector<SolutionSet> sets;
+        for (const LoadedScene* ls : {&one, &two}) {
+            const Scene& scene = *ls->scene;
+            const SurfaceInteraction xb = droplet_receiver(scene, x, z, 0.5);
+            IndependentSampler smp(7);
+            smp.start_pixel_sample(r, 0, 0);
+            LightPoint lp;
+            std::vector<ManifoldVertex> seed;
+            if (straight_seed_to_light(scene, xb, smp, &lp, &seed) != SeedStatus::Refractive) break;
+            const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false};
+            sets.push_back(
+                ManifoldTechnique(scene, weighted_unbiased()).solve(q, *scene.lights()[0], 1.0, lp, seed, smp));
+        }
+        if (sets.size() != 2) continue;
+        ++compared;
+        ASSERT_EQ(sets[0].solutions.size(), sets[1].solutions.size()) << "receiver " << r;
+        for (size_t i = 0; i < sets[0].solutions.size(); ++i) {
+            const ManifoldSolution &a = sets[0].solutions[i], &b = sets[1].solutions[i];
+            from_surface += a.from_surface;
+            EXPECT_EQ(a.count, b.count) << "receiver " << r;
+            EXPECT_EQ(a.chain.size(), b.chain.size()) << "receiver " << r;
+            for (size_t k = 0; k < std::min(a.chain.size(), b.chain.size()); ++k)
+                EXPECT_EQ(length(a.chain[k].p - b.chain[k].p), 0.0) << "receiver " << r;
+        }
+    }
+    EXPECT_GE(compared, 12);
+    EXPECT_GT(from_surface, 0) << "no surface trial found a solution: the test would not see them";
 }
