@@ -21,6 +21,7 @@ snell_library(snell_manifold
   src/manifold/fallback_estimator.cpp
   src/manifold/keyed_trials_estimator.cpp
   src/manifold/surface_seed.cpp
+  src/manifold/caster_choice.cpp
 )
 target_link_libraries(snell_manifold PUBLIC snell_scene snell_geometry snell_bsdf snell_light snell_core
                       nlohmann_json::nlohmann_json)

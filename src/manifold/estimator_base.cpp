@@ -77,8 +77,8 @@ int EstimatorBase::add_solution(const ManifoldQuery& q, const BSDFContext& ctx, 
     return int(out.solutions.size()) - 1;
 }
 
-bool EstimatorBase::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster, PCG32& rng,
-                                  const LightPoint& lp, HalfVectorDraws& draws, int max_k,
+bool EstimatorBase::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const CasterChoice& casters,
+                                  PCG32& rng, const LightPoint& lp, HalfVectorDraws& draws, int max_k,
                                   std::vector<ManifoldVertex>* chain, bool trace_smooth) const {
     const MneeSettings& st = *m_settings;
     // Seeds from x_b: the best of `seed_candidates` traced seeds, the one whose last ray passes
@@ -89,6 +89,7 @@ bool EstimatorBase::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx
         double best = kInfinity;
         std::vector<ManifoldVertex> candidate;
         for (int c = 0; c < st.seed_candidates; ++c) {
+            const Shape& caster = casters.pick(rng);
             const Vec2 u(rng.next_double(), rng.next_double());
             Vec3 exit_dir;
             if (trace_surface_seed(*m_scene, *q.xb, caster, u, ctx.hero(), st, trace_smooth ? nullptr : &draws,
@@ -103,6 +104,7 @@ bool EstimatorBase::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx
         }
         if (best == kInfinity) return false;
     } else {
+        const Shape& caster = casters.pick(rng);
         const Vec2 u(rng.next_double(), rng.next_double());
         // With both, u.x picks the side and is stretched back to [0, 1).
         SurfaceSide side = st.surface_side;
@@ -129,21 +131,21 @@ bool EstimatorBase::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx
 }
 
 void EstimatorBase::walk_every_trial(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light,
-                                     double pmf, const LightPoint& lp, const Shape& caster, PCG32& rng,
+                                     double pmf, const LightPoint& lp, const CasterChoice& casters, PCG32& rng,
                                      HalfVectorDraws& draws, int max_k, const Foreign& foreign, size_t before,
                                      SolutionSet& out) const {
     // Walk each seed to its solution first (no visibility, no measurement) and evaluate only the
     // new ones.
     for (int j = 0; j < m_settings->trials; ++j) {
         std::vector<ManifoldVertex> chain;
-        if (surface_trial(q, ctx, caster, rng, lp, draws, max_k, &chain) && !foreign(chain) &&
+        if (surface_trial(q, ctx, casters, rng, lp, draws, max_k, &chain) && !foreign(chain) &&
             !holds_solution(out, before, slot, q.xb->p, chain, lp.p))
             add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, true, true, out);
     }
 }
 
 void EstimatorBase::count_trials_to_refind(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light,
-                                           double pmf, const LightPoint& lp, const Shape& caster, PCG32& rng,
+                                           double pmf, const LightPoint& lp, const CasterChoice& casters, PCG32& rng,
                                            HalfVectorDraws& draws, int max_k, const Foreign& foreign, size_t before,
                                            SolutionSet& out) const {
     const MneeSettings& st = *m_settings;
@@ -158,7 +160,7 @@ void EstimatorBase::count_trials_to_refind(const ManifoldQuery& q, const BSDFCon
     std::vector<int> found;
     for (int j = 0; j < st.trials; ++j) {
         std::vector<ManifoldVertex> chain;
-        if (!surface_trial(q, ctx, caster, rng, lp, draws, max_k, &chain) || foreign(chain)) continue;
+        if (!surface_trial(q, ctx, casters, rng, lp, draws, max_k, &chain) || foreign(chain)) continue;
         if (holds_solution(out, before, slot, q.xb->p, chain, lp.p)) continue;
         const int index = add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, true, true, out);
         if (index >= 0) found.push_back(index);
@@ -175,7 +177,7 @@ void EstimatorBase::count_trials_to_refind(const ManifoldQuery& q, const BSDFCon
         int n = 1;
         for (; n <= st.max_trials; ++n) {
             std::vector<ManifoldVertex> again;
-            if (surface_trial(q, ctx, caster, rng, lp, draws, max_k, &again) &&
+            if (surface_trial(q, ctx, casters, rng, lp, draws, max_k, &again) &&
                 same_solution(q.xb->p, again, out.solutions[size_t(index)].chain, lp.p))
                 break;
         }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/rng.h"
+#include "manifold/caster_choice.h"
 #include "manifold/manifold_technique.h"
 
 namespace snell {
@@ -27,23 +28,24 @@ protected:
     int add_solution(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light, double pmf,
                      const LightPoint& lp, std::vector<ManifoldVertex> chain, HalfVectorDraws& draws, int max_k,
                      bool from_surface, bool dedupe, SolutionSet& out, bool* walk_converged = nullptr) const;
-    /// One surface seed on `caster` walked to a polished admissible path; false if it fails.
+    /// One surface seed, on a caster `casters` picks, walked to a polished admissible path; false
+    /// if it fails.
     /// `trace_smooth`: the seeds are traced about the shading normals (the walk still solves for
     /// `draws`), so that which seed is walked does not depend on the half vectors of slots the
     /// path does not have (the keyed estimator replays trials for a given path).
-    bool surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const Shape& caster, PCG32& rng,
+    bool surface_trial(const ManifoldQuery& q, const BSDFContext& ctx, const CasterChoice& casters, PCG32& rng,
                        const LightPoint& lp, HalfVectorDraws& draws, int max_k, std::vector<ManifoldVertex>* chain,
                        bool trace_smooth = false) const;
-    /// `trials` surface trials on `caster`, every new solution among them added, counted once
+    /// `trials` surface trials, every new solution among them added, counted once
     /// (solutions=all).
     void walk_every_trial(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light, double pmf,
-                          const LightPoint& lp, const Shape& caster, PCG32& rng, HalfVectorDraws& draws, int max_k,
-                          const Foreign& foreign, size_t before, SolutionSet& out) const;
-    /// A first round of `trials` surface trials on `caster`, every new solution Y among them
+                          const LightPoint& lp, const CasterChoice& casters, PCG32& rng, HalfVectorDraws& draws,
+                          int max_k, const Foreign& foreign, size_t before, SolutionSet& out) const;
+    /// A first round of `trials` surface trials, every new solution Y among them
     /// added and counted by the rounds of further trials until one finds Y again (the unbiased
     /// 1 / p estimate; solutions=unbiased, and fallback behind a blocker).
     void count_trials_to_refind(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light,
-                                double pmf, const LightPoint& lp, const Shape& caster, PCG32& rng,
+                                double pmf, const LightPoint& lp, const CasterChoice& casters, PCG32& rng,
                                 HalfVectorDraws& draws, int max_k, const Foreign& foreign, size_t before,
                                 SolutionSet& out) const;
     /// With seeding=surface alone the straight seed is not walked.

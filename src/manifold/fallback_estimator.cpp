@@ -20,9 +20,9 @@ void FallbackEstimator::solve(const ManifoldQuery& q, const BSDFContext& ctx, in
     // Blocked: the surface seeds run, their solutions counted as the unbiased estimator counts them.
     const Foreign none = [](const std::vector<ManifoldVertex>&) { return false; };
     PCG32 rng = trial_stream(sampler);
-    for (const Shape* caster : m_scene->manifold_casters())
-        if (is_manifold_interface(caster->bsdf(), ctx.hero()))
-            count_trials_to_refind(q, ctx, slot, light, pmf, lp, *caster, rng, draws, max_k, none, before, out);
+    const CasterChoice casters(*m_scene, q.xb->p, ctx.hero());
+    if (!casters.empty())
+        count_trials_to_refind(q, ctx, slot, light, pmf, lp, casters, rng, draws, max_k, none, before, out);
     walk_counters::solutions_per_connection.add(uint32_t(out.solutions.size() - before));
 }
 

@@ -32,7 +32,8 @@ void KeyedTrialsEstimator::solve(const ManifoldQuery& q, const BSDFContext& ctx,
             // replays the same choice from the path alone; add_solution drops too long a chain
             // and the solutions held already (the straight seed's among them).
             std::vector<ManifoldVertex> chain;
-            if (!surface_trial(q, ctx, *casters[c], rng, lp, draws, -1, &chain, /*trace_smooth=*/true)) continue;
+            if (!surface_trial(q, ctx, CasterChoice(*casters[c]), rng, lp, draws, -1, &chain, /*trace_smooth=*/true))
+                continue;
             add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, true, true, out);
         }
     }
@@ -74,7 +75,7 @@ double KeyedTrialsEstimator::density(const SurfaceInteraction& xb, const BSDF& b
         PCG32 rng = keyed_trial_stream(xb.p, xc, lambda, c);
         for (int j = 0; j < m_settings->trials; ++j) {
             std::vector<ManifoldVertex> found;
-            if (surface_trial(q, q.ctx, *casters[c], rng, lp, draws, -1, &found, /*trace_smooth=*/true) &&
+            if (surface_trial(q, q.ctx, CasterChoice(*casters[c]), rng, lp, draws, -1, &found, /*trace_smooth=*/true) &&
                 same_solution(xb.p, found, target, xc))
                 return p_solution;
         }

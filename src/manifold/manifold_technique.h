@@ -119,7 +119,8 @@ public:
     /// paths a wavelength finds would then differ from the ones Alg. 2 tests for it.)
     ///
     /// With solutions=all, the straight seed's solution (seeding straight or straight+surface)
-    /// and those of `trials` surface seeds on every caster (surface or straight+surface) are
+    /// and those of `trials` surface seeds, each on a caster CasterChoice picks (surface or
+    /// straight+surface), are
     /// solved for the same half vectors, and each distinct admissible path is counted once. The
     /// surface seeds draw one number from `sampler` and their own stream from it, so the
     /// sampler's dimensions stay bounded (primary-sample-space samplers).

@@ -21,9 +21,9 @@ inline constexpr int kMaxChainVertices = 16;
 /// x_c (Sec. 3.1), points drawn on the caster shapes (SMS), or both.
 enum class MneeSeeding { Straight, Surface, StraightAndSurface };
 /// (solutions) which solutions a light connection counts: the one the straight seed walks to
-/// (the paper's Alg. 1, MIS by Alg. 2); every distinct one found by `trials` surface seeds per
-/// caster (consistent; biased low for finite trials by the solutions none of them found); or,
-/// unbiased, one surface solution per caster weighted by a geometric estimate of 1 / p (Specular
+/// (the paper's Alg. 1, MIS by Alg. 2); every distinct one found by `trials` surface seeds
+/// (consistent; biased low for finite trials by the solutions none of them found); or,
+/// unbiased, the surface solutions weighted by a geometric estimate of 1 / p (Specular
 /// Manifold Sampling's estimator), plus the straight seed's; or the straight seed's solution
 /// where that seed is clear of opaque surfaces and, where an opaque surface blocks it (an object
 /// inside glass), the unbiased estimator's surface solutions (`fallback`: unbiased; MIS by Alg. 2
@@ -65,8 +65,9 @@ struct MneeSettings {
     // straight+surface seeds and surface_weight 0.03 (from_props).
     MneeSeeding seeding = MneeSeeding::Straight;
     MneeSolutions solutions = MneeSolutions::One;
-    /// (trials) surface seeds per caster and light connection: every one walked (solutions=all
-    /// and keyed), or the first round M of solutions=unbiased (the scene parameter defaults to 1
+    /// (trials) surface seeds per light connection, each on a caster chosen for it (CasterChoice;
+    /// keyed: per caster): every one walked (solutions=all and keyed), or the first round M of
+    /// solutions=unbiased (the scene parameter defaults to 1
     /// there, to kKeyedTrials for keyed)
     int trials = 16;
     /// (max_trials) cap C on the Bernoulli trials of solutions=unbiased: its estimate of 1 / p is

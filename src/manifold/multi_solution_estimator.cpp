@@ -47,9 +47,8 @@ void MultiSolutionEstimator::solve(const ManifoldQuery& q, const BSDFContext& ct
     const Shape* only = weighted && !seed.empty() ? seed.front().shape : nullptr;
     const auto run_trials = [&](size_t first, SolutionSet& into) {
         PCG32 rng = trial_stream(sampler);
-        for (const Shape* caster : m_scene->manifold_casters())
-            if ((!only || caster == only) && is_manifold_interface(caster->bsdf(), ctx.hero()))
-                trials_on(q, ctx, slot, light, pmf, lp, *caster, rng, draws, max_k, foreign, first, into);
+        const CasterChoice casters(*m_scene, q.xb->p, ctx.hero(), only);
+        if (!casters.empty()) trials_on(q, ctx, slot, light, pmf, lp, casters, rng, draws, max_k, foreign, first, into);
     };
     // Where the straight walk failed the trials' finds weigh failed_walk_weight; at 0 they are
     // BSDF sampling's.

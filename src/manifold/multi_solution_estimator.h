@@ -1,7 +1,7 @@
 #pragma once
 // What the estimators of several solutions per light sample share (solutions=all and unbiased):
-// the straight seed's solution (with seeding=straight+surface) and those of surface trials on
-// every caster, for the same half vectors; their MIS density is the solution density in the
+// the straight seed's solution (with seeding=straight+surface) and those of surface trials, each
+// on a caster CasterChoice picks, for the same half vectors; their MIS density is the solution density in the
 // technique's domain, and with surface_weight c < 1, beside a clear straight seed, the paths
 // the straight seed does not walk to weigh c times it (MneeSettings::surface_weight).
 #include "manifold/estimator_base.h"
@@ -27,10 +27,10 @@ public:
                    bool surface_trials = true, DensityDetail* detail = nullptr, bool failed_walk_trials = false) const;
 
 protected:
-    /// The estimator's use of the surface trials on one caster.
+    /// The estimator's use of the surface trials, each on a caster `casters` picks.
     virtual void trials_on(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light, double pmf,
-                           const LightPoint& lp, const Shape& caster, PCG32& rng, HalfVectorDraws& draws, int max_k,
-                           const Foreign& foreign, size_t before, SolutionSet& out) const = 0;
+                           const LightPoint& lp, const CasterChoice& casters, PCG32& rng, HalfVectorDraws& draws,
+                           int max_k, const Foreign& foreign, size_t before, SolutionSet& out) const = 0;
 
 private:
     /// surface_weight < 1 with both kinds of seeds: beside a clear straight seed the surface

@@ -12,9 +12,9 @@ public:
 
 protected:
     void trials_on(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light, double pmf,
-                   const LightPoint& lp, const Shape& caster, PCG32& rng, HalfVectorDraws& draws, int max_k,
+                   const LightPoint& lp, const CasterChoice& casters, PCG32& rng, HalfVectorDraws& draws, int max_k,
                    const Foreign& foreign, size_t before, SolutionSet& out) const override {
-        count_trials_to_refind(q, ctx, slot, light, pmf, lp, caster, rng, draws, max_k, foreign, before, out);
+        count_trials_to_refind(q, ctx, slot, light, pmf, lp, casters, rng, draws, max_k, foreign, before, out);
     }
 };
 

@@ -158,10 +158,12 @@ void Scene::build() {
     m_light_sampler = LightSampler(m_lights);
     m_refractive_casters.clear();
     m_manifold_casters.clear();
+    m_manifold_caster_bounds.clear();
     for (const auto& s : m_shapes) {
         const BSDF* b = s->emitter() ? nullptr : s->bsdf();
         if (!b || !b->is_transmissive() || !(b->has_delta() || b->has_microfacet())) continue;
         m_manifold_casters.push_back(s.get());
+        m_manifold_caster_bounds.push_back(s->bounding_sphere());
         if (b->is_refractive_interface(550.0)) m_refractive_casters.push_back(s->bounding_sphere());
     }
     m_bounded_lights.clear();

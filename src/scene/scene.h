@@ -98,6 +98,8 @@ public:
     /// is_manifold_interface (the IOR may be 1 there). Built once, so that the surface trials of
     /// each connection visit the glass alone, not every shape of a large scene.
     const std::vector<const Shape*>& manifold_casters() const { return m_manifold_casters; }
+    /// Their bounding spheres, in the same order (CasterChoice's solid angles).
+    const std::vector<BoundingSphere>& manifold_caster_bounds() const { return m_manifold_caster_bounds; }
     /// Where the lights are, for caster sampling's shadow test. Environments are left out where
     /// the other lights outshine them (by Light::power); empty where they do not, or where there
     /// are more than CasterSampling::kMaxLights.
@@ -121,6 +123,7 @@ private:
     bool m_has_delta_lights = false;
     std::vector<BoundingSphere> m_refractive_casters;
     std::vector<const Shape*> m_manifold_casters;
+    std::vector<BoundingSphere> m_manifold_caster_bounds;
     std::vector<LightBounds> m_bounded_lights;
     LightSampler m_light_sampler;
     std::shared_ptr<Camera> m_camera;

@@ -11,6 +11,7 @@
 #include <iostream>
 #include <map>
 
+#include "manifold/caster_choice.h"
 #include "manifold/manifold_technique.h"
 #include "manifold/seed_path.h"
 #include "manifold/sphere_exact.h"
@@ -757,12 +758,13 @@ const Vec3 kGlassCentre(0, 1, 0);
 constexpr double kGlassEta = 1.5;
 const Vec3 kGlassLight(-3, 6, -2);
 
-LoadedScene glass_sphere() {
+// `other`: shapes listed before the glass sphere.
+LoadedScene glass_sphere(const std::string& other = "") {
     return load_xml(R"(<scene version="3.0.0"><integrator type="mnee"/>
   <sensor type="perspective"><transform name="to_world"><lookat origin="0,3,5" target="0,0,0" up="0,1,0"/></transform>
     <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>
   <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><scale value="10"/></transform></shape>
-  <shape type="sphere"><point name="center" x="0" y="1" z="0"/><float name="radius" value="1"/>
+)" + other + R"(  <shape type="sphere"><point name="center" x="0" y="1" z="0"/><float name="radius" value="1"/>
     <bsdf type="dielectric"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/></bsdf></shape>
   <emitter type="point"><point name="position" x="-3" y="6" z="-2"/><rgb name="intensity" value="40, 40, 40"/></emitter>
 </scene>)");
@@ -1216,6 +1218,18 @@ TEST(ManifoldSolutions, ReflectionsMatchBruteForceBehindAGlassSphere) {
     EXPECT_EQ(size_t(std::count(matched.begin(), matched.end(), true)), count) << "an exact path not found";
 }
 
+namespace {
+
+// A second glass sphere for glass_sphere(), at `center` (XML attributes).
+std::string other_glass_sphere(const char* center, const char* radius) {
+    return std::string(R"(  <shape type="sphere"><point name="center" )") + center +
+           R"(/><float name="radius" value=")" + radius + R"("/>
+    <bsdf type="dielectric"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/></bsdf></shape>
+)";
+}
+
+}  // namespace
+
 // Beside a clear straight seed only chains on the seed's shapes are the technique's, and a
 // trial's chain starts on the caster it drew, so the trials run on the seed's first shape alone.
 // Another glass sphere elsewhere in the scene (listed first, inside the scene's bounds so that no
@@ -1223,16 +1237,7 @@ TEST(ManifoldSolutions, ReflectionsMatchBruteForceBehindAGlassSphere) {
 // caster its trials drew from the same stream first, and every count past them changed.
 TEST(ManifoldSolutions, OtherGlassLeavesTheSolutionsBesideAClearSeedAlone) {
     const LoadedScene one = glass_sphere();
-    const LoadedScene two = load_xml(R"(<scene version="3.0.0"><integrator type="mnee"/>
-  <sensor type="perspective"><transform name="to_world"><lookat origin="0,3,5" target="0,0,0" up="0,1,0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>
-  <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><scale value="10"/></transform></shape>
-  <shape type="sphere"><point name="center" x="7" y="1" z="7"/><float name="radius" value="0.5"/>
-    <bsdf type="dielectric"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/></bsdf></shape>
-  <shape type="sphere"><point name="center" x="0" y="1" z="0"/><float name="radius" value="1"/>
-    <bsdf type="dielectric"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/></bsdf></shape>
-  <emitter type="point"><point name="position" x="-3" y="6" z="-2"/><rgb name="intensity" value="40, 40, 40"/></emitter>
-</scene>)");
+    const LoadedScene two = glass_sphere(other_glass_sphere(R"(x="7" y="1" z="7")", "0.5"));
     ASSERT_EQ(two.scene->manifold_casters().size(), 2u);
     ASSERT_EQ(length(one.scene->bounds().extent() - two.scene->bounds().extent()), 0.0);
     const Vec3 at = glass_receiver_with_most_paths().at;
@@ -1268,4 +1273,60 @@ TEST(ManifoldSolutions, OtherGlassLeavesTheSolutionsBesideAClearSeedAlone) {
     }
     EXPECT_GE(compared, 12);
     EXPECT_GT(from_surface, 0) << "no surface trial found a solution: the test would not see them";
+}
+
+// With several casters each trial chooses one (CasterChoice), and the 1 / p estimate repeats the
+// choice: at the three-path receiver, with a second glass sphere beside it that takes about a
+// sixth of the trials, each path's count (0 when not found) still has mean 1, in rounds of M = 1
+// and of M = 3. Refinding on the finding caster alone (counting 1 / p on that caster) reads
+// 0.936 +- 0.010 for path 1 at M = 1 (checked).
+TEST(ManifoldSolutions, ACasterChosenPerTrialKeepsEveryCountUnbiased) {
+    const Vec3 at = glass_receiver_with_most_paths().at;
+    const LoadedScene ls = glass_sphere(other_glass_sphere(R"(x="2.5" y="1" z="2.5")", "1"));
+    const Scene& scene = *ls.scene;
+    const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z, 0.5);
+    const auto exact = sphere_two_refraction_roots(kGlassCentre, 1.0, kGlassEta, xb.p, kGlassLight);
+    ASSERT_EQ(exact.size(), 3u);
+    const CasterChoice choice(scene, xb.p, 550);
+    ASSERT_EQ(choice.size(), 2u);
+    const double other_share = &choice[0] == scene.manifold_casters()[0] ? choice.probability(0) : 0.0;
+    std::cout << "[caster choice] the other sphere's share of the trials " << other_share << "\n";
+    ASSERT_GT(other_share, 0.1);
+    const auto which = [&](const std::vector<ManifoldVertex>& chain) {
+        for (size_t k = 0; k < exact.size(); ++k)
+            if (chain.size() == 2 && length(exact[k].v1 - chain[0].p) < 1e-6 && length(exact[k].v2 - chain[1].p) < 1e-6)
+                return int(k);
+        return -1;
+    };
+    const Light& light = *scene.lights()[0];
+    const SampledWavelengths wl = SampledWavelengths::single(550);
+    IndependentSampler smp(3);
+    smp.start_pixel_sample(0, 0, 0);
+    const LightPoint lp = first_light_point(scene, xb, smp);
+    MneeSettings st = all_solutions(1);
+    st.solutions = MneeSolutions::Unbiased;
+    st.seeding = MneeSeeding::Surface;
+    st.max_trials = 1000000;
+    for (const int m : {1, 3}) {
+        st.trials = m;
+        std::vector<Mean> per_path(exact.size());
+        for (int run = 0; run < 20000; ++run) {
+            IndependentSampler s(51 + uint64_t(m));
+            s.start_pixel_sample(run, 0, 0);
+            const ManifoldQuery q{&xb,           xb.bsdf(), BSDFContext{wl, TransportMode::Radiance},
+                                  MediumStack(), false,     false};
+            std::vector<double> c(exact.size(), 0.0);
+            for (const ManifoldSolution& sol : ManifoldTechnique(scene, st).solve(q, light, 1.0, lp, {}, s).solutions) {
+                const int k = which(sol.chain);
+                ASSERT_GE(k, 0) << "a solution the exhaustive search does not have";
+                c[size_t(k)] += sol.count;
+            }
+            for (size_t k = 0; k < c.size(); ++k) per_path[k].add(c[k]);
+        }
+        for (size_t k = 0; k < exact.size(); ++k) {
+            std::cout << "[caster choice] M = " << m << ", path " << k << ": mean count " << per_path[k].mean()
+                      << " +- " << per_path[k].stderr_() << "\n";
+            EXPECT_NEAR(per_path[k].mean(), 1.0, 4.5 * per_path[k].stderr_()) << "M = " << m << ", path " << k;
+        }
+    }
 }
