@@ -11,44 +11,57 @@ namespace snell {
 
 CasterChoice::CasterChoice(const Scene& scene, const Vec3& xb, double lambda, const Shape* only) {
     if (only) {
-        m_casters.push_back(only);
+        m_first = only;
         return;
     }
     const std::vector<const Shape*>& all = scene.manifold_casters();
     const std::vector<BoundingSphere>& bounds = scene.manifold_caster_bounds();
-    std::vector<double> omega;
+    // The solid angle of caster i's bounding sphere seen from x_b, 4 pi from inside it.
+    const auto solid_angle = [&](size_t i) {
+        const double d2 = length_squared(bounds[i].center - xb), r2 = bounds[i].radius * bounds[i].radius;
+        return d2 > r2 ? 2 * kPi * r2 / d2 / (1 + std::sqrt(1 - r2 / d2)) : 4 * kPi;
+    };
+    size_t first = 0;
     double total = 0;
     for (size_t i = 0; i < all.size(); ++i) {
         if (!is_manifold_interface(all[i]->bsdf(), lambda)) continue;
+        if (!m_first) {
+            m_first = all[i];
+            first = i;
+            continue;
+        }
+        if (m_casters.empty()) {  // a second caster: the choice needs the list and the weights
+            m_casters.push_back(m_first);
+            m_cdf.push_back(solid_angle(first));
+            total = m_cdf.back();
+        }
         m_casters.push_back(all[i]);
-        // The solid angle of the bounding sphere seen from x_b, 4 pi from inside it.
-        const double d2 = length_squared(bounds[i].center - xb), r2 = bounds[i].radius * bounds[i].radius;
-        const double w = d2 > r2 ? 2 * kPi * r2 / d2 / (1 + std::sqrt(1 - r2 / d2)) : 4 * kPi;
-        omega.push_back(w);
-        total += w;
+        m_cdf.push_back(solid_angle(i));
+        total += m_cdf.back();
     }
-    if (m_casters.size() < 2) return;
+    if (m_casters.empty()) return;
+    // The weights become the cumulative probabilities in place.
     const double n = double(m_casters.size());
     const bool by_angle = total > 0 && std::isfinite(total);
     double sum = 0;
-    for (const double w : omega) {
+    for (double& w : m_cdf) {
         sum += (1 - kSolidAngleShare) / n + (by_angle ? kSolidAngleShare * w / total : kSolidAngleShare / n);
-        m_cdf.push_back(sum);
+        w = sum;
     }
     m_cdf.back() = 1;
 }
 
-CasterChoice::CasterChoice(const Shape& caster) : m_casters{&caster} {}
+CasterChoice::CasterChoice(const Shape& caster) : m_first(&caster) {}
 
 const Shape& CasterChoice::pick(PCG32& rng) const {
-    if (m_cdf.empty()) return *m_casters.front();
+    if (m_casters.empty()) return *m_first;
     const double u = rng.next_double();
     const size_t i = size_t(std::upper_bound(m_cdf.begin(), m_cdf.end(), u) - m_cdf.begin());
     return *m_casters[std::min(i, m_casters.size() - 1)];
 }
 
 double CasterChoice::probability(size_t i) const {
-    if (m_cdf.empty()) return i == 0 && !m_casters.empty() ? 1.0 : 0.0;
+    if (m_casters.empty()) return i == 0 && m_first ? 1.0 : 0.0;
     return m_cdf[i] - (i > 0 ? m_cdf[i - 1] : 0.0);
 }
 

@@ -24,19 +24,22 @@ public:
     /// Exactly `caster` (the keyed estimator's per-caster trials).
     explicit CasterChoice(const Shape& caster);
 
-    bool empty() const { return m_casters.empty(); }
-    size_t size() const { return m_casters.size(); }
+    bool empty() const { return !m_first; }
+    size_t size() const { return m_casters.empty() ? (m_first ? 1 : 0) : m_casters.size(); }
     /// The caster for the next trial; draws from `rng` only where there are several.
     const Shape& pick(PCG32& rng) const;
     /// The probability pick() returns caster number i.
     double probability(size_t i) const;
-    const Shape& operator[](size_t i) const { return *m_casters[i]; }
+    const Shape& operator[](size_t i) const { return m_casters.empty() ? *m_first : *m_casters[i]; }
 
     static constexpr double kSolidAngleShare = 0.9;
 
 private:
-    std::vector<const Shape*> m_casters;
-    std::vector<double> m_cdf;  ///< m_cdf[i]: the probability of casters 0..i; empty for one caster
+    // One caster (most scenes, and every choice beside a clear seed) needs no allocation: the
+    // trials of each connection build a choice.
+    const Shape* m_first = nullptr;
+    std::vector<const Shape*> m_casters;  ///< every caster, where there are several
+    std::vector<double> m_cdf;            ///< m_cdf[i]: the probability of casters 0..i
 };
 
 }  // namespace snell
