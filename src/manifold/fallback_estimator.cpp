@@ -1,10 +1,8 @@
 #include "manifold/fallback_estimator.h"
 
-#include "geometry/shape.h"
 #include "manifold/seed_path.h"
 #include "manifold/surface_seed.h"
 #include "manifold/walk_counters.h"
-#include "scene/scene.h"
 
 namespace snell {
 

@@ -5,7 +5,6 @@
 #include "manifold/surface_seed.h"
 #include "manifold/walk_counters.h"
 #include "manifold/work_meter.h"
-#include "scene/scene.h"
 
 namespace snell {
 

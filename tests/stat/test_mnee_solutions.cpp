@@ -876,6 +876,16 @@ TEST(ManifoldSolutions, AllMatchesBruteForceThroughTwoInterfaces) {
 // alone (M = 1) finds path k with probability p_k and counts it N times; the mean N per path is
 // 1 / p_k within its confidence interval.
 namespace {
+// Which of the exact two-refraction paths `exact` (sphere_two_refraction_roots) `chain` is: its
+// index, or -1 for none.
+template <class Roots>
+int exact_path_index(const Roots& exact, const std::vector<ManifoldVertex>& chain) {
+    for (size_t k = 0; k < exact.size(); ++k)
+        if (chain.size() == 2 && length(exact[k].v1 - chain[0].p) < 1e-6 && length(exact[k].v2 - chain[1].p) < 1e-6)
+            return int(k);
+    return -1;
+}
+
 struct SeedCell {
     double miss;  ///< seed_miss of the cell's seed
     int path;     ///< the exact path its walk reaches, -1 for none
@@ -890,12 +900,7 @@ TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
     const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z, 0.5);
     const auto exact = sphere_two_refraction_roots(kGlassCentre, 1.0, kGlassEta, xb.p, kGlassLight);
     ASSERT_EQ(exact.size(), 3u);
-    const auto which = [&](const std::vector<ManifoldVertex>& chain) {
-        for (size_t k = 0; k < exact.size(); ++k)
-            if (chain.size() == 2 && length(exact[k].v1 - chain[0].p) < 1e-6 && length(exact[k].v2 - chain[1].p) < 1e-6)
-                return int(k);
-        return -1;
-    };
+    const auto which = [&](const std::vector<ManifoldVertex>& chain) { return exact_path_index(exact, chain); };
     const Light& light = *scene.lights()[0];
     const SampledWavelengths wl = SampledWavelengths::single(550);
     IndependentSampler smp(3);
@@ -1292,12 +1297,7 @@ TEST(ManifoldSolutions, ACasterChosenPerTrialKeepsEveryCountUnbiased) {
     const double other_share = &choice[0] == scene.manifold_casters()[0] ? choice.probability(0) : 0.0;
     std::cout << "[caster choice] the other sphere's share of the trials " << other_share << "\n";
     ASSERT_GT(other_share, 0.1);
-    const auto which = [&](const std::vector<ManifoldVertex>& chain) {
-        for (size_t k = 0; k < exact.size(); ++k)
-            if (chain.size() == 2 && length(exact[k].v1 - chain[0].p) < 1e-6 && length(exact[k].v2 - chain[1].p) < 1e-6)
-                return int(k);
-        return -1;
-    };
+    const auto which = [&](const std::vector<ManifoldVertex>& chain) { return exact_path_index(exact, chain); };
     const Light& light = *scene.lights()[0];
     const SampledWavelengths wl = SampledWavelengths::single(550);
     IndependentSampler smp(3);
