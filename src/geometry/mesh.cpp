@@ -241,22 +241,22 @@ TriangleMesh::TriangleParams TriangleMesh::triangle_params(uint32_t prim) const 
 }
 
 void TriangleMesh::interaction_at(uint32_t prim, const Vec2& b, SurfaceInteraction* si) const {
-    TriangleParams computed;
-    const TriangleParams* tp = nullptr;
-    if (m_params.empty()) {
-        computed = triangle_params(prim);
-        tp = &computed;
-    } else {
-        tp = &m_params[prim];
-    }
+    if (m_params.empty())
+        interaction_from(prim, b, triangle_params(prim), si);
+    else
+        interaction_from(prim, b, m_params[prim], si);
+}
+
+void TriangleMesh::interaction_from(uint32_t prim, const Vec2& b, const TriangleParams& tp,
+                                    SurfaceInteraction* si) const {
     const auto& tri = m_tris[prim];
     const Vec3 p0 = vertex(tri[0]), p1 = vertex(tri[1]), p2 = vertex(tri[2]);
     const double b1 = b.x, b2 = b.y, b0 = 1 - b1 - b2;
 
     Vec2 uv = b;
-    if (tp->uv_map) uv = m_uvs[tri[0]] * b0 + m_uvs[tri[1]] * b1 + m_uvs[tri[2]] * b2;
+    if (tp.uv_map) uv = m_uvs[tri[0]] * b0 + m_uvs[tri[1]] * b1 + m_uvs[tri[2]] * b2;
 
-    Vec3 ng = tp->ng, n = tp->ng, dndu, dndv;
+    Vec3 ng = tp.ng, n = tp.ng, dndu, dndv;
     const bool smooth = !m_normals.empty();
     if (smooth) {
         const Vec3 N = m_normals[tri[0]] * b0 + m_normals[tri[1]] * b1 + m_normals[tri[2]] * b2;
@@ -264,8 +264,8 @@ void TriangleMesh::interaction_at(uint32_t prim, const Vec2& b, SurfaceInteracti
         if (len > 0) {
             n = N / len;
             // d(N/|N|) = (dN - n (n . dN)) / |N|
-            dndu = (tp->dNdu - n * dot(n, tp->dNdu)) / len;
-            dndv = (tp->dNdv - n * dot(n, tp->dNdv)) / len;
+            dndu = (tp.dNdu - n * dot(n, tp.dNdu)) / len;
+            dndv = (tp.dNdv - n * dot(n, tp.dNdv)) / len;
             ng = face_forward(ng, n);
         }
     }
@@ -279,13 +279,12 @@ void TriangleMesh::interaction_at(uint32_t prim, const Vec2& b, SurfaceInteracti
     si->t = 0;
     si->ng = ng;
     si->n = n;
-    si->dpdu = tp->dpdu;
-    si->dpdv = tp->dpdv;
+    si->dpdu = tp.dpdu;
+    si->dpdv = tp.dpdv;
     si->dndu = dndu;
     si->dndv = dndv;
     si->uv = uv;
-    si->shading =
-        tp->flat_s_valid ? Frame(tp->flat_s, cross(n, tp->flat_s), n) : Frame::from_normal_tangent(n, tp->dpdu);
+    si->shading = tp.flat_s_valid ? Frame(tp.flat_s, cross(n, tp.flat_s), n) : Frame::from_normal_tangent(n, tp.dpdu);
     si->shape = this;
     si->prim = prim;
 }
@@ -387,7 +386,17 @@ bool TriangleMesh::closest_point_near(const SurfaceInteraction& near, const Vec3
         const std::vector<std::array<uint32_t, 3>>& across = neighbours();
         uint32_t prim = near.prim;
         for (int hop = 0; hop <= kMaxProjectionHops; ++hop) {
+            // Everything this hop may read next is asked for at once, so that the misses of a
+            // fine mesh overlap instead of following one another: this triangle's cached
+            // parameters and vertex normals (for interaction_at) and its neighbours' indices
+            // (for the next crossing).
+            prefetch_params(prim);
             const auto& t = m_tris[prim];
+            const auto& nb = across[prim];
+            if (!m_normals.empty())
+                for (uint32_t v : t) __builtin_prefetch(&m_normals[v]);
+            for (uint32_t n : nb)
+                if (n != kNoNeighbour) __builtin_prefetch(&m_tris[n]);
             const Vec3 a = vertex(t[0]), b = vertex(t[1]), c = vertex(t[2]);
             // Barycentrics of p's projection onto the triangle's plane.
             const Vec3 e1 = b - a, e2 = c - a, d = p - a;
@@ -400,7 +409,7 @@ bool TriangleMesh::closest_point_near(const SurfaceInteraction& near, const Vec3
             const int e = int(std::min_element(w, w + 3) - w);
             if (w[e] < 0) {
                 // Beyond the edge opposite the most negative one: cross it.
-                prim = across[prim][size_t(e)];
+                prim = nb[size_t(e)];
                 if (prim == kNoNeighbour) break;
                 continue;
             }
