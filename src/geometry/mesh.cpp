@@ -379,9 +379,9 @@ bool TriangleMesh::closest_point_near(const SurfaceInteraction& near, const Vec3
                                       SurfaceInteraction* si) const {
     // A point location walk from the vertex's triangle: while p lies beyond an edge, cross to
     // the neighbour past the one it lies furthest beyond. A walk's last steps stay on one
-    // triangle and its first cross tens of a fine mesh's; the BVH's point queries they replace
-    // had been 15-20 % of the pool's time (issue 26, point 5). The BVH answers only at a
-    // boundary, a sliver, an edge point, or after kMaxProjectionHops crossings.
+    // triangle and its first cross tens of a fine mesh's, far cheaper than the BVH's point
+    // queries they replace (docs/experiments.md, "Cheaper walks on meshes"). The BVH answers
+    // only at a boundary, a sliver, an edge point, or after kMaxProjectionHops crossings.
     if (near.shape == this && near.prim < m_tris.size()) {
         const std::vector<std::array<uint32_t, 3>>& across = neighbours();
         uint32_t prim = near.prim;

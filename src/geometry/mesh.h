@@ -71,16 +71,16 @@ public:
     std::vector<std::string> attribute_names() const override;
 
     /// Meshes with at most this many triangles keep the per-triangle part of the
-    /// differential geometry (TriangleParams, 152 bytes a triangle: 152 MB at the limit)
+    /// differential geometry (TriangleParams, 160 bytes a triangle: 160 MB at the limit)
     /// precomputed; larger ones recompute it at every hit rather than double their memory.
-    /// A manifold walk builds an interaction at every projection, so recomputing cost the
-    /// 74k-triangle pool of the caustic gallery 6.6-8.6 % of its render time (perf) at the old
-    /// limit of 2^16 (issue 26, point 5).
+    /// A manifold walk builds an interaction at every projection, so a fine mesh's walks pay
+    /// for recomputing it (the pool's, at the old limit of 2^16: docs/experiments.md, "The
+    /// pool's blocks").
     static constexpr size_t kMaxCachedTriangles = size_t(1) << 20;
     /// Edges closest_point_near crosses before it asks the BVH. A walk's first steps move a
     /// vertex by up to half its distance to its neighbours (its trust region), tens of
-    /// triangles of a fine mesh; its last ones stay on one. On the pool's height field 25 % of
-    /// the projections still asked the BVH with 8 crossings, 1.4 % with 64 (issue 26, point 5).
+    /// triangles of a fine mesh; its last ones stay on one. 64 leaves few of the pool's
+    /// projections to the BVH (docs/experiments.md, "Cheaper walks on meshes").
     static constexpr int kMaxProjectionHops = 64;
     /// The triangle across edge e of triangle `prim` (the edge opposite its vertex e), or
     /// kNoNeighbour at a boundary or an edge shared by more than two triangles. Vertices at the
@@ -106,9 +106,9 @@ private:
     TriangleParams triangle_params(uint32_t prim) const;
     /// interaction_at given the triangle's parameters, read in place from the cache (no copy).
     void interaction_from(uint32_t prim, const Vec2& b, const TriangleParams& tp, SurfaceInteraction* si) const;
-    /// Asks for triangle prim's cached parameters before interaction_at reads them: on the
-    /// pool's 74k triangles that read missed the cache and was a walk projection's longest
-    /// wait (issue 26, point 5). The point location walk visits the triangle it answers with.
+    /// Asks for triangle prim's cached parameters before interaction_at reads them: on a fine
+    /// mesh that read misses the cache, and was a projection's longest wait (docs/experiments.md,
+    /// twenty-second measurement). The point location walk visits the triangle it answers with.
     void prefetch_params(uint32_t prim) const {
         if (m_params.empty()) return;
         const char* p = reinterpret_cast<const char*>(&m_params[prim]);

@@ -17,7 +17,8 @@ namespace {
 constexpr double kTrustFraction = 0.5;
 
 // One thread's storage for its walks: a walk runs a few iterations, and a render millions of
-// walks, so heap allocations per walk showed as 5 % of a profile of the pool (issue 26, point 5).
+// walks, so heap allocations per walk showed in a profile of the pool (docs/experiments.md,
+// nineteenth measurement).
 // A walk never starts another on its thread before it ends, so one set per thread suffices.
 struct WalkWorkspace {
     BlockTridiagonal m;

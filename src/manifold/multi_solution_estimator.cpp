@@ -18,7 +18,7 @@ void MultiSolutionEstimator::solve(const ManifoldQuery& q, const BSDFContext& ct
     bool straight_converged = false;
     // The straight solution is polished (for same_solution) only where trials may refind it:
     // elsewhere the polish is a second walk that changes nothing the image sees (its value is
-    // the unpolished chain's), 7 % of the height-field pool's time (issue 26, point 5).
+    // the unpolished chain's; docs/experiments.md, "Cheaper walks on meshes").
     const bool trials_follow =
         m_settings->seeding != MneeSeeding::Straight && (q.surface_trials || !weighs_surface_solutions());
     if (q.straight_seed && walks_straight_seed())

@@ -29,8 +29,8 @@ SeedStatus trace_seed_path(const Scene& scene, const SurfaceInteraction& xb, con
     }
     // Blocked even with no glass on the segment: the surface seeds may find a refracted path
     // around the blocker. Without them the environment-lit pool's floor near its walls was
-    // BSDF sampling's alone, and the biased mode, which drops what MNEE cannot reach, kept 0.91
-    // of its caustic (issue 26, point 6; docs/experiments.md).
+    // BSDF sampling's alone, and the biased mode, which drops what MNEE cannot reach, lost part
+    // of its caustic (issue 26, point 6; docs/experiments.md, nineteenth measurement).
     // A scene without glass has nothing to find there: Occluded, so that MNEE stays NEE sample for
     // sample (Sec. 3.1).
     if (blocked)

@@ -14,9 +14,8 @@ namespace {
 // less in the region's choice (fit()).
 constexpr double kOutlierLevel = 10.0;
 // The image's price of work: a region's median pixel mean counts as at least this fraction of
-// the lattice's mean of them, and the price is learned in at most kPriceRounds rounds. 0.3 won
-// on seven of ten gallery cases against 0.1 (3 seeds) and against 1.0 (docs/experiments.md,
-// eleventh measurement); 0.03 lost.
+// the lattice's mean of them, and the price is learned in at most kPriceRounds rounds. 0.3 is
+// the best of the floors measured (docs/experiments.md, eleventh measurement).
 constexpr double kRelativeFloor = 0.3;
 constexpr int kPriceRounds = 20;
 
