@@ -51,8 +51,6 @@ CasterChoice::CasterChoice(const Scene& scene, const Vec3& xb, double lambda, co
     m_cdf.back() = 1;
 }
 
-CasterChoice::CasterChoice(const Shape& caster) : m_first(&caster) {}
-
 const Shape& CasterChoice::pick(PCG32& rng) const {
     if (m_casters.empty()) return *m_first;
     const double u = rng.next_double();

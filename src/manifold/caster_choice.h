@@ -21,8 +21,6 @@ public:
     /// (kSolidAngleShare) with a uniform share, so that every caster keeps p > 0 and a small,
     /// far one does not take the trials of the glass around x_b.
     CasterChoice(const Scene& scene, const Vec3& xb, double lambda, const Shape* only = nullptr);
-    /// Exactly `caster` (the keyed estimator's per-caster trials).
-    explicit CasterChoice(const Shape& caster);
 
     bool empty() const { return !m_first; }
     size_t size() const { return m_casters.empty() ? (m_first ? 1 : 0) : m_casters.size(); }

@@ -10,10 +10,10 @@
 
 namespace snell {
 
-PCG32 keyed_trial_stream(const Vec3& xb, const Vec3& xc, double lambda, size_t caster) {
+PCG32 keyed_trial_stream(const Vec3& xb, const Vec3& xc, double lambda) {
     uint64_t h = 0x6b657965645f7472ULL;
     for (const double v : {xb.x, xb.y, xb.z, xc.x, xc.y, xc.z, lambda}) h = mix_bits(h ^ std::bit_cast<uint64_t>(v));
-    return PCG32(h, uint64_t(caster));
+    return PCG32(h, 0);
 }
 
 void KeyedTrialsEstimator::solve(const ManifoldQuery& q, const BSDFContext& ctx, int slot, const Light& light,
@@ -23,19 +23,17 @@ void KeyedTrialsEstimator::solve(const ManifoldQuery& q, const BSDFContext& ctx,
     HalfVectorDraws draws(sampler);
     if (q.straight_seed && walks_straight_seed())
         add_solution(q, ctx, slot, light, pmf, lp, seed, draws, max_k, false, true, out);
-    const std::vector<const Shape*>& casters = m_scene->manifold_casters();
-    for (size_t c = 0; c < casters.size(); ++c) {
-        if (!is_manifold_interface(casters[c]->bsdf(), ctx.hero())) continue;
-        PCG32 rng = keyed_trial_stream(q.xb->p, lp.p, ctx.hero(), c);
-        for (int j = 0; j < m_settings->trials; ++j) {
-            // Traced about the shading normals and chosen without max_k, so that density()
-            // replays the same choice from the path alone; add_solution drops too long a chain
-            // and the solutions held already (the straight seed's among them).
-            std::vector<ManifoldVertex> chain;
-            if (!surface_trial(q, ctx, CasterChoice(*casters[c]), rng, lp, draws, -1, &chain, /*trace_smooth=*/true))
-                continue;
-            add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, true, true, out);
-        }
+    // Each trial draws its caster from the keyed stream too, so the trials cost the same however
+    // much glass the scene holds, and density() replays the same choices.
+    const CasterChoice casters(*m_scene, q.xb->p, ctx.hero());
+    PCG32 rng = keyed_trial_stream(q.xb->p, lp.p, ctx.hero());
+    for (int j = 0; j < m_settings->trials && !casters.empty(); ++j) {
+        // Traced about the shading normals and chosen without max_k, so that density() replays
+        // the same choice from the path alone; add_solution drops too long a chain and the
+        // solutions held already (the straight seed's among them).
+        std::vector<ManifoldVertex> chain;
+        if (!surface_trial(q, ctx, casters, rng, lp, draws, -1, &chain, /*trace_smooth=*/true)) continue;
+        add_solution(q, ctx, slot, light, pmf, lp, std::move(chain), draws, max_k, true, true, out);
     }
     walk_counters::solutions_per_connection.add(uint32_t(out.solutions.size() - before));
 }
@@ -69,16 +67,13 @@ double KeyedTrialsEstimator::density(const SurfaceInteraction& xb, const BSDF& b
     LightPoint lp;
     lp.p = xc;
     lp.n = nc;
-    const std::vector<const Shape*>& casters = m_scene->manifold_casters();
-    for (size_t c = 0; c < casters.size(); ++c) {
-        if (!is_manifold_interface(casters[c]->bsdf(), lambda)) continue;
-        PCG32 rng = keyed_trial_stream(xb.p, xc, lambda, c);
-        for (int j = 0; j < m_settings->trials; ++j) {
-            std::vector<ManifoldVertex> found;
-            if (surface_trial(q, q.ctx, CasterChoice(*casters[c]), rng, lp, draws, -1, &found, /*trace_smooth=*/true) &&
-                same_solution(xb.p, found, target, xc))
-                return p_solution;
-        }
+    const CasterChoice casters(*m_scene, xb.p, lambda);
+    PCG32 rng = keyed_trial_stream(xb.p, xc, lambda);
+    for (int j = 0; j < m_settings->trials && !casters.empty(); ++j) {
+        std::vector<ManifoldVertex> found;
+        if (surface_trial(q, q.ctx, casters, rng, lp, draws, -1, &found, /*trace_smooth=*/true) &&
+            same_solution(xb.p, found, target, xc))
+            return p_solution;
     }
     return 0;
 }

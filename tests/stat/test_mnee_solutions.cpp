@@ -1021,51 +1021,77 @@ TEST(ManifoldSolutions, InverseProbabilityMatchesBruteForceBasins) {
     }
 }
 
+namespace {
+
+// A second glass sphere for glass_sphere() or droplet(), at `center` (XML attributes).
+std::string other_glass_sphere(const char* center, const char* radius) {
+    return std::string(R"(  <shape type="sphere"><point name="center" )") + center +
+           R"(/><float name="radius" value=")" + radius + R"("/>
+    <bsdf type="dielectric"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/></bsdf></shape>
+)";
+}
+
+}  // namespace
+
 // solutions=keyed: its trials are a function of the connection, so density() replays them.
 // Every solution solve() finds has density() equal to its own density; every other exact
 // solution at the same light point (all 2000 trials find them) has density 0, and is BSDF
 // sampling's. An estimator that draws its trials from the sampler, or one whose density credits
-// every solution, fails one of the two.
+// every solution, fails one of the two. With a second glass sphere beside the droplet each trial
+// also draws its caster from the keyed stream, and density() must replay that choice too (a
+// density() that ran its trials on each caster in turn credits solutions solve() never found).
 TEST(ManifoldSolutions, KeyedDensityReplaysTheTrials) {
     size_t count = 0;
     const Vec3 at = multi_solution_receiver(&count);
-    const LoadedScene ls = droplet(kSphereLight);
-    const Scene& scene = *ls.scene;
-    const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z);
-    // One trial of one candidate: it misses solutions often enough to see them left out.
-    MneeSettings st = all_solutions(1);
-    st.solutions = MneeSolutions::Keyed;
-    st.seed_candidates = 1;
-    const MneeSettings exhaustive = all_solutions(2000);
-    const ManifoldTechnique keyed(scene, st), every(scene, exhaustive);
-    const Light& light = *scene.lights()[0];
-    const SampledWavelengths wl = SampledWavelengths::single(550);
-    IndependentSampler smp(13);
-    smp.start_pixel_sample(0, 0, 0);
-    int found = 0, missed = 0, exact = 0;
-    for (int n = 0; n < 400; ++n) {
-        LightPoint lp;
-        std::vector<ManifoldVertex> seed;
-        if (straight_seed_to_light(scene, xb, smp, &lp, &seed) != SeedStatus::Refractive) continue;
-        const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false};
-        const SolutionSet mine = keyed.solve(q, light, 1.0, lp, seed, smp);
-        for (const ManifoldSolution& s : mine.solutions) {
-            EXPECT_NEAR(density_of(keyed, scene, xb, path_of(s), lp), s.density, 1e-5 * s.density);
-            ++found;
+    for (const bool two_casters : {false, true}) {
+        const LoadedScene ls = droplet(std::string(kSphereLight) +
+                                       (two_casters ? other_glass_sphere(R"(x="1.5" y="0.7" z="1.9")", "0.8") : ""));
+        const Scene& scene = *ls.scene;
+        const SurfaceInteraction xb = droplet_receiver(scene, at.x, at.z);
+        if (two_casters) {
+            const CasterChoice choice(scene, xb.p, 550);
+            ASSERT_EQ(choice.size(), 2u);
+            const double other =
+                &choice[0] == scene.manifold_casters()[0] ? choice.probability(1) : choice.probability(0);
+            std::cout << "[keyed] the other sphere's share of the trials " << other << "\n";
+            ASSERT_GT(other, 0.05);
         }
-        for (const ManifoldSolution& s : every.solve(q, light, 1.0, lp, seed, smp).solutions) {
-            ++exact;
-            const bool held = std::any_of(mine.solutions.begin(), mine.solutions.end(), [&](const ManifoldSolution& m) {
-                return same_solution(xb.p, m.chain, s.chain, lp.p);
-            });
-            if (held) continue;
-            EXPECT_EQ(density_of(keyed, scene, xb, path_of(s), lp), 0.0) << "a solution the trials did not find";
-            ++missed;
+        // One trial of one candidate: it misses solutions often enough to see them left out.
+        MneeSettings st = all_solutions(two_casters ? 2 : 1);
+        st.solutions = MneeSolutions::Keyed;
+        st.seed_candidates = 1;
+        const MneeSettings exhaustive = all_solutions(2000);
+        const ManifoldTechnique keyed(scene, st), every(scene, exhaustive);
+        const Light& light = *scene.lights()[0];
+        const SampledWavelengths wl = SampledWavelengths::single(550);
+        IndependentSampler smp(13);
+        smp.start_pixel_sample(0, 0, 0);
+        int found = 0, missed = 0, exact = 0;
+        for (int n = 0; n < 400; ++n) {
+            LightPoint lp;
+            std::vector<ManifoldVertex> seed;
+            if (straight_seed_to_light(scene, xb, smp, &lp, &seed) != SeedStatus::Refractive) continue;
+            const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false};
+            const SolutionSet mine = keyed.solve(q, light, 1.0, lp, seed, smp);
+            for (const ManifoldSolution& s : mine.solutions) {
+                EXPECT_NEAR(density_of(keyed, scene, xb, path_of(s), lp), s.density, 1e-5 * s.density);
+                ++found;
+            }
+            for (const ManifoldSolution& s : every.solve(q, light, 1.0, lp, seed, smp).solutions) {
+                ++exact;
+                const bool held =
+                    std::any_of(mine.solutions.begin(), mine.solutions.end(),
+                                [&](const ManifoldSolution& m) { return same_solution(xb.p, m.chain, s.chain, lp.p); });
+                if (held) continue;
+                EXPECT_EQ(density_of(keyed, scene, xb, path_of(s), lp), 0.0) << "a solution the trials did not find";
+                ++missed;
+            }
         }
+        std::cout << "[keyed] " << (two_casters ? "two casters: " : "") << found << " of " << exact
+                  << " solutions found, " << missed << " left to BSDF sampling\n";
+        EXPECT_GE(found, 300);
+        EXPECT_GE(missed, 5);
     }
-    std::cout << "[keyed] " << found << " of " << exact << " solutions found, " << missed << " left to BSDF sampling\n";
-    EXPECT_GE(found, 300);
-    EXPECT_GE(missed, 5);
 }
 
 // Alg. 2 (lines 5-7) credits MNEE with a path only if the straight seed walks to that very path.
@@ -1222,18 +1248,6 @@ TEST(ManifoldSolutions, ReflectionsMatchBruteForceBehindAGlassSphere) {
     std::cout << "[reflections] found " << found << " of " << count << " exact paths\n";
     EXPECT_EQ(size_t(std::count(matched.begin(), matched.end(), true)), count) << "an exact path not found";
 }
-
-namespace {
-
-// A second glass sphere for glass_sphere(), at `center` (XML attributes).
-std::string other_glass_sphere(const char* center, const char* radius) {
-    return std::string(R"(  <shape type="sphere"><point name="center" )") + center +
-           R"(/><float name="radius" value=")" + radius + R"("/>
-    <bsdf type="dielectric"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/></bsdf></shape>
-)";
-}
-
-}  // namespace
 
 // Beside a clear straight seed only chains on the seed's shapes are the technique's, and a
 // trial's chain starts on the caster it drew, so the trials run on the seed's first shape alone.
