@@ -2,7 +2,6 @@
 
 #include <bit>
 
-#include "geometry/shape.h"
 #include "manifold/seed_path.h"
 #include "manifold/surface_seed.h"
 #include "manifold/walk_counters.h"

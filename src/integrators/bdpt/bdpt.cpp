@@ -102,7 +102,7 @@ SampleEstimate BdptTracer::li_splat(const CameraSample& cs, const Ray& ray, cons
     cam.push_back(z0);
     Escape esc;
     // max_depth counts segments: t <= max_depth + 1 (s = 0) and s <= max_depth (t = 1).
-    const size_t cam_max = md < 0 ? size_t(kUnboundedVertices) : size_t(md + 1);
+    const size_t cam_max = md < 0 ? size_t(kUnboundedVertices) : size_t(md) + 1;
     const size_t light_max = md < 0 ? size_t(kUnboundedVertices) : size_t(md);
     const double pdf_primary = pinhole.pdf_dir(dot(ray.d, camera.forward()));
     random_walk(scene, ray, sampler, wl, SampledSpectrum(1.0), pdf_primary, cam_max, m_settings.rr_depth,
