@@ -37,6 +37,7 @@ snell_test(test_integrators
 snell_test(test_scatter SOURCES tests/unit/test_scatter.cpp LIBS snell_integrators)
 snell_test(test_mnee
   SOURCES tests/stat/test_mnee_agreement.cpp tests/stat/test_mnee_estimator.cpp tests/stat/test_mnee_solutions.cpp
+    tests/stat/test_exterior_reflection.cpp
   LIBS ${SNELL_ALL_LIBS})
 snell_test(test_path_features SOURCES tests/stat/test_path_features.cpp LIBS ${SNELL_ALL_LIBS})
 snell_test(test_cameras SOURCES tests/stat/test_cameras.cpp LIBS ${SNELL_ALL_LIBS})

@@ -22,6 +22,7 @@ snell_library(snell_manifold
   src/manifold/keyed_trials_estimator.cpp
   src/manifold/surface_seed.cpp
   src/manifold/caster_choice.cpp
+  src/manifold/exterior_reflection.cpp
 )
 target_link_libraries(snell_manifold PUBLIC snell_scene snell_geometry snell_bsdf snell_light snell_core
                       nlohmann_json::nlohmann_json)

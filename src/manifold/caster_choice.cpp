@@ -63,4 +63,10 @@ double CasterChoice::probability(size_t i) const {
     return m_cdf[i] - (i > 0 ? m_cdf[i - 1] : 0.0);
 }
 
+double CasterChoice::probability_of(const Shape& caster) const {
+    for (size_t i = 0; i < size(); ++i)
+        if (&(*this)[i] == &caster) return probability(i);
+    return 0.0;
+}
+
 }  // namespace snell

@@ -28,6 +28,8 @@ public:
     const Shape& pick(PCG32& rng) const;
     /// The probability pick() returns caster number i.
     double probability(size_t i) const;
+    /// The probability pick() returns `caster` (0 for a shape not in the choice).
+    double probability_of(const Shape& caster) const;
     const Shape& operator[](size_t i) const { return m_casters.empty() ? *m_first : *m_casters[i]; }
 
     static constexpr double kSolidAngleShare = 0.9;

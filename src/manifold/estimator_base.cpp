@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "geometry/shape.h"
+#include "manifold/exterior_reflection.h"
 #include "manifold/mis_cutoff.h"
 #include "manifold/seed_path.h"
 #include "manifold/surface_seed.h"
@@ -124,6 +125,11 @@ bool EstimatorBase::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx
     // Which solution the seed walks to is all a trial asks: no visibility rays, no measurement.
     if (mnee_walk(*m_scene, *m_settings, *q.xb, *q.bsdf_b, lp, *chain, draws, /*trial_only=*/true) !=
         MneeOutcome::Success)
+        return false;
+    // One reflection off the outside of smooth glass is ExteriorReflection's path (solution_density
+    // gives it 0 here): a trial that walks to it has failed.
+    if (st.exterior_reflections > 0 && chain->size() == 1 && (*chain)[0].reflect &&
+        ExteriorReflection::in_class(q.xb->p, (*chain)[0].si, lp.p, ctx.hero()))
         return false;
     polish_solution(m_scene, q.xb->p, *chain, light_point_basis(lp.p, lp.n, normalize(lp.p - q.xb->p)),
                     m_settings->walk);

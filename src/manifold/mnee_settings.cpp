@@ -61,6 +61,11 @@ MneeSettings MneeSettings::from_props(const Props& p) {
     if (s.seed_candidates < 1 || s.seed_candidates > 1024)
         p.raise_param("seed_candidates", "seed_candidates must lie in [1, 1024]");
     s.reflections = p.get_bool("reflections", s.reflections);
+    // The paper's estimator stays the paper's: it connects through refraction alone.
+    s.exterior_reflections =
+        p.get_float("exterior_reflections", s.solutions != MneeSolutions::One ? kDefaultExteriorReflections : 0.0);
+    if (!(s.exterior_reflections >= 0 && s.exterior_reflections <= 1))
+        p.raise_param("exterior_reflections", "exterior_reflections (a probability) must lie in [0, 1]");
     // `all` counts each solution once (no 1 / p) and keeps surface_weight 1.
     const bool both_seeds = (s.solutions == MneeSolutions::Unbiased || s.solutions == MneeSolutions::All) &&
                             s.seeding == MneeSeeding::StraightAndSurface;

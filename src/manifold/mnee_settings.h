@@ -10,6 +10,9 @@ class Props;
 /// surface_weight's default with solutions=unbiased and both kinds of seeds (the best measured
 /// at equal time on the droplets' caustics; docs/mnee.md, "surface_weight").
 inline constexpr double kDefaultSurfaceWeight = 0.03;
+/// exterior_reflections' default for a scene's multi-solution estimators (docs/mnee.md,
+/// "Reflections off the outside of glass").
+inline constexpr double kDefaultExteriorReflections = 0.05;
 /// mis_cutoff's default for a scene's unbiased estimators (docs/mnee.md, "The MIS cutoff").
 inline constexpr double kDefaultMisCutoff = 10;
 /// trials' default with solutions=keyed (docs/mnee.md, "Keyed trials").
@@ -83,6 +86,12 @@ struct MneeSettings {
     /// always under total internal reflection), so that solutions=all and unbiased also find
     /// paths with internal reflections, and take them from BSDF sampling by MIS.
     bool reflections = false;
+    /// (exterior_reflections) the probability rho with which each x_b makes a reflected
+    /// connection: light reflected once off the outside of smooth glass, connected by its own
+    /// manifold walk (ExteriorReflection), counted 1 / rho and weighed against BSDF sampling by
+    /// MIS with rho times its density. 0: none (BSDF sampling alone finds that light). The scene
+    /// parameter defaults to kDefaultExteriorReflections, and to 0 for the paper's estimator.
+    double exterior_reflections = 0;
     /// (surface_weight) c in (0, 1]: with the straight seed and surface seeds both walked
     /// (solutions=all or unbiased, seeding=straight+surface) and the straight segment x_b -> x_c
     /// clear, MIS takes the density of a path the straight seed does not walk to (Alg. 2 says

@@ -352,8 +352,8 @@ double mnee_share(const std::string& xml) {
     const double mnee = mean("path.technique.mnee_straight") + mean("path.technique.mnee_surface");
     // The techniques partition each sample's radiance.
     double sum = 0;
-    for (const char* t :
-         {"emitted", "bsdf_hit", "bsdf_refracted", "bsdf_reflected", "nee", "mnee_straight", "mnee_surface"})
+    for (const char* t : {"emitted", "bsdf_hit", "bsdf_refracted", "bsdf_reflected", "nee", "mnee_straight",
+                          "mnee_surface", "mnee_reflected"})
         sum += mean((std::string("path.technique.") + t).c_str());
     EXPECT_NEAR(sum, mean("path.sample"), 1e-9 * mean("path.sample"));
     return mnee / (mnee + mean("path.technique.bsdf_refracted"));

@@ -311,6 +311,13 @@ TEST(SceneLoaderFull, MneeDefaultsAndSurfaceWeight) {
     expect_error(scene_with("<integrator type=\"mnee\">\n<string name=\"solutions\" value=\"one\"/><float "
                             "name=\"surface_weight\" value=\"0.1\"/></integrator>"),
                  "test.xml:4", "needs solutions=all or unbiased with seeding=straight+surface");
+    // The reflected connection: on by default, off for the paper's estimator, a probability.
+    EXPECT_EQ(def.exterior_reflections, kDefaultExteriorReflections);
+    EXPECT_EQ(settings(R"(<string name="solutions" value="one"/>)").exterior_reflections, 0.0);
+    EXPECT_EQ(settings(R"(<float name="exterior_reflections" value="0.5"/>)").exterior_reflections, 0.5);
+    expect_error(
+        scene_with("<integrator type=\"mnee\">\n<float name=\"exterior_reflections\" value=\"1.5\"/></integrator>"),
+        "test.xml:4", "exterior_reflections (a probability) must lie in [0, 1]");
     EXPECT_EQ(def.failed_walk_weight, 0.0);
     EXPECT_EQ(settings(R"(<float name="failed_walk_weight" value="0.5"/>)").failed_walk_weight, 0.5);
     expect_error(

@@ -39,6 +39,7 @@ MneePath::MneePath(const Scene& scene, const PathSettings& path, const MneeSetti
       m_path(&path),
       m_mnee(&mnee),
       m_technique(scene, mnee),
+      m_reflection(scene, mnee),
       m_ctx{wl, TransportMode::Radiance},
       m_walk(scene, path, wl, camera_ray, observer),
       m_q(q),
@@ -46,8 +47,9 @@ MneePath::MneePath(const Scene& scene, const PathSettings& path, const MneeSetti
       m_surface_trials(surface_trials),
       m_failed_walk_trials(failed_walk_trials),
       // Delta lights keep q = 1 in every region (ManifoldTechnique::connect), so NEE at a rough
-      // interface is weighed against MNEE for them even where q = 0.
-      m_weighs_mnee(q != 0 || scene.has_delta_lights()) {
+      // interface is weighed against MNEE for them even where q = 0. The reflected connection is
+      // made in every region.
+      m_weighs_mnee(q != 0 || scene.has_delta_lights() || mnee.exterior_reflections > 0) {
     m_prev.at = {camera_ray.o, Vec3()};
 }
 
@@ -95,17 +97,14 @@ void MneePath::connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSD
         m_out.add(Technique::Nee, beta * connect_at_interface(si, bsdf, sctx, sampler));
         return;
     }
-    // Alg. 1 from x_b = si. The connection adds k + 1 segments to the depth + 1 the path has
-    // (max_depth, Mitsuba's meaning); BSDF sampling cannot produce longer paths, so neither may
-    // MNEE.
-    ManifoldQuery query{&si, &bsdf, sctx, m_walk.media, m_walk.tp.hero_only};
+    if (m_mnee->exterior_reflections > 0) connect_reflected(si, bsdf, sctx, sampler);
+    // Alg. 1 from x_b = si.
+    ManifoldQuery query = query_at(si, bsdf, sctx);
     query.connect_probability = m_q >= 0 ? m_q : m_mnee->connect_probability;
-    query.max_k = m_path->max_depth >= 0 ? m_path->max_depth - m_walk.depth - 2 : -1;
     query.meter_work = m_pilot != nullptr;
     query.probes = m_pilot != nullptr;
     query.surface_trials = m_surface_trials;
     query.failed_walk_trials = m_failed_walk_trials;
-    query.directions = &m_walk.directions();
     const ManifoldConnection c = m_technique.connect(query, sampler);
     // q = 0 would have made one shadow ray in place of the seed (ManifoldTechnique::connect).
     if (m_pilot && c.light && !c.light->is_delta() && c.seed_work > 0) m_pilot->work_seed += c.seed_work - 1.0;
@@ -149,6 +148,24 @@ void MneePath::connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSD
         by_vertex[std::min<size_t>(size_t(m_walk.depth), std::size(by_vertex) - 1)].add(m_ctx.wl.to_xyz(v).y);
         m_out.add(sol.from_surface ? Technique::MneeSurface : Technique::MneeStraight, v);
     }
+}
+
+ManifoldQuery MneePath::query_at(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& sctx) const {
+    ManifoldQuery query{&si, &bsdf, sctx, m_walk.media, m_walk.tp.hero_only};
+    // The connection adds k + 1 segments to the depth + 1 the path has (max_depth, Mitsuba's
+    // meaning); BSDF sampling cannot produce longer paths, so neither may MNEE.
+    query.max_k = m_path->max_depth >= 0 ? m_path->max_depth - m_walk.depth - 2 : -1;
+    query.directions = &m_walk.directions();
+    return query;
+}
+
+void MneePath::connect_reflected(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& sctx,
+                                 Sampler& sampler) {
+    const ReflectedConnection r = m_reflection.connect(query_at(si, bsdf, sctx), sampler);
+    if (!r.found) return;
+    // The biased mode drops BSDF sampling's reflected hits (emitter_weight): this is their light.
+    const double w = m_mnee->biased ? 1.0 : power_heuristic(r.density, {r.pdf_bsdf});
+    m_out.add(Technique::MneeReflected, m_walk.tp.beta * r.value * w);
 }
 
 SampledSpectrum MneePath::connect_at_interface(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& sctx,
@@ -205,9 +222,14 @@ double MneePath::emitter_weight(const Light& light, const Vec3& p, const Vec3& n
     // Sec. 3.5: outlier removal drops the light that BSDF sampling finds through interfaces after
     // x_b but MNEE cannot: transmissive suffixes its walks do not reach, and suffixes with an
     // internal reflection (rare, bright hits through the glass: fireflies that no sample count
-    // averages away).
+    // averages away; a single reflection off the outside is the reflected connection's there).
     if (m_mnee->biased && !(p_mnee > 0)) return 0.0;
-    return power_heuristic(p_bsdf, {p_mnee, p_nee});
+    // One reflection off the outside of smooth glass: the reflected connection's path too.
+    const double p_r = m_mnee->exterior_reflections > 0 && s.k == 1 && !s.transmissions_only && s.specular[0]
+                           ? m_reflection.density(s.xb, *s.xb.bsdf(), s.xb_media, s.chain[0], light, pmf, lp.p, lp.n,
+                                                  m_ctx.hero(), p_bsdf + p_nee + p_mnee)
+                           : 0.0;
+    return power_heuristic(p_bsdf, {p_mnee, p_nee, p_r});
 }
 
 Technique MneePath::emitter_technique() const {

@@ -8,6 +8,7 @@
 #include "integrators/mnee/connection_allocation.h"
 #include "integrators/mnee/refractive_suffix.h"
 #include "integrators/path/camera_walk.h"
+#include "manifold/exterior_reflection.h"
 #include "manifold/manifold_technique.h"
 #include "manifold/mnee_settings.h"
 
@@ -30,6 +31,11 @@ private:
     /// At a non-specular vertex that is no interface: Alg. 1 from x_b = si. At a rough
     /// interface vertex: NEE, weighted against BSDF sampling and MNEE from the path's x_b.
     void connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& sctx, Sampler& sampler);
+    /// The light reflected once off the outside of glass, from x_b = si (ExteriorReflection),
+    /// weighed against BSDF sampling.
+    void connect_reflected(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& sctx, Sampler& sampler);
+    /// The path at x_b = si as the manifold techniques need it.
+    ManifoldQuery query_at(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& sctx) const;
     SampledSpectrum connect_at_interface(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& sctx,
                                          Sampler& sampler);
     /// MIS weight of an emitter that BSDF sampling reached at (p, n) (zero for lights at
@@ -71,6 +77,7 @@ private:
     const PathSettings* m_path;
     const MneeSettings* m_mnee;
     ManifoldTechnique m_technique;
+    ExteriorReflection m_reflection;
     BSDFContext m_ctx;
     CameraWalk m_walk;
     PreviousVertex m_prev;
@@ -79,10 +86,10 @@ private:
     PilotSample* m_pilot;
     bool m_surface_trials;
     bool m_failed_walk_trials;
-    /// Whether any MIS weight reads MNEE's density: q != 0, or a delta light in the scene. Where
-    /// neither, no connection competes with BSDF sampling or with NEE at a rough interface, their
-    /// weights are the path tracer's, and the suffix keeps only its counters (docs/experiments.md,
-    /// "What a region at q = 0 costs").
+    /// Whether any MIS weight reads MNEE's density: q != 0, a delta light in the scene, or the
+    /// reflected connection (which every region makes). Where none, no connection competes with
+    /// BSDF sampling or with NEE at a rough interface, their weights are the path tracer's, and the
+    /// suffix keeps only its counters (docs/experiments.md, "What a region at q = 0 costs").
     bool m_weighs_mnee;
     SampleRadiance m_out;
 };

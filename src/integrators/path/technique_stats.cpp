@@ -18,16 +18,18 @@ StatMoments bsdf_reflected{
 StatMoments nee{"path.technique.nee", "per-sample luminance of next event estimation"};
 StatMoments mnee_straight{"path.technique.mnee_straight", "per-sample luminance of MNEE's straight-seed solutions"};
 StatMoments mnee_surface{"path.technique.mnee_surface", "per-sample luminance of MNEE's surface-seed solutions"};
+StatMoments mnee_reflected{"path.technique.mnee_reflected",
+                           "per-sample luminance of MNEE's connections reflected off the outside of glass"};
 StatMoments total{"path.sample", "per-sample luminance of camera paths (every technique)"};
 // In Technique's order; the size check keeps a new technique from reading a missing entry.
 StatMoments* const kStats[] = {&emitted, &bsdf_hit,      &bsdf_refracted, &bsdf_reflected,
-                               &nee,     &mnee_straight, &mnee_surface};
+                               &nee,     &mnee_straight, &mnee_surface,   &mnee_reflected};
 static_assert(std::size(kStats) == size_t(kTechniqueCount));
 }  // namespace
 
 const char* technique_name(Technique t) {
     static const char* const names[] = {"emitted", "bsdf_hit",      "bsdf_refracted", "bsdf_reflected",
-                                        "nee",     "mnee_straight", "mnee_surface"};
+                                        "nee",     "mnee_straight", "mnee_surface",   "mnee_reflected"};
     static_assert(std::size(names) == size_t(kTechniqueCount));
     return names[size_t(t)];
 }

@@ -20,8 +20,9 @@ enum class Technique : uint8_t {
     Nee,            ///< next event estimation (a shadow ray)
     MneeStraight,   ///< MNEE: the solution walked from the straight seed (paper Alg. 1)
     MneeSurface,    ///< MNEE: solutions walked from seeds sampled on the caster shapes (SMS)
+    MneeReflected,  ///< MNEE's reflected connection: light reflected once off the outside of glass
 };
-inline constexpr int kTechniqueCount = 7;
+inline constexpr int kTechniqueCount = 8;
 static_assert(kTechniqueCount < 128, "the film keeps a pixel's technique in an int8_t");
 
 /// The short names used in the statistics ("path.technique.<name>").
