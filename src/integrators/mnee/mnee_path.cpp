@@ -49,7 +49,8 @@ MneePath::MneePath(const Scene& scene, const PathSettings& path, const MneeSetti
       // Delta lights keep q = 1 in every region (ManifoldTechnique::connect), so NEE at a rough
       // interface is weighed against MNEE for them even where q = 0. The reflected connection is
       // made in every region.
-      m_weighs_mnee(q != 0 || scene.has_delta_lights() || mnee.exterior_reflections > 0) {
+      m_reflects(mnee.exterior_reflections > 0 && !scene.manifold_casters().empty()),
+      m_weighs_mnee(q != 0 || scene.has_delta_lights() || m_reflects) {
     m_prev.at = {camera_ray.o, Vec3()};
 }
 
@@ -97,7 +98,7 @@ void MneePath::connect(const SurfaceInteraction& si, const BSDF& bsdf, const BSD
         m_out.add(Technique::Nee, beta * connect_at_interface(si, bsdf, sctx, sampler));
         return;
     }
-    if (m_mnee->exterior_reflections > 0) connect_reflected(si, bsdf, sctx, sampler);
+    if (m_reflects) connect_reflected(si, bsdf, sctx, sampler);
     // Alg. 1 from x_b = si.
     ManifoldQuery query = query_at(si, bsdf, sctx);
     query.connect_probability = m_q >= 0 ? m_q : m_mnee->connect_probability;
@@ -225,7 +226,7 @@ double MneePath::emitter_weight(const Light& light, const Vec3& p, const Vec3& n
     // averages away; a single reflection off the outside is the reflected connection's there).
     if (m_mnee->biased && !(p_mnee > 0)) return 0.0;
     // One reflection off the outside of smooth glass: the reflected connection's path too.
-    const double p_r = m_mnee->exterior_reflections > 0 && s.k == 1 && !s.transmissions_only && s.specular[0]
+    const double p_r = m_reflects && s.k == 1 && !s.transmissions_only && s.specular[0]
                            ? m_reflection.density(s.xb, *s.xb.bsdf(), s.xb_media, s.chain[0], light, pmf, lp.p, lp.n,
                                                   m_ctx.hero(), p_bsdf + p_nee + p_mnee)
                            : 0.0;

@@ -86,6 +86,9 @@ private:
     PilotSample* m_pilot;
     bool m_surface_trials;
     bool m_failed_walk_trials;
+    /// The reflected connection is made (exterior_reflections > 0 and the scene holds glass:
+    /// without it no sampler dimension is drawn, so that `mnee` stays `nee` sample for sample).
+    bool m_reflects;
     /// Whether any MIS weight reads MNEE's density: q != 0, a delta light in the scene, or the
     /// reflected connection (which every region makes). Where none, no connection competes with
     /// BSDF sampling or with NEE at a rough interface, their weights are the path tracer's, and the
