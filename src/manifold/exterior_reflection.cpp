@@ -106,9 +106,15 @@ ReflectedConnection ExteriorReflection::connect(const ManifoldQuery& q, Sampler&
     const Scene& scene = *m_scene;
     const SurfaceInteraction& xb = *q.xb;
     // The connection is made with probability rho: the coin comes first, so that the others
-    // cost nothing. Its uniform, stretched, picks the caster.
+    // cost nothing. Its uniform, stretched, picks the caster. Without the connection the light
+    // sample's dimensions are drawn all the same, so that every technique after it reads the
+    // same sampler dimensions in every sample of a pixel (their stratification).
     const double rho = m_settings->exterior_reflections, u = sampler.next_1d();
-    if (!(u < rho)) return out;
+    if (!(u < rho)) {
+        sampler.next_1d();  // as sample_light draws
+        sampler.next_2d();
+        return out;
+    }
     const double u_caster = std::min(u / rho, 1.0 - 0x1p-53);
     const Light* light = nullptr;
     double pmf = 0;
