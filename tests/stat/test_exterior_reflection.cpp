@@ -8,8 +8,11 @@
 //   density the connection reported, and the path obeys the law of reflection.
 // - In the `mnee` integrator, MIS between it and BSDF sampling keeps the image: renders with and
 //   without it agree per block.
+// - The MIS cutoff cuts the connection and its density alike.
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <vector>
 
 #include "bsdf/fresnel.h"
 #include "manifold/caster_choice.h"
@@ -173,4 +176,69 @@ TEST(ExteriorReflection, MneeAgreesWithAndWithoutIt) {
               << wb.mean << " +- " << wb.stderr_ << "\n";
     expect_agreement(ea, eb, 0.01, "mnee with the reflected connection against without it");
     EXPECT_LT(std::abs(wa.mean - wb.mean), 4 * std::hypot(wa.stderr_, wb.stderr_)) << "the whole patch";
+}
+
+// The MIS cutoff (mis_cutoff.h) cuts both sides of a path alike: where BSDF sampling's density
+// exceeds the ratio times the connection's, connect() delivers nothing and density() answers 0
+// for BSDF sampling's copy of the path; elsewhere both keep the path. Were only one side cut, the
+// cut paths would count twice (connect() uncut) or lose the connection's share (density() uncut).
+// The ratio is the median of the paths' own, so about half of them are cut.
+TEST(ExteriorReflection, CutoffCutsBothSidesAlike) {
+    const LoadedScene ls = load_xml(two_spheres());
+    const Scene& scene = *ls.scene;
+    MneeSettings uncut;
+    uncut.exterior_reflections = 0.5;
+    uncut.mis_cutoff = 0;
+    const SampledWavelengths wl = SampledWavelengths::single(550);
+    const auto receiver = [&](int n) {
+        IndependentSampler smp(900 + uint64_t(n));
+        smp.start_pixel_sample(0, 0, 0);
+        const Vec2 u = smp.next_2d();
+        return droplet_receiver(scene, -1.5 + 3.5 * u.x, -2.5 + 3.5 * u.y);
+    };
+    // The same connection twice: each from a sampler of its own seed, so both draw alike.
+    const auto connect = [&](const ExteriorReflection& t, const SurfaceInteraction& xb, int n) {
+        IndependentSampler smp(7000 + uint64_t(n));
+        smp.start_pixel_sample(0, 0, 0);
+        const ManifoldQuery q{&xb, xb.bsdf(), BSDFContext{wl, TransportMode::Radiance}, MediumStack(), false};
+        return t.connect(q, smp);
+    };
+    const ExteriorReflection all(scene, uncut);
+    std::vector<double> ratios;
+    for (int n = 0; n < 3000; ++n) {
+        const SurfaceInteraction xb = receiver(n);
+        if (!xb.bsdf() || std::abs(xb.p.y) > 1e-6) continue;
+        const ReflectedConnection r = connect(all, xb, n);
+        if (r.found) ratios.push_back(r.pdf_bsdf / r.density);
+    }
+    ASSERT_GT(ratios.size(), 200u);
+    std::vector<double> sorted = ratios;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    MneeSettings cut = uncut;
+    cut.mis_cutoff = sorted[sorted.size() / 2];
+    const ExteriorReflection technique(scene, cut);
+    int kept = 0, dropped = 0;
+    for (int n = 0; n < 3000; ++n) {
+        const SurfaceInteraction xb = receiver(n);
+        if (!xb.bsdf() || std::abs(xb.p.y) > 1e-6) continue;
+        const ReflectedConnection r = connect(all, xb, n), c = connect(technique, xb, n);
+        if (!r.found) {
+            EXPECT_FALSE(c.found);
+            continue;
+        }
+        const bool is_cut = r.pdf_bsdf > cut.mis_cutoff * r.density;
+        EXPECT_EQ(c.found, !is_cut) << "connect() at ratio " << r.pdf_bsdf / r.density;
+        const double d =
+            technique.density(xb, *xb.bsdf(), MediumStack(), r.y, *r.light, r.pmf, r.lp.p, r.lp.n, 550, r.pdf_bsdf);
+        if (is_cut) {
+            EXPECT_EQ(d, 0.0) << "density() at ratio " << r.pdf_bsdf / r.density;
+        } else {
+            EXPECT_NEAR(d, r.density, 1e-6 * r.density);
+            EXPECT_NEAR(c.value[0], r.value[0], 1e-9 * r.value[0]);
+        }
+        (is_cut ? dropped : kept)++;
+    }
+    std::cout << "[reflected] cutoff " << cut.mis_cutoff << ": " << kept << " paths kept, " << dropped << " cut\n";
+    EXPECT_GT(kept, 100);
+    EXPECT_GT(dropped, 100);
 }
