@@ -78,6 +78,13 @@ bool ExteriorReflection::in_class(const Vec3& xb, const SurfaceInteraction& y, c
            dot(xc - y.p, y.ng) > 0;
 }
 
+bool ExteriorReflection::made(const Scene& scene, const MneeSettings& settings) {
+    if (!(settings.exterior_reflections > 0)) return false;
+    for (const Shape* caster : scene.manifold_casters())
+        if (!caster->bsdf()->has_microfacet()) return true;
+    return false;
+}
+
 bool ExteriorReflection::seed(const Shape& caster, const SurfaceInteraction& xb, const BSDF& bsdf_b, const Vec3& xc,
                               double lambda, ManifoldVertex* v) const {
     const BoundingSphere* b = bounds_of(*m_scene, caster);

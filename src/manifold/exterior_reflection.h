@@ -62,6 +62,11 @@ public:
     /// The class: y on a smooth manifold interface, x_b and x_c on its outside (its normal's side).
     static bool in_class(const Vec3& xb, const SurfaceInteraction& y, const Vec3& xc, double lambda);
 
+    /// Whether the connection is made in `scene`: rho > 0 and some caster is smooth glass (rough
+    /// glass is no mirror; without such glass no sampler dimension is drawn, so that `mnee` stays
+    /// what it was sample for sample).
+    static bool made(const Scene& scene, const MneeSettings& settings);
+
 private:
     /// The seed vertex on `caster` for x_b and x_c (reflecting), or false where there is none or
     /// x_b's BSDF gives its direction nothing.

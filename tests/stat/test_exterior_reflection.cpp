@@ -18,6 +18,7 @@
 #include "manifold/caster_choice.h"
 #include "manifold/exterior_reflection.h"
 #include "manifold/manifold_technique.h"
+#include "manifold/walk_counters.h"
 #include "sampler/independent.h"
 #include "stat/droplet_points.h"
 #include "stat/render_stats.h"
@@ -149,12 +150,14 @@ TEST(ExteriorReflection, DensityReplaysTheConnection) {
 // The integrator's MIS between the reflected connection and BSDF sampling (emitter_weight) keeps
 // the image: the same scene with the connection off leaves that light to BSDF sampling alone. The
 // camera sees a patch of floor that a black disc shades from the light, so that most of its
-// light is the light the spheres reflect.
+// light is the light the spheres reflect. Once with MNEE in every region (q = 1), once with the
+// learned allocation, whose regions there take q = 0: there the suffix keeps x_b and its first
+// vertex for the reflected class alone (MneePath::arrive), and the weights are otherwise the
+// path tracer's.
 TEST(ExteriorReflection, MneeAgreesWithAndWithoutIt) {
-    const auto scene = [](const char* rho) {
-        std::string xml =
-            two_spheres(std::string(R"(<integrator type="mnee"><string name="allocation" value="fixed"/>)") +
-                        R"(<float name="exterior_reflections" value=")" + rho + R"("/></integrator>)");
+    const auto scene = [](const char* rho, const std::string& allocation) {
+        std::string xml = two_spheres(std::string(R"(<integrator type="mnee">)") + allocation +
+                                      R"(<float name="exterior_reflections" value=")" + rho + R"("/></integrator>)");
         // The patch around (-1.2, 0, -0.9), seen from above, and the disc between it and the light.
         replace_in(xml, R"(<lookat origin="0,4.5,5" target="0,0,-0.3" up="0,1,0"/>)",
                    R"(<lookat origin="-0.7,2.6,0.4" target="-1.2,0,-0.9" up="0,1,0"/>)");
@@ -168,14 +171,31 @@ TEST(ExteriorReflection, MneeAgreesWithAndWithoutIt) {
       <bsdf type="diffuse"><rgb name="reflectance" value="0, 0, 0"/></bsdf></shape></scene>)");
         return xml;
     };
-    const LoadedScene a = load_xml(scene("0.3")), b = load_xml(scene("0"));
-    const auto ea = block_estimates(a, *a.integrator, 160, 8, 6, 300);
-    const auto eb = block_estimates(b, *b.integrator, 160, 8, 6, 400);
-    const Estimate wa = whole_image(ea), wb = whole_image(eb);
-    std::cout << "[reflected] shaded patch with the connection " << wa.mean << " +- " << wa.stderr_ << ", without "
-              << wb.mean << " +- " << wb.stderr_ << "\n";
-    expect_agreement(ea, eb, 0.01, "mnee with the reflected connection against without it");
-    EXPECT_LT(std::abs(wa.mean - wb.mean), 4 * std::hypot(wa.stderr_, wb.stderr_)) << "the whole patch";
+    const std::string fixed = R"(<string name="allocation" value="fixed"/>)";
+    const std::string learned = R"(<integer name="allocation_block" value="8"/><integer name="pilot_spp" value="2"/>)";
+    for (const std::string& allocation : {fixed, learned}) {
+        const std::string what = allocation == fixed ? "q = 1" : "learned q";
+        const LoadedScene a = load_xml(scene("0.3", allocation)), b = load_xml(scene("0", allocation));
+        if (allocation == learned) {
+            RenderOptions opt;
+            opt.spp = 4;
+            opt.progress = false;
+            const std::vector<uint64_t> regions =
+                render(*a.scene, *a.integrator, a.film, opt).counters.bins(walk_counters::allocation_regions);
+            std::string chosen;
+            for (uint64_t n : regions) chosen += " " + std::to_string(n);
+            std::cout << "[reflected] " << what << ": regions by q (0, 1/64 .. 1):" << chosen << "\n";
+            ASSERT_FALSE(regions.empty());
+            EXPECT_GT(regions[0], 0u) << "no region at q = 0: the test would not see its weights";
+        }
+        const auto ea = block_estimates(a, *a.integrator, 160, 8, 6, 300);
+        const auto eb = block_estimates(b, *b.integrator, 160, 8, 6, 400);
+        const Estimate wa = whole_image(ea), wb = whole_image(eb);
+        std::cout << "[reflected] " << what << ": shaded patch with the connection " << wa.mean << " +- " << wa.stderr_
+                  << ", without " << wb.mean << " +- " << wb.stderr_ << "\n";
+        expect_agreement(ea, eb, 0.01, ("mnee with the reflected connection against without it, " + what).c_str());
+        EXPECT_LT(std::abs(wa.mean - wb.mean), 4 * std::hypot(wa.stderr_, wb.stderr_)) << what << ": the whole patch";
+    }
 }
 
 // The MIS cutoff (mis_cutoff.h) cuts both sides of a path alike: where BSDF sampling's density

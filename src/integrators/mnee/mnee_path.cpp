@@ -46,11 +46,11 @@ MneePath::MneePath(const Scene& scene, const PathSettings& path, const MneeSetti
       m_pilot(pilot),
       m_surface_trials(surface_trials),
       m_failed_walk_trials(failed_walk_trials),
-      // Delta lights keep q = 1 in every region (ManifoldTechnique::connect), so NEE at a rough
-      // interface is weighed against MNEE for them even where q = 0. The reflected connection is
-      // made in every region.
-      m_reflects(mnee.exterior_reflections > 0 && !scene.manifold_casters().empty()),
-      m_weighs_mnee(q != 0 || scene.has_delta_lights() || m_reflects) {
+      // The reflected connection is made in every region. Delta lights keep q = 1 in every region
+      // (ManifoldTechnique::connect), so NEE at a rough interface is weighed against MNEE for
+      // them even where q = 0.
+      m_reflects(ExteriorReflection::made(scene, mnee)),
+      m_weighs_mnee(q != 0 || scene.has_delta_lights()) {
     m_prev.at = {camera_ray.o, Vec3()};
 }
 
@@ -206,7 +206,9 @@ double MneePath::emitter_weight(const Light& light, const Vec3& p, const Vec3& n
                                 const SampledSpectrum& value) const {
     const Scene& scene = *m_scene;
     const RefractiveSuffix& s = m_suffix;
-    if (!s.has_xb || s.k == 0 || !m_weighs_mnee) return m_prev.emitter_weight(scene, light, p, n, d);
+    // One reflection off the outside of smooth glass: the reflected connection's path too.
+    const bool reflected = m_reflects && s.k == 1 && !s.transmissions_only && s.specular[0];
+    if (!s.has_xb || s.k == 0 || !(m_weighs_mnee || reflected)) return m_prev.emitter_weight(scene, light, p, n, d);
     // A BSDF-sampled path x_b, x_1..x_k (refractive), x_c: three techniques can produce it.
     const LightPoint lp = light_point_hit(scene, light, p, n, Vec2(), d, s.xb.p);  // densities only: no uv
     const double pmf = scene.light_sampler().pmf(&light);
@@ -225,11 +227,9 @@ double MneePath::emitter_weight(const Light& light, const Vec3& p, const Vec3& n
     // internal reflection (rare, bright hits through the glass: fireflies that no sample count
     // averages away; a single reflection off the outside is the reflected connection's there).
     if (m_mnee->biased && !(p_mnee > 0)) return 0.0;
-    // One reflection off the outside of smooth glass: the reflected connection's path too.
-    const double p_r = m_reflects && s.k == 1 && !s.transmissions_only && s.specular[0]
-                           ? m_reflection.density(s.xb, *s.xb.bsdf(), s.xb_media, s.chain[0], light, pmf, lp.p, lp.n,
-                                                  m_ctx.hero(), p_bsdf + p_nee + p_mnee)
-                           : 0.0;
+    const double p_r = reflected ? m_reflection.density(s.xb, *s.xb.bsdf(), s.xb_media, s.chain[0], light, pmf, lp.p,
+                                                        lp.n, m_ctx.hero(), p_bsdf + p_nee + p_mnee)
+                                 : 0.0;
     return power_heuristic(p_bsdf, {p_mnee, p_nee, p_r});
 }
 
@@ -245,7 +245,9 @@ void MneePath::arrive(const SurfaceInteraction& si) {
         s.has_xb = false;
         return;
     }
-    if (!m_weighs_mnee) {
+    // Where no MIS weight reads MNEE's density, only the reflected connection's class (x_b and
+    // one vertex) needs the suffix.
+    if (!m_weighs_mnee && !(m_reflects && s.k == 0)) {
         ++s.k;
         return;
     }
@@ -262,12 +264,12 @@ void MneePath::scattered(const SurfaceInteraction& si, const BSDF& bsdf, const B
         const size_t i = size_t(s.k - 1);
         s.specular[i] = bs.is_delta();
         if (!(bs.lobe & kTransmission)) s.transmissions_only = false;
-        if (!m_weighs_mnee) return;
+        if (!m_weighs_mnee && !(m_reflects && s.k == 1)) return;
         const ManifoldVertex v = ManifoldVertex::from_interaction(si, bsdf.eta(m_ctx.hero()));
         s.q_last = vertex_bsdf_density(v, si.wo, bs.wi, m_ctx.at(si));
     } else if (bsdf.is_smooth_sampled() && !bs.is_delta()) {
         // A new x_b: MNEE connected from here.
-        if (m_weighs_mnee)
+        if (m_weighs_mnee || m_reflects)
             s.start(si, media_before, bs.pdf);
         else
             s.restart();

@@ -86,13 +86,14 @@ private:
     PilotSample* m_pilot;
     bool m_surface_trials;
     bool m_failed_walk_trials;
-    /// The reflected connection is made (exterior_reflections > 0 and the scene holds glass:
-    /// without it no sampler dimension is drawn, so that `mnee` stays `nee` sample for sample).
+    /// The reflected connection is made (ExteriorReflection::made: exterior_reflections > 0 and
+    /// the scene holds smooth glass), in every region.
     bool m_reflects;
-    /// Whether any MIS weight reads MNEE's density: q != 0, a delta light in the scene, or the
-    /// reflected connection (which every region makes). Where none, no connection competes with
-    /// BSDF sampling or with NEE at a rough interface, their weights are the path tracer's, and the
-    /// suffix keeps only its counters (docs/experiments.md, "What a region at q = 0 costs").
+    /// Whether any MIS weight reads MNEE's density: q != 0 or a delta light in the scene. Where
+    /// none, no connection competes with BSDF sampling or with NEE at a rough interface, their
+    /// weights are the path tracer's, and the suffix keeps only its counters, and x_b and its
+    /// first vertex where the reflected connection weighs that one-vertex class
+    /// (docs/experiments.md, "What a region at q = 0 costs").
     bool m_weighs_mnee;
     SampleRadiance m_out;
 };
