@@ -23,6 +23,12 @@
 #       LABEL/seed*: relMSE and median error averaged, the crop mean's average, spread (standard
 #       deviation over the runs, divided by their number) and worst seed, the runs whose mean lies
 #       within 2 % (LABEL/seeds.md)
+#   caustic_gallery.sh pairs LABEL_A LABEL_B               each technique's own relMSE, without the
+#       reference's noise: two runs of it with different seeds (e.g. LABEL/seed1, LABEL/seed2) give
+#       E[(A - B)^2] = 2 Var per pixel, so half their relMSE (the reference only in the denominator,
+#       --normalise-by) is one run's, where a technique is unbiased; the ratio of two techniques'
+#       figures is then free of the reference's own error, which caps what `table` can show (the
+#       pool's caustic near 1/30,000 of `nee`'s) (LABEL_A/pairs.md)
 #   caustic_gallery.sh variant LABEL NAME 'XML' [seconds=30]   `mnee` (VARIANT_OF=nee: `nee`) with integrator parameters
 #       XML (e.g. '<float name="connect_probability" value="0.3"/>') on every case, scored on its
 #       crop like the table: results/gallery/LABEL/<case>_NAME.exr, a row each in variants.md
@@ -230,6 +236,28 @@ for c in cases:
             "%.2f" % (rel / nee) if nee else "-"))
 EOF
   ;;
+pairs)
+  A=${2:?first label}
+  B=${3:?second label}
+  {
+    echo "| case | technique | own relMSE (half of $A against $B) | relMSE against the reference ($A / $B) | nee's own / this |"
+    echo "|---|---|---|---|---|"
+    for c in "${CASES[@]}"; do
+      nee_own=""
+      for t in nee mnee-paper mnee mnee-biased; do
+        a=$OUT/$A/$c/$t.exr b=$OUT/$B/$c/$t.exr
+        if [ ! -f "$a" ] || [ ! -f "$b" ]; then continue; fi
+        own=$("$SNELL" diff "$a" "$b" --normalise-by "$OUT/ref/$c.exr" --json |
+          python3 -c "import json,sys; print(json.load(sys.stdin)[0]['rel_mse'] / 2)")
+        ra=$("$SNELL" diff "$a" "$OUT/ref/$c.exr" --json | python3 -c "import json,sys; print('%.4g' % json.load(sys.stdin)[0]['rel_mse'])")
+        rb=$("$SNELL" diff "$b" "$OUT/ref/$c.exr" --json | python3 -c "import json,sys; print('%.4g' % json.load(sys.stdin)[0]['rel_mse'])")
+        [ "$t" = nee ] && nee_own=$own
+        ratio=$(python3 -c "print('%.4g' % ($nee_own / $own) if '$nee_own' and $own > 0 else '-')")
+        printf '| %s | %s | %.4g | %s / %s | %s |\n' "$c" "$t" "$own" "$ra" "$rb" "$ratio"
+      done
+    done
+  } | tee "$OUT/$A/pairs.md"
+  ;;
 variant)
   LABEL=${2:?label}
   NAME=${3:?variant name}
@@ -260,5 +288,5 @@ EOF
   done
   ;;
 *)
-  echo "caustic_gallery: unknown mode '$MODE' (reference, refcheck, refmean, run, table, seeds, seedtable, variant)" >&2; exit 2 ;;
+  echo "caustic_gallery: unknown mode '$MODE' (reference, refcheck, refmean, run, table, seeds, seedtable, pairs, variant)" >&2; exit 2 ;;
 esac
