@@ -5,11 +5,13 @@
 
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <string>
 #include <vector>
 
 #include "integrators/integrator.h"
 #include "loader/scene_loader.h"
+#include "manifold/walk_counters.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 
@@ -165,6 +167,21 @@ inline int count_disagreements(const std::vector<Estimate>& a, const std::vector
     int n = 0;
     for (size_t i = 0; i < a.size(); ++i) n += welch_p_value(a[i], b[i]) < alpha / double(a.size());
     return n;
+}
+
+/// The learned allocation's choice in a render of `spp` samples per pixel (its pilot's
+/// included): how many regions took each q (0, 1/64 .. 1; walk_counters::allocation_regions),
+/// printed as "[what] regions by q ...".
+inline std::vector<uint64_t> allocation_regions(const LoadedScene& ls, int spp, const std::string& what) {
+    RenderOptions opt;
+    opt.spp = spp;
+    opt.progress = false;
+    const std::vector<uint64_t> regions =
+        render(*ls.scene, *ls.integrator, ls.film, opt).counters.bins(walk_counters::allocation_regions);
+    std::string chosen;
+    for (uint64_t n : regions) chosen += " " + std::to_string(n);
+    std::cout << "[" << what << "] regions by q (0, 1/64 .. 1):" << chosen << "\n";
+    return regions;
 }
 
 }  // namespace snell::test

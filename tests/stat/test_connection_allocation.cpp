@@ -447,14 +447,7 @@ TEST(ConnectionAllocation, LearnedAllocationOnRoughGlassMatchesNee) {
         // regions of both kinds.
         LoadedScene mnee = load_xml(scene(std::string(kLearned) + R"(<float name="caster_probability" value="0"/>)"),
                                     {{"integrator", "mnee"}});
-        RenderOptions opt;
-        opt.spp = 4;
-        opt.progress = false;
-        const std::vector<uint64_t> regions =
-            render(*mnee.scene, *mnee.integrator, mnee.film, opt).counters.bins(walk_counters::allocation_regions);
-        std::string chosen;
-        for (uint64_t n : regions) chosen += " " + std::to_string(n);
-        std::cout << "[" << what << "] regions by q (0, 1/64 .. 1):" << chosen << "\n";
+        const std::vector<uint64_t> regions = allocation_regions(mnee, 4, what);
         ASSERT_GE(regions.size(), 2u);
         const uint64_t all = std::accumulate(regions.begin(), regions.end(), uint64_t(0));
         EXPECT_GT(regions[0], 0u) << what << ": no region at q = 0, the test would not see its weights";
@@ -491,18 +484,9 @@ TEST(ConnectionAllocation, LearnedAllocationMatchesNee) {
         LoadedScene brighter = load_xml(droplet(kLearned, size), {{"integrator", "mnee"}, {"radiance", "3.09"}});
         const std::string what = "learned allocation, light " + std::to_string(size);
         // The regions' choices: not all alike, so regions with and without walks are tested.
-        RenderOptions opt;
-        opt.spp = 4;
-        opt.progress = false;
-        const std::vector<uint64_t> regions =
-            render(*mnee.scene, *mnee.integrator, mnee.film, opt).counters.bins(walk_counters::allocation_regions);
+        const std::vector<uint64_t> regions = allocation_regions(mnee, 4, what);
         int kinds = 0;
-        std::string chosen;
-        for (uint64_t n : regions) {
-            kinds += n > 0;
-            chosen += " " + std::to_string(n);
-        }
-        std::cout << "[" << what << "] regions by q (0, 1/64 .. 1):" << chosen << "\n";
+        for (uint64_t n : regions) kinds += n > 0;
         EXPECT_GE(kinds, 2) << what << ": every region chose alike";
 
         const auto a = block_estimates(nee, *nee.integrator, 512, 8, 6, 100);

@@ -18,7 +18,6 @@
 #include "manifold/caster_choice.h"
 #include "manifold/exterior_reflection.h"
 #include "manifold/manifold_technique.h"
-#include "manifold/walk_counters.h"
 #include "sampler/independent.h"
 #include "stat/droplet_points.h"
 #include "stat/render_stats.h"
@@ -177,14 +176,7 @@ TEST(ExteriorReflection, MneeAgreesWithAndWithoutIt) {
         const std::string what = allocation == fixed ? "q = 1" : "learned q";
         const LoadedScene a = load_xml(scene("0.3", allocation)), b = load_xml(scene("0", allocation));
         if (allocation == learned) {
-            RenderOptions opt;
-            opt.spp = 4;
-            opt.progress = false;
-            const std::vector<uint64_t> regions =
-                render(*a.scene, *a.integrator, a.film, opt).counters.bins(walk_counters::allocation_regions);
-            std::string chosen;
-            for (uint64_t n : regions) chosen += " " + std::to_string(n);
-            std::cout << "[reflected] " << what << ": regions by q (0, 1/64 .. 1):" << chosen << "\n";
+            const std::vector<uint64_t> regions = allocation_regions(a, 4, "reflected, " + what);
             ASSERT_FALSE(regions.empty());
             EXPECT_GT(regions[0], 0u) << "no region at q = 0: the test would not see its weights";
         }
