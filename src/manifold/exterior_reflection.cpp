@@ -79,10 +79,7 @@ bool ExteriorReflection::in_class(const Vec3& xb, const SurfaceInteraction& y, c
 }
 
 bool ExteriorReflection::made(const Scene& scene, const MneeSettings& settings) {
-    if (!(settings.exterior_reflections > 0)) return false;
-    for (const Shape* caster : scene.manifold_casters())
-        if (!caster->bsdf()->has_microfacet()) return true;
-    return false;
+    return settings.exterior_reflections > 0 && scene.has_smooth_manifold_caster();
 }
 
 bool ExteriorReflection::seed(const Shape& caster, const SurfaceInteraction& xb, const BSDF& bsdf_b, const Vec3& xc,
