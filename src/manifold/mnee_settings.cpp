@@ -14,6 +14,7 @@ MneeSettings MneeSettings::from_props(const Props& p) {
     s.biased = p.get_bool("biased", s.biased);
     s.spectral_walks = p.get_bool("spectral_walks", s.spectral_walks);
     s.walk = WalkSettings::from_props(p);
+    if (s.biased && !p.has("stall_window")) s.walk.stall_window = kBiasedStallWindow;
     s.max_geometry = p.get_float("max_geometry", s.max_geometry);
     s.seeding = p.get_choice("seeding", s.seeding,
                              {{"straight", MneeSeeding::Straight},

@@ -15,6 +15,11 @@ inline constexpr double kDefaultSurfaceWeight = 0.03;
 inline constexpr double kDefaultExteriorReflections = 0.05;
 /// mis_cutoff's default for a scene's unbiased estimators (docs/mnee.md, "The MIS cutoff").
 inline constexpr double kDefaultMisCutoff = 10;
+/// The biased mode's progress test (WalkSettings::stall_window; ratio 0.7): its surface trials run
+/// at every connection, and walks that cannot converge ran to max_iterations. Window 4 gave 10-50 %
+/// more samples at 30 s over the gallery with the same means (docs/experiments.md, twenty-fifth
+/// measurement); the unbiased default, whose regions walk little after the pilot, gains nothing.
+inline constexpr int kBiasedStallWindow = 4;
 /// trials' default with solutions=keyed (docs/mnee.md, "Keyed trials").
 inline constexpr int kKeyedTrials = 16;
 /// The most refractive vertices a path records after x_b (max_vertices' upper bound).

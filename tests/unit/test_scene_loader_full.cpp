@@ -263,8 +263,8 @@ TEST(SceneLoaderFull, MomentAndAovWrappersAreUnwrapped) {
 
 // mnee's estimator defaults: SMS's unbiased estimator with the straight seed and surface_weight
 // 0.03, in the biased mode with surface_weight 1 (its outlier rule would drop what c < 1 leaves
-// to BSDF sampling); `all` weighs its surface solutions fully. The allocation is learned but
-// where q is given, in the biased mode and for the paper's estimator. A surface_weight out of
+// to BSDF sampling) and the walks' progress test (stall_window 4); `all` weighs its surface solutions fully. The
+// allocation is learned but where q is given, in the biased mode and for the paper's estimator. A surface_weight out of
 // (0, 1], or given where no straight and surface solutions meet, names the line, and so does a
 // learned allocation in the biased mode.
 TEST(SceneLoaderFull, MneeDefaultsAndSurfaceWeight) {
@@ -281,6 +281,11 @@ TEST(SceneLoaderFull, MneeDefaultsAndSurfaceWeight) {
     EXPECT_EQ(settings(R"(<string name="solutions" value="unbiased"/>)").surface_weight, kDefaultSurfaceWeight);
     EXPECT_EQ(settings(R"(<boolean name="biased" value="true"/>)").solutions, MneeSolutions::Unbiased);
     EXPECT_EQ(settings(R"(<boolean name="biased" value="true"/>)").surface_weight, 1.0);
+    EXPECT_EQ(def.walk.stall_window, 0);
+    EXPECT_EQ(settings(R"(<boolean name="biased" value="true"/>)").walk.stall_window, kBiasedStallWindow);
+    EXPECT_EQ(
+        settings(R"(<boolean name="biased" value="true"/><integer name="stall_window" value="0"/>)").walk.stall_window,
+        0);
     EXPECT_TRUE(def.learned_allocation);
     EXPECT_FALSE(settings(R"(<boolean name="biased" value="true"/>)").learned_allocation);
     EXPECT_FALSE(settings(R"(<string name="solutions" value="one"/>)").learned_allocation);
