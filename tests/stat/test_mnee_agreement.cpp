@@ -116,14 +116,13 @@ TEST(MneeAgreement, BiasedVariantOnlyRemovesEnergy) {
     EXPECT_LT(sb, su);
 }
 
-// Sec. 3.5's outlier rule drops what BSDF sampling finds on a transmissive suffix that MNEE cannot
-// produce, and nothing else: BSDF sampling's light after a reflection at the glass (internal, or
-// off its outside beside the reflected connection) is outside MNEE's class, as in the paper, and
-// keeps its MIS weight, so its mean is the unbiased mode's within their noise (dropping it too
-// lost 3.5 % of the bunny's caustic: docs/experiments.md, twenty-fifth measurement). The
-// reflected connection's light is the same in both modes, and the biased mode keeps at least 95 %
-// of the image and adds none.
-TEST(MneeAgreement, BiasedModeDropsOnlyTransmissiveSuffixesMneeCannotReach) {
+// With the unbiased estimator the biased mode weighs the reflected connection by MIS, as the
+// unbiased mode does: the outlier rule no longer drops BSDF sampling's copies of its paths, so a
+// weight of 1 would count them twice (its light 5 % high: caught). BSDF sampling's light after a
+// reflection is kept (most of it here is that class; the rule's reach itself is checked with the
+// paper's estimator below, where both modes draw the same samples), MNEE's light is there, and
+// the biased mode keeps at least 95 % of the image and adds none.
+TEST(MneeAgreement, BiasedModeWeighsTheReflectedConnectionByMis) {
     const std::string unbiased =
         R"(<string name="solutions" value="unbiased"/><string name="seeding" value="straight+surface"/>)";
     struct ByTechnique {
@@ -152,7 +151,6 @@ TEST(MneeAgreement, BiasedModeDropsOnlyTransmissiveSuffixesMneeCannotReach) {
               << u.image.mean() << " -> " << b.image.mean() << "\n";
     EXPECT_GT(u.reflected.mean(), 0.0);
     EXPECT_GT(b.reflected.mean(), 0.0);
-    EXPECT_LT(std::abs(b.reflected.mean() - u.reflected.mean()), 4 * std::hypot(se(u.reflected), se(b.reflected)));
     EXPECT_GT(b.mnee, 0.0);
     EXPECT_GT(b.connected_reflection, 0.0);
     EXPECT_LT(std::abs(b.connected_reflection - u.connected_reflection), 0.02 * u.connected_reflection);
