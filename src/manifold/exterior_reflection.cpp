@@ -67,19 +67,30 @@ bool sphere_mirror_point(const BoundingSphere& b, const Vec3& xb, const Vec3& xc
     return true;
 }
 
-bool smooth_interface(const BSDF* bsdf, double lambda) {
-    return is_manifold_interface(bsdf, lambda) && !bsdf->has_microfacet();
+// The seed's target at a rough y: the path's own half vector, as the unit slope the estimator
+// would have drawn for it (Alg. 2, line 3, as mnee_pdf sets it), so that the seed walks to the
+// path where connect()'s walk with that draw does.
+bool aim_at_path(const SurfaceInteraction& xb, const SurfaceInteraction& y, const Vec3& xc, double lambda,
+                 ManifoldVertex* seed) {
+    if (!y.bsdf()->has_microfacet()) return true;
+    std::vector<ManifoldVertex> chain;
+    std::vector<Vec2> slopes;
+    if (!chain_of_path(xb, &y, 1, xc, lambda, &chain, &slopes)) return false;
+    seed->has_unit_slope = true;
+    seed->unit_slope = slopes[0];
+    seed->h_target = target_from_unit_slope(*seed, seed->unit_slope);
+    return true;
 }
 
 }  // namespace
 
 bool ExteriorReflection::in_class(const Vec3& xb, const SurfaceInteraction& y, const Vec3& xc, double lambda) {
-    return y.shape && !y.emitter() && smooth_interface(y.bsdf(), lambda) && dot(xb - y.p, y.ng) > 0 &&
+    return y.shape && !y.emitter() && is_manifold_interface(y.bsdf(), lambda) && dot(xb - y.p, y.ng) > 0 &&
            dot(xc - y.p, y.ng) > 0;
 }
 
 bool ExteriorReflection::made(const Scene& scene, const MneeSettings& settings) {
-    return settings.exterior_reflections > 0 && scene.has_smooth_manifold_caster();
+    return settings.exterior_reflections > 0 && !scene.manifold_casters().empty();
 }
 
 bool ExteriorReflection::seed(const Shape& caster, const SurfaceInteraction& xb, const BSDF& bsdf_b, const Vec3& xc,
@@ -93,7 +104,7 @@ bool ExteriorReflection::seed(const Shape& caster, const SurfaceInteraction& xb,
     SurfaceInteraction si;
     if (!caster.closest_point(m, 2 * b->radius, &si)) return false;
     si.wo = normalize(xb.p - si.p);
-    if (!smooth_interface(si.bsdf(), lambda)) return false;
+    if (!is_manifold_interface(si.bsdf(), lambda)) return false;
     // A seed that faces away from x_b or x_c (a caster unlike its bounding sphere) starts walks
     // that mostly fail at full cost.
     if (!(dot(xb.p - si.p, si.ng) > 0) || !(dot(xc - si.p, si.ng) > 0)) return false;
@@ -139,17 +150,20 @@ ReflectedConnection ExteriorReflection::connect(const ManifoldQuery& q, Sampler&
         return out;
     out.density = rho * p_caster * c.pdf_mnee;
     out.pdf_bsdf = c.pdf_bsdf;
+    out.pdf_nee = c.pdf_nee_last;
     // The path samples x_b's direction with its own density (caster sampling): it replaces
-    // BSDF sampling's.
+    // BSDF sampling's, the first factor of both other techniques' densities.
     if (q.directions && c.pdf_xb_direction > 0) {
         const Vec3 o_b = normalize(chain[0].p - xb.p);
-        out.pdf_bsdf *=
+        const double r =
             q.directions->pdf(xb, *q.bsdf_b, q.ctx.at(xb), xb.to_local(xb.wo), xb.to_local(o_b)) / c.pdf_xb_direction;
+        out.pdf_bsdf *= r;
+        out.pdf_nee *= r;
     }
-    // mis_cutoff: where BSDF sampling's density dwarfs the connection's, the connection keeps no
-    // weight, as density() answers for BSDF sampling's copy of the path, without its walk (the
+    // mis_cutoff: where the other techniques' density dwarfs the connection's, the connection
+    // keeps no weight, as density() answers for their copies of the path, without its walk (the
     // found path's density is its bound there).
-    if (mis_cut_off(out.pdf_bsdf, out.density, m_settings->mis_cutoff)) return out;
+    if (mis_cut_off(out.pdf_bsdf + out.pdf_nee, out.density, m_settings->mis_cutoff)) return out;
     out.found = true;
     out.y = chain[0].si;
     out.lp = lp;
@@ -165,7 +179,7 @@ double ExteriorReflection::density(const SurfaceInteraction& xb, const BSDF& bsd
     if (media_b.inside() || !in_class(xb.p, y, xc, lambda)) return 0;
     const double p_caster = CasterChoice(*m_scene, xb.p, lambda).probability_of(*y.shape);
     if (!(p_caster > 0)) return 0;
-    // Alg. 2 lines 1, 3 and 8 for the path as it is (no half vectors to draw: y is smooth).
+    // Alg. 2 lines 1, 3 and 8 for the path as it is (at a rough y, with its own half vector).
     const double p = solution_density_bound(*m_scene, *m_settings, xb, bsdf_b, &y, 1, light, pmf, xc, nc, lambda);
     if (!(p > 0)) return 0;
     const double bound = m_settings->exterior_reflections * p_caster * p;
@@ -173,11 +187,14 @@ double ExteriorReflection::density(const SurfaceInteraction& xb, const BSDF& bsd
     // Lines 2 and 4-7: the seed connect() builds, walked; the path is the technique's only where
     // the walk reaches it.
     std::vector<ManifoldVertex> seed_chain(1);
-    if (!seed(*y.shape, xb, bsdf_b, xc, lambda, &seed_chain[0])) return 0;
+    if (!seed(*y.shape, xb, bsdf_b, xc, lambda, &seed_chain[0]) || !aim_at_path(xb, y, xc, lambda, &seed_chain[0]))
+        return 0;
     const TangentBasis basis = light_point_basis(xc, nc, normalize(xc - xb.p));
     if (manifold_walk(m_scene, xb.p, seed_chain, basis, m_settings->walk).outcome != WalkOutcome::Converged) return 0;
     std::vector<ManifoldVertex> target(1, ManifoldVertex::from_interaction(y, y.bsdf()->eta(lambda)));
     target[0].reflect = true;
+    target[0].h_target =
+        seed_chain[0].has_unit_slope ? target_from_unit_slope(target[0], seed_chain[0].unit_slope) : Vec2(0, 0);
     polish_solution(m_scene, xb.p, seed_chain, basis, m_settings->walk);
     polish_solution(m_scene, xb.p, target, basis, m_settings->walk);
     return same_solution(xb.p, seed_chain, target, xc) ? bound : 0.0;

@@ -1,5 +1,5 @@
 #pragma once
-// Light reflected once off the outside of smooth glass, connected by a manifold walk (issue 26):
+// Light reflected once off the outside of glass, connected by a manifold walk (issue 26):
 // the path x_b, y, x_c with y on a glass shape and x_b, x_c both outside it. BSDF sampling finds
 // such a path only when its direction meets the light's small mirror image in the glass, so its
 // rare hits were the brightest dots of `glasses` beside the balls (docs/experiments.md,
@@ -9,7 +9,9 @@
 // of the directions to x_b and x_c leaves its bounding sphere, the mirror point of a sphere. The
 // seed is a function of x_b, x_c and the caster, so Alg. 2's density replays the same walk, and
 // the technique is one more MIS technique beside BSDF sampling, with the caster's probability in
-// its density.
+// its density. At rough glass y's half vector is drawn from D as Sec. 3.2 draws MNEE's, and NEE
+// from y is the third technique: near-specular glass (the demo's droplet, alpha 0.02) shows the
+// light as a small bright spot that NEE from y and BSDF sampling both hit rarely.
 #include "core/medium_stack.h"
 #include "core/sampled_spectrum.h"
 #include "core/sampler.h"
@@ -34,6 +36,7 @@ struct ReflectedConnection {
     SampledSpectrum value;
     double density = 0;   ///< this technique's area density of the path (rho and the caster choice included)
     double pdf_bsdf = 0;  ///< BSDF sampling's, with x_b's direction as the path samples it
+    double pdf_nee = 0;   ///< NEE's from a rough y (0 at smooth glass), with x_b's direction the same way
     /// The path: the reflection point y and the light point, on `light` chosen with `pmf`.
     SurfaceInteraction y;
     LightPoint lp;
@@ -59,12 +62,12 @@ public:
                    const SurfaceInteraction& y, const Light& light, double pmf, const Vec3& xc, const Vec3& nc,
                    double lambda, double p_others = 0) const;
 
-    /// The class: y on a smooth manifold interface, x_b and x_c on its outside (its normal's side).
+    /// The class: y on a manifold interface (smooth or rough), x_b and x_c on its outside (its
+    /// normal's side).
     static bool in_class(const Vec3& xb, const SurfaceInteraction& y, const Vec3& xc, double lambda);
 
-    /// Whether the connection is made in `scene`: rho > 0 and some caster is smooth glass (rough
-    /// glass is no mirror; without such glass no sampler dimension is drawn, so that `mnee` stays
-    /// what it was sample for sample).
+    /// Whether the connection is made in `scene`: rho > 0 and the scene has glass (without it no
+    /// sampler dimension is drawn, so that `mnee` stays what it was sample for sample).
     static bool made(const Scene& scene, const MneeSettings& settings);
 
 private:

@@ -159,12 +159,10 @@ void Scene::build() {
     m_refractive_casters.clear();
     m_manifold_casters.clear();
     m_manifold_caster_bounds.clear();
-    m_has_smooth_manifold_caster = false;
     for (const auto& s : m_shapes) {
         const BSDF* b = s->emitter() ? nullptr : s->bsdf();
         if (!b || !b->is_transmissive() || !(b->has_delta() || b->has_microfacet())) continue;
         m_manifold_casters.push_back(s.get());
-        m_has_smooth_manifold_caster = m_has_smooth_manifold_caster || !b->has_microfacet();
         m_manifold_caster_bounds.push_back(s->bounding_sphere());
         if (b->is_refractive_interface(550.0)) m_refractive_casters.push_back(s->bounding_sphere());
     }

@@ -98,9 +98,6 @@ public:
     /// is_manifold_interface (the IOR may be 1 there). Built once, so that the surface trials of
     /// each connection visit the glass alone, not every shape of a large scene.
     const std::vector<const Shape*>& manifold_casters() const { return m_manifold_casters; }
-    /// Whether some manifold caster is smooth (no microfacet lobe): a mirror, for the reflected
-    /// connection (manifold/exterior_reflection.h).
-    bool has_smooth_manifold_caster() const { return m_has_smooth_manifold_caster; }
     /// Their bounding spheres, in the same order (CasterChoice's solid angles).
     const std::vector<BoundingSphere>& manifold_caster_bounds() const { return m_manifold_caster_bounds; }
     /// Where the lights are, for caster sampling's shadow test. Environments are left out where
@@ -127,7 +124,6 @@ private:
     std::vector<BoundingSphere> m_refractive_casters;
     std::vector<const Shape*> m_manifold_casters;
     std::vector<BoundingSphere> m_manifold_caster_bounds;
-    bool m_has_smooth_manifold_caster = false;
     std::vector<LightBounds> m_bounded_lights;
     LightSampler m_light_sampler;
     std::shared_ptr<Camera> m_camera;

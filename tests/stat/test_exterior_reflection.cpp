@@ -1,13 +1,14 @@
 // The reflected connection (manifold/exterior_reflection.h, issue 26): light reflected once off
-// the outside of smooth glass, connected by a manifold walk from its own seed.
+// the outside of glass, smooth or rough, connected by a manifold walk from its own seed.
 // - At fixed receivers, its estimate of that light agrees with an independent estimator written
 //   here by hand (cosine directions from the floor, a mirror reflection at the sphere weighted by
 //   Fresnel's reflectance, the light hit on the part of it x_b sees, where the connection's light
 //   points lie): the measurement, the Jacobians and the caster's probability are right.
 // - Alg. 2's density replays the connection: for every path it found, density() gives the
-//   density the connection reported, and the path obeys the law of reflection.
-// - In the `mnee` integrator, MIS between it and BSDF sampling keeps the image: renders with and
-//   without it agree per block.
+//   density the connection reported, and the path obeys the law of reflection (at rough glass,
+//   the half vector drawn from D).
+// - In the `mnee` integrator, MIS between it and BSDF sampling (and NEE from rough glass) keeps
+//   the image: renders with and without it agree per block.
 // - The MIS cutoff cuts the connection and its density alike.
 #include <algorithm>
 #include <cmath>
@@ -29,7 +30,18 @@ namespace {
 
 // Two glass spheres of high index (F0 = 0.18, so the reflection carries light worth testing) on
 // a diffuse floor, lit by a sphere light large enough for BSDF sampling to converge.
-std::string two_spheres(const std::string& integrator = R"(<integrator type="mnee"/>)") {
+const char* const kSmoothGlass =
+    R"(<bsdf type="dielectric"><float name="int_ior" value="2.5"/><float name="ext_ior" value="1"/></bsdf>)";
+// Rough glass (the demo's droplet has alpha 0.02): the light's image in it is a bright spot that NEE
+// from y and BSDF sampling both hit, the wider the more often.
+std::string rough_glass(const char* alpha) {
+    return std::string(
+               R"(<bsdf type="roughdielectric"><string name="distribution" value="beckmann"/><float name="alpha" value=")") +
+           alpha + R"("/><float name="int_ior" value="2.5"/><float name="ext_ior" value="1"/></bsdf>)";
+}
+
+std::string two_spheres(const std::string& integrator = R"(<integrator type="mnee"/>)",
+                        const std::string& glass = kSmoothGlass) {
     std::string xml = R"(<scene version="3.0.0">$integrator
   <sensor type="perspective"><float name="fov" value="40"/>
     <transform name="to_world"><lookat origin="0,4.5,5" target="0,0,-0.3" up="0,1,0"/></transform>
@@ -37,13 +49,14 @@ std::string two_spheres(const std::string& integrator = R"(<integrator type="mne
   <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><scale value="5"/></transform>
     <bsdf type="diffuse"><rgb name="reflectance" value="0.5, 0.5, 0.5"/></bsdf></shape>
   <shape type="sphere"><point name="center" x="0" y="0.8" z="0"/><float name="radius" value="0.8"/>
-    <bsdf type="dielectric"><float name="int_ior" value="2.5"/><float name="ext_ior" value="1"/></bsdf></shape>
+    $glass</shape>
   <shape type="sphere"><point name="center" x="-1" y="0.4" z="1.2"/><float name="radius" value="0.4"/>
-    <bsdf type="dielectric"><float name="int_ior" value="2.5"/><float name="ext_ior" value="1"/></bsdf></shape>
+    $glass</shape>
   <shape type="sphere"><point name="center" x="-2.2" y="2.6" z="-1.6"/><float name="radius" value="0.6"/>
     <emitter type="area"><rgb name="radiance" value="6, 6, 6"/></emitter></shape>
 </scene>)";
     xml.replace(xml.find("$integrator"), 11, integrator);
+    for (int i = 0; i < 2; ++i) xml.replace(xml.find("$glass"), 6, glass);
     return xml;
 }
 
@@ -112,8 +125,14 @@ TEST(ExteriorReflection, AgreesWithAMirrorTracedByHand) {
     }
 }
 
-TEST(ExteriorReflection, DensityReplaysTheConnection) {
-    const LoadedScene ls = load_xml(two_spheres());
+namespace {
+
+// Alg. 2's density replays the connection: for every path connect() finds, density() gives the
+// density it reported. At smooth glass y obeys the law of reflection; at rough glass y's half
+// vector is the one drawn from D, off the normal, and density() finds the path only when its
+// walk aims at that half vector too.
+void density_replays_the_connection(const std::string& glass, bool rough) {
+    const LoadedScene ls = load_xml(two_spheres(R"(<integrator type="mnee"/>)", glass));
     const Scene& scene = *ls.scene;
     MneeSettings st;
     st.exterior_reflections = 0.5;  // the density counts rho
@@ -121,7 +140,7 @@ TEST(ExteriorReflection, DensityReplaysTheConnection) {
     const SampledWavelengths wl = SampledWavelengths::single(550);
     IndependentSampler smp(5);
     smp.start_pixel_sample(0, 0, 0);
-    int found = 0, on_small = 0;
+    int found = 0, on_small = 0, off_mirror = 0;
     for (int n = 0; n < 4000; ++n) {
         const Vec2 u = smp.next_2d();
         const SurfaceInteraction xb = droplet_receiver(scene, -1.5 + 3.5 * u.x, -2.5 + 3.5 * u.y);
@@ -133,7 +152,9 @@ TEST(ExteriorReflection, DensityReplaysTheConnection) {
         on_small += r.y.shape == scene.manifold_casters()[1];
         // The law of reflection at y: its normal bisects the directions to x_b and x_c.
         const Vec3 h = normalize(normalize(xb.p - r.y.p) + normalize(r.lp.p - r.y.p));
-        EXPECT_GT(dot(h, r.y.n), 1 - 1e-9);
+        if (!rough) EXPECT_GT(dot(h, r.y.n), 1 - 1e-9);
+        off_mirror += dot(h, r.y.n) < 1 - 1e-6;
+        EXPECT_EQ(r.pdf_nee > 0, rough) << "NEE from y competes at rough glass alone";
         const double d = technique.density(xb, *xb.bsdf(), MediumStack(), r.y, *r.light, r.pmf, r.lp.p, r.lp.n, 550);
         EXPECT_NEAR(d, r.density, 1e-6 * r.density);
         // From inside glass the technique makes no connection, so the density is 0 there.
@@ -141,10 +162,22 @@ TEST(ExteriorReflection, DensityReplaysTheConnection) {
         inside.cross(nullptr, true);
         EXPECT_EQ(technique.density(xb, *xb.bsdf(), inside, r.y, *r.light, r.pmf, r.lp.p, r.lp.n, 550), 0.0);
     }
-    std::cout << "[reflected] " << found << " connections, " << on_small << " off the small sphere\n";
+    std::cout << "[reflected] " << (rough ? "rough" : "smooth") << ": " << found << " connections, " << on_small
+              << " off the small sphere, " << off_mirror << " off the mirror direction\n";
     EXPECT_GT(found, 400);
     EXPECT_GT(on_small, 50);
+    if (rough) EXPECT_GT(off_mirror, found * 9 / 10);
 }
+
+}  // namespace
+
+TEST(ExteriorReflection, DensityReplaysTheConnection) { density_replays_the_connection(kSmoothGlass, false); }
+
+TEST(ExteriorReflection, DensityReplaysTheConnectionAtRoughGlass) {
+    density_replays_the_connection(rough_glass("0.05"), true);
+}
+
+namespace {
 
 // The integrator's MIS between the reflected connection and BSDF sampling (emitter_weight) keeps
 // the image: the same scene with the connection off leaves that light to BSDF sampling alone. The
@@ -153,10 +186,13 @@ TEST(ExteriorReflection, DensityReplaysTheConnection) {
 // learned allocation, whose regions there take q = 0: there the suffix keeps x_b and its first
 // vertex for the reflected class alone (MneePath::arrive), and the weights are otherwise the
 // path tracer's.
-TEST(ExteriorReflection, MneeAgreesWithAndWithoutIt) {
-    const auto scene = [](const char* rho, const std::string& allocation) {
+// At rough glass NEE from y is the third technique, weighed against the connection in
+// connect_at_interface.
+void mnee_agrees_with_and_without_it(const std::string& glass) {
+    const auto scene = [&](const char* rho, const std::string& allocation) {
         std::string xml = two_spheres(std::string(R"(<integrator type="mnee">)") + allocation +
-                                      R"(<float name="exterior_reflections" value=")" + rho + R"("/></integrator>)");
+                                          R"(<float name="exterior_reflections" value=")" + rho + R"("/></integrator>)",
+                                      glass);
         // The patch around (-1.2, 0, -0.9), seen from above, and the disc between it and the light.
         replace_in(xml, R"(<lookat origin="0,4.5,5" target="0,0,-0.3" up="0,1,0"/>)",
                    R"(<lookat origin="-0.7,2.6,0.4" target="-1.2,0,-0.9" up="0,1,0"/>)");
@@ -188,6 +224,14 @@ TEST(ExteriorReflection, MneeAgreesWithAndWithoutIt) {
         expect_agreement(ea, eb, 0.01, ("mnee with the reflected connection against without it, " + what).c_str());
         EXPECT_LT(std::abs(wa.mean - wb.mean), 4 * std::hypot(wa.stderr_, wb.stderr_)) << what << ": the whole patch";
     }
+}
+
+}  // namespace
+
+TEST(ExteriorReflection, MneeAgreesWithAndWithoutIt) { mnee_agrees_with_and_without_it(kSmoothGlass); }
+
+TEST(ExteriorReflection, MneeAgreesWithAndWithoutItAtRoughGlass) {
+    mnee_agrees_with_and_without_it(rough_glass("0.2"));
 }
 
 // The MIS cutoff (mis_cutoff.h) cuts both sides of a path alike: where BSDF sampling's density

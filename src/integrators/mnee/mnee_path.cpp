@@ -166,7 +166,7 @@ void MneePath::connect_reflected(const SurfaceInteraction& si, const BSDF& bsdf,
     if (!r.found) return;
     // BSDF sampling's copies of the path keep their MIS weight in the biased mode too
     // (emitter_weight drops no path the connection can produce).
-    const double w = power_heuristic(r.density, {r.pdf_bsdf});
+    const double w = power_heuristic(r.density, {r.pdf_bsdf, r.pdf_nee});
     m_out.add(Technique::MneeReflected, m_walk.tp.beta * r.value * w);
 }
 
@@ -178,7 +178,11 @@ SampledSpectrum MneePath::connect_at_interface(const SurfaceInteraction& si, con
     double pmf = 0;
     const auto ls = sample_light(scene, si, m_ctx.wl, sampler, &light, &pmf);
     if (!ls) return {};
-    if (!s.has_xb || s.k == 0 || !m_weighs_mnee)
+    // NEE from a rough y after x_b may make the reflected connection's path (x_b, y, x_c with y
+    // reflecting off the outside of glass).
+    const bool refracts = dot(si.wo, si.ng) * dot(ls->wi, si.ng) < 0;
+    const bool reflected = m_reflects && s.has_xb && s.k == 1 && !refracts;
+    if (!s.has_xb || s.k == 0 || !(m_weighs_mnee || reflected))
         return nee_connect(scene, si, bsdf, sctx, m_walk.media, *ls, pmf, m_walk.directions());
     const Vec3 wo = si.to_local(si.wo), wi = si.to_local(ls->wi);
     const SampledSpectrum f = bsdf.eval(sctx, wo, wi);
@@ -190,25 +194,27 @@ SampledSpectrum MneePath::connect_at_interface(const SurfaceInteraction& si, con
     const double p_bsdf =
         lp.delta ? 0.0
                  : s.p_prefix * bsdf.pdf(sctx, wo, wi) * std::abs(dot(lp.n, ls->wi)) / length_squared(lp.p - si.p);
-    const bool refracts = dot(si.wo, si.ng) * dot(ls->wi, si.ng) < 0;
     const double q = connect_probability(*light);
     DensityDetail detail;
     bool cut = false;
     const double p_m = mnee_density(refracts, *light, pmf, lp.p, lp.n, q, p_nee + p_bsdf, &detail, &cut);
     const double p_mnee = cut ? 0.0 : q * p_m;
-    if (m_mnee->biased && covers(refracts) && !(p_mnee > 0)) return {};
+    const double p_r = reflected ? m_reflection.density(s.xb, *s.xb.bsdf(), s.xb_media, s.chain[0], *light, pmf, lp.p,
+                                                        lp.n, m_ctx.hero(), p_nee + p_bsdf + p_mnee)
+                                 : 0.0;
+    if (m_mnee->biased && covers(refracts) && !(p_mnee > 0) && !(p_r > 0)) return {};
     const SampledSpectrum unweighted = nee_estimate(si, bsdf, sctx, m_walk.media, *ls, f, pmf, 1.0);
     if (m_pilot && !light->is_delta())
         record_other((m_walk.tp.beta * unweighted).average(), p_nee, p_m, detail, p_nee + p_bsdf, q);
-    return unweighted * power_heuristic(p_nee, {p_bsdf, p_mnee});
+    return unweighted * power_heuristic(p_nee, {p_bsdf, p_mnee, p_r});
 }
 
 double MneePath::emitter_weight(const Light& light, const Vec3& p, const Vec3& n, const Vec3& d,
                                 const SampledSpectrum& value) const {
     const Scene& scene = *m_scene;
     const RefractiveSuffix& s = m_suffix;
-    // One reflection off the outside of smooth glass: the reflected connection's path too.
-    const bool reflected = m_reflects && s.k == 1 && !s.transmissions_only && s.specular[0];
+    // One reflection off the outside of glass: the reflected connection's path too.
+    const bool reflected = m_reflects && s.k == 1 && !s.transmissions_only;
     if (!s.has_xb || s.k == 0 || !(m_weighs_mnee || reflected)) return m_prev.emitter_weight(scene, light, p, n, d);
     // A BSDF-sampled path x_b, x_1..x_k (refractive), x_c: three techniques can produce it.
     const LightPoint lp = light_point_hit(scene, light, p, n, Vec2(), d, s.xb.p);  // densities only: no uv
