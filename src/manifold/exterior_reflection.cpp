@@ -7,6 +7,7 @@
 #include "geometry/shape.h"
 #include "light/light.h"
 #include "manifold/caster_choice.h"
+#include "manifold/half_vectors.h"
 #include "manifold/light_point.h"
 #include "manifold/mis_cutoff.h"
 #include "manifold/mnee.h"
@@ -67,21 +68,6 @@ bool sphere_mirror_point(const BoundingSphere& b, const Vec3& xb, const Vec3& xc
     return true;
 }
 
-// The seed's target at a rough y: the path's own half vector, as the unit slope the estimator
-// would have drawn for it (Alg. 2, line 3, as mnee_pdf sets it), so that the seed walks to the
-// path where connect()'s walk with that draw does.
-bool aim_at_path(const SurfaceInteraction& xb, const SurfaceInteraction& y, const Vec3& xc, double lambda,
-                 ManifoldVertex* seed) {
-    if (!y.bsdf()->has_microfacet()) return true;
-    std::vector<ManifoldVertex> chain;
-    std::vector<Vec2> slopes;
-    if (!chain_of_path(xb, &y, 1, xc, lambda, &chain, &slopes)) return false;
-    seed->has_unit_slope = true;
-    seed->unit_slope = slopes[0];
-    seed->h_target = target_from_unit_slope(*seed, seed->unit_slope);
-    return true;
-}
-
 }  // namespace
 
 bool ExteriorReflection::in_class(const Vec3& xb, const SurfaceInteraction& y, const Vec3& xc, double lambda) {
@@ -121,9 +107,11 @@ ReflectedConnection ExteriorReflection::connect(const ManifoldQuery& q, Sampler&
     const Scene& scene = *m_scene;
     const SurfaceInteraction& xb = *q.xb;
     // The connection is made with probability rho: the coin comes first, so that the others
-    // cost nothing. Its uniform, stretched, picks the caster. Without the connection the light
-    // sample's dimensions are drawn all the same, so that every technique after it reads the
-    // same sampler dimensions in every sample of a pixel (their stratification).
+    // cost nothing. Its uniform, stretched, seeds the generator that picks the caster and draws
+    // y's half vector at rough glass. Without the connection the light sample's dimensions are
+    // drawn all the same, so that every technique after it reads the same sampler dimensions in
+    // every sample of a pixel (their stratification): the walk's draws, which happen only where
+    // the connection gets that far, come from the generator instead.
     const double rho = m_settings->exterior_reflections, u = sampler.next_1d();
     if (!(u < rho)) {
         sampler.next_1d();  // as sample_light draws
@@ -141,11 +129,12 @@ ReflectedConnection ExteriorReflection::connect(const ManifoldQuery& q, Sampler&
     PCG32 rng(uint64_t(u_caster * 0x1p53), 0x5eed);
     const Shape& caster = casters.pick(rng);
     const double p_caster = casters.probability_of(caster);
+    HalfVectorDraws draws = HalfVectorDraws::of_pairs({Vec2(rng.next_double(), rng.next_double())});
     const LightPoint lp = light_point(scene, *light, *ls, xb.p);
     std::vector<ManifoldVertex> chain(1);
     if (!seed(caster, xb, *q.bsdf_b, lp.p, q.ctx.hero(), &chain[0])) return out;
     const MneeConnection c =
-        mnee_connect(scene, *m_settings, xb, *q.bsdf_b, q.ctx, q.media, *light, pmf, lp, chain, sampler);
+        mnee_connect(scene, *m_settings, xb, *q.bsdf_b, q.ctx, q.media, *light, pmf, lp, chain, draws);
     if (c.outcome != MneeOutcome::Success || !in_class(xb.p, chain[0].si, lp.p, q.ctx.hero()) || !(p_caster > 0))
         return out;
     out.density = rho * p_caster * c.pdf_mnee;
@@ -185,16 +174,19 @@ double ExteriorReflection::density(const SurfaceInteraction& xb, const BSDF& bsd
     const double bound = m_settings->exterior_reflections * p_caster * p;
     if (mis_cut_off(p_others, bound, m_settings->mis_cutoff)) return 0;  // as connect() cuts it
     // Lines 2 and 4-7: the seed connect() builds, walked; the path is the technique's only where
-    // the walk reaches it.
-    std::vector<ManifoldVertex> seed_chain(1);
-    if (!seed(*y.shape, xb, bsdf_b, xc, lambda, &seed_chain[0]) || !aim_at_path(xb, y, xc, lambda, &seed_chain[0]))
-        return 0;
+    // the walk reaches it. At a rough y the walk aims at the path's own half vector, read as the
+    // unit slope the connection would have drawn for it (as mnee_pdf aims).
+    std::vector<ManifoldVertex> target, seed_chain(1);
+    std::vector<Vec2> slopes;
+    if (!chain_of_path(xb, &y, 1, xc, lambda, &target, &slopes) || !target[0].reflect) return 0;
+    if (!seed(*y.shape, xb, bsdf_b, xc, lambda, &seed_chain[0])) return 0;
+    if (y.bsdf()->has_microfacet()) {
+        seed_chain[0].has_unit_slope = true;
+        seed_chain[0].unit_slope = slopes[0];
+        seed_chain[0].h_target = target_from_unit_slope(seed_chain[0], slopes[0]);
+    }
     const TangentBasis basis = light_point_basis(xc, nc, normalize(xc - xb.p));
     if (manifold_walk(m_scene, xb.p, seed_chain, basis, m_settings->walk).outcome != WalkOutcome::Converged) return 0;
-    std::vector<ManifoldVertex> target(1, ManifoldVertex::from_interaction(y, y.bsdf()->eta(lambda)));
-    target[0].reflect = true;
-    target[0].h_target =
-        seed_chain[0].has_unit_slope ? target_from_unit_slope(target[0], seed_chain[0].unit_slope) : Vec2(0, 0);
     polish_solution(m_scene, xb.p, seed_chain, basis, m_settings->walk);
     polish_solution(m_scene, xb.p, target, basis, m_settings->walk);
     return same_solution(xb.p, seed_chain, target, xc) ? bound : 0.0;

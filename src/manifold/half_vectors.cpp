@@ -15,14 +15,22 @@ HalfVectorDraws HalfVectorDraws::of_unit_slopes(std::vector<Vec2> slopes) {
     return d;
 }
 
+HalfVectorDraws HalfVectorDraws::of_pairs(const std::vector<Vec2>& pairs) {
+    assert(pairs.size() <= size_t(kMaxSlots));
+    HalfVectorDraws d;
+    d.m_given_pairs = true;
+    for (const Vec2& u : pairs) d.m_u[size_t(d.m_drawn++)] = u;
+    return d;
+}
+
 Vec2 HalfVectorDraws::unit_slope(int i, int type) {
-    if (!m_sampler) return size_t(i) < m_slopes.size() ? m_slopes[size_t(i)] : Vec2(0, 0);
+    if (!m_sampler && !m_given_pairs) return size_t(i) < m_slopes.size() ? m_slopes[size_t(i)] : Vec2(0, 0);
     const Vec3 m = MicrofacetDistribution(MicrofacetDistribution::Type(type), 1.0, 1.0).sample_m(slot(i));
     return Vec2(m.x / m.z, m.y / m.z);
 }
 
 Vec2 HalfVectorDraws::slot(int i) {
-    assert(m_sampler && i >= 0 && i < kMaxSlots);
+    assert(i >= 0 && i < kMaxSlots && (m_sampler || (m_given_pairs && i < m_drawn)));
     while (m_drawn <= i) m_u[size_t(m_drawn++)] = m_sampler->next_2d();
     return m_u[size_t(i)];
 }

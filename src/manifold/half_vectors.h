@@ -21,6 +21,9 @@ public:
     /// Slots given as unit-roughness slopes instead of draws (slopes of a given path's half
     /// vectors, as Alg. 2 walks them); the slots past the end read slope (0, 0).
     static HalfVectorDraws of_unit_slopes(std::vector<Vec2> slopes);
+    /// Slots whose uniform pairs the caller drew (from a generator of its own, so that the
+    /// sampler's dimensions do not depend on whether a walk runs); slot i reads pairs[i].
+    static HalfVectorDraws of_pairs(const std::vector<Vec2>& pairs);
     /// The pair of slot i (0 <= i < kMaxSlots); drawn slots only.
     Vec2 slot(int i);
     /// Slot i as the unit-roughness slope of distribution `type` it stands for.
@@ -29,7 +32,8 @@ public:
 private:
     HalfVectorDraws() = default;
     Sampler* m_sampler = nullptr;
-    std::vector<Vec2> m_slopes;  ///< given slopes (m_sampler null)
+    std::vector<Vec2> m_slopes;  ///< given slopes (m_sampler null, m_given_pairs false)
+    bool m_given_pairs = false;  ///< of_pairs: m_u holds the pairs (m_sampler null)
     std::array<Vec2, kMaxSlots> m_u{};
     int m_drawn = 0;
 };
