@@ -155,6 +155,16 @@ void density_replays_the_connection(const std::string& glass, bool rough) {
         if (!rough) EXPECT_GT(dot(h, r.y.n), 1 - 1e-9);
         off_mirror += dot(h, r.y.n) < 1 - 1e-6;
         EXPECT_EQ(r.pdf_nee > 0, rough) << "NEE from y competes at rough glass alone";
+        if (rough) {
+            // NEE's density of the path, composed here: a cosine direction at the floor, y's area,
+            // then the light point as the light samples it from y.
+            const Vec3 to_y = r.y.p - xb.p;
+            const double d2 = length_squared(to_y);
+            const Vec3 o_b = to_y / std::sqrt(d2);
+            const double p_nee = std::abs(dot(xb.n, o_b)) / kPi * std::abs(dot(r.y.ng, o_b)) / d2 * r.pmf *
+                                 r.light->pdf_point(r.y.p, r.lp.p, r.lp.n);
+            EXPECT_NEAR(r.pdf_nee, p_nee, 1e-6 * p_nee);
+        }
         const double d = technique.density(xb, *xb.bsdf(), MediumStack(), r.y, *r.light, r.pmf, r.lp.p, r.lp.n, 550);
         EXPECT_NEAR(d, r.density, 1e-6 * r.density);
         // From inside glass the technique makes no connection, so the density is 0 there.
