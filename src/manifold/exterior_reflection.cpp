@@ -166,13 +166,17 @@ double ExteriorReflection::density(const SurfaceInteraction& xb, const BSDF& bsd
                                    const SurfaceInteraction& y, const Light& light, double pmf, const Vec3& xc,
                                    const Vec3& nc, double lambda, double p_others) const {
     if (media_b.inside() || !in_class(xb.p, y, xc, lambda)) return 0;
-    const double p_caster = CasterChoice(*m_scene, xb.p, lambda).probability_of(*y.shape);
-    if (!(p_caster > 0)) return 0;
     // Alg. 2 lines 1, 3 and 8 for the path as it is (at a rough y, with its own half vector).
     const double p = solution_density_bound(*m_scene, *m_settings, xb, bsdf_b, &y, 1, light, pmf, xc, nc, lambda);
     if (!(p > 0)) return 0;
-    const double bound = m_settings->exterior_reflections * p_caster * p;
-    if (mis_cut_off(p_others, bound, m_settings->mis_cutoff)) return 0;  // as connect() cuts it
+    // The cutoff (as connect() cuts) first with the caster's probability at its largest, 1: NEE
+    // from every rough y asks, and most of its paths are far from the mirror direction.
+    const double rho = m_settings->exterior_reflections;
+    if (mis_cut_off(p_others, rho * p, m_settings->mis_cutoff)) return 0;
+    const double p_caster = CasterChoice(*m_scene, xb.p, lambda).probability_of(*y.shape);
+    if (!(p_caster > 0)) return 0;
+    const double bound = rho * p_caster * p;
+    if (mis_cut_off(p_others, bound, m_settings->mis_cutoff)) return 0;
     // Lines 2 and 4-7: the seed connect() builds, walked; the path is the technique's only where
     // the walk reaches it. At a rough y the walk aims at the path's own half vector, read as the
     // unit slope the connection would have drawn for it (as mnee_pdf aims).
