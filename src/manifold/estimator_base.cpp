@@ -126,7 +126,7 @@ bool EstimatorBase::surface_trial(const ManifoldQuery& q, const BSDFContext& ctx
     if (mnee_walk(*m_scene, *m_settings, *q.xb, *q.bsdf_b, lp, *chain, draws, /*trial_only=*/true) !=
         MneeOutcome::Success)
         return false;
-    // One reflection off the outside of smooth glass is ExteriorReflection's path (solution_density
+    // One reflection off the outside of glass is ExteriorReflection's path (solution_density
     // gives it 0 here): a trial that walks to it has failed.
     if (st.exterior_reflections > 0 && chain->size() == 1 && (*chain)[0].reflect &&
         ExteriorReflection::in_class(q.xb->p, (*chain)[0].si, lp.p, ctx.hero()))

@@ -15,7 +15,7 @@ HalfVectorDraws HalfVectorDraws::of_unit_slopes(std::vector<Vec2> slopes) {
     return d;
 }
 
-HalfVectorDraws HalfVectorDraws::of_pairs(const std::vector<Vec2>& pairs) {
+HalfVectorDraws HalfVectorDraws::of_pairs(std::initializer_list<Vec2> pairs) {
     assert(pairs.size() <= size_t(kMaxSlots));
     HalfVectorDraws d;
     d.m_given_pairs = true;

@@ -5,6 +5,7 @@
 // depend on the shape sequence and the pairs alone, not on where a seed landed, so several walks
 // from different seeds (issue 10: every solution per shading point) solve for the same H.
 #include <array>
+#include <initializer_list>
 #include <vector>
 
 #include "core/sampler.h"
@@ -23,7 +24,7 @@ public:
     static HalfVectorDraws of_unit_slopes(std::vector<Vec2> slopes);
     /// Slots whose uniform pairs the caller drew (from a generator of its own, so that the
     /// sampler's dimensions do not depend on whether a walk runs); slot i reads pairs[i].
-    static HalfVectorDraws of_pairs(const std::vector<Vec2>& pairs);
+    static HalfVectorDraws of_pairs(std::initializer_list<Vec2> pairs);
     /// The pair of slot i (0 <= i < kMaxSlots); drawn slots only.
     Vec2 slot(int i);
     /// Slot i as the unit-roughness slope of distribution `type` it stands for.

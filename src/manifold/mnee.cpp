@@ -349,7 +349,7 @@ double solution_density(const Scene& scene, const MneeSettings& st, const Surfac
     bool reflects = false;
     const double p = chain_solution_density(scene, st, xb, bsdf_b, path, k, light, pmf, xc, nc, lambda, &reflects);
     if (!(p > 0) || (reflects && !st.reflections)) return 0;  // reflections only with settings.reflections
-    // One reflection off the outside of smooth glass is ExteriorReflection's path, where it runs.
+    // One reflection off the outside of glass is ExteriorReflection's path, where it runs.
     if (reflects && k == 1 && st.exterior_reflections > 0 && ExteriorReflection::in_class(xb.p, path[0], xc, lambda))
         return 0;
     // The domain: refractive interfaces lie on the straight segment x_b -> x_c, blocked by an

@@ -92,10 +92,10 @@ struct MneeSettings {
     /// paths with internal reflections, and take them from BSDF sampling by MIS.
     bool reflections = false;
     /// (exterior_reflections) the probability rho with which each x_b makes a reflected
-    /// connection: light reflected once off the outside of smooth glass, connected by its own
-    /// manifold walk (ExteriorReflection), counted 1 / rho and weighed against BSDF sampling by
-    /// MIS with rho times its density. 0: none (BSDF sampling alone finds that light). The scene
-    /// parameter defaults to kDefaultExteriorReflections, and to 0 for the paper's estimator.
+    /// connection: light reflected once off the outside of glass (smooth or rough), connected by
+    /// its own manifold walk (ExteriorReflection), counted 1 / rho and weighed against BSDF
+    /// sampling (and NEE from rough glass) by MIS with rho times its density. 0: none (BSDF sampling alone finds that
+    /// light). The scene parameter defaults to kDefaultExteriorReflections, and to 0 for the paper's estimator.
     double exterior_reflections = 0;
     /// (surface_weight) c in (0, 1]: with the straight seed and surface seeds both walked
     /// (solutions=all or unbiased, seeding=straight+surface) and the straight segment x_b -> x_c
