@@ -101,6 +101,10 @@ public:
     virtual double eta(double /*lambda*/) const { return 1.0; }
     /// eta depends on the wavelength (Abbe number > 0): refracted directions are the hero's.
     virtual bool dispersive() const { return false; }
+    /// Whether evaluating it reads the surface point's uv (a textured parameter). Default true;
+    /// BSDFs whose parameters are all constant say false, and a shape whose BSDF and emitter
+    /// read no uv is spared computing it (Shape::reads_uv).
+    virtual bool reads_uv() const { return true; }
     /// Beer-Lambert absorption coefficient of the enclosed medium (1/scene unit), or nullptr.
     virtual const Spectrum* interior_absorption() const { return nullptr; }
 };

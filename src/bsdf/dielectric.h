@@ -32,6 +32,9 @@ public:
 
     double eta(double lambda) const override { return m_int_ior(lambda) / m_ext_ior(lambda); }
     bool dispersive() const override { return !m_int_ior.is_constant() || !m_ext_ior.is_constant(); }
+    bool reads_uv() const override {
+        return !m_specular_reflectance.is_constant() || !m_specular_transmittance.is_constant();
+    }
     const Spectrum* interior_absorption() const override { return m_sigma_a ? &*m_sigma_a : nullptr; }
 
 private:

@@ -14,6 +14,7 @@ public:
     double pdf(const BSDFContext& ctx, const Vec3& wo, const Vec3& wi) const override;
     std::optional<BSDFSample> sample(const BSDFContext& ctx, const Vec3& wo, double uc, const Vec2& u) const override;
     uint32_t flags() const override { return kReflection | kDiffuse; }
+    bool reads_uv() const override { return !m_reflectance.is_constant(); }
 
     const SpectrumParam& reflectance() const { return m_reflectance; }
 

@@ -30,6 +30,10 @@ public:
 
     double eta(double lambda) const override { return m_int_ior(lambda) / m_ext_ior(lambda); }
     bool dispersive() const override { return !m_int_ior.is_constant() || !m_ext_ior.is_constant(); }
+    bool reads_uv() const override {
+        return !m_distr.is_constant() || !m_specular_reflectance.is_constant() ||
+               !m_specular_transmittance.is_constant();
+    }
     const Spectrum* interior_absorption() const override { return m_sigma_a ? &*m_sigma_a : nullptr; }
     /// The distribution with its constant alphas (textured ones are read per point).
     const MicrofacetDistribution& distribution() const { return m_distr.base(); }

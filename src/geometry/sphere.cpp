@@ -62,14 +62,17 @@ void Sphere::fill_interaction(const Vec3& p, SurfaceInteraction* si) const {
         cos_phi = l.x / rxy;
         sin_phi = l.y / rxy;
     }
-    double phi = std::atan2(l.y, l.x);
-    if (phi < 0) phi += 2 * kPi;
-    const double theta = std::atan2(rxy, l.z);
+    si->uv = Vec2(0, 0);
+    if (reads_uv()) {
+        double phi = std::atan2(l.y, l.x);
+        if (phi < 0) phi += 2 * kPi;
+        const double theta = std::atan2(rxy, l.z);
+        si->uv = {phi * kInv2Pi, theta * kInvPi};
+    }
 
     const double sign = m_flip ? -1.0 : 1.0;
     si->p = p;
     si->t = 0;
-    si->uv = {phi * kInv2Pi, theta * kInvPi};
     si->dpdu = Vec3(-l.y, l.x, 0) * (2 * kPi);
     si->dpdv = Vec3(l.z * cos_phi, l.z * sin_phi, -rxy) * kPi;
     si->ng = si->n = l * (sign / m_radius);

@@ -37,6 +37,7 @@ public:
     const Shape* shape() const override { return m_shape.get(); }
     const Spectrum& radiance() const { return m_radiance; }
     bool is_textured() const { return m_texture != nullptr; }
+    bool reads_uv() const override { return is_textured(); }
 
 private:
     SampledSpectrum radiance_at(const Vec3& p, const Vec3& n, const Vec2& uv, const SampledWavelengths& wl) const;

@@ -55,6 +55,8 @@ public:
 
     /// Area lights: radiance leaving point p (normal n, surface coordinates uv, which a
     /// textured radiance reads) in unit direction w (away from the light).
+    /// Whether le() reads uv (a textured radiance). Default true (Shape::reads_uv).
+    virtual bool reads_uv() const { return true; }
     virtual SampledSpectrum le(const Vec3& /*p*/, const Vec3& /*n*/, const Vec2& /*uv*/, const Vec3& /*w*/,
                                const SampledWavelengths& /*wl*/) const {
         return {};

@@ -1,10 +1,16 @@
 #include <gtest/gtest.h>
 
+#include "bsdf/dielectric.h"
+#include "bsdf/diffuse.h"
+#include "bsdf/roughdielectric.h"
 #include "core/rng.h"
 #include "core/warp.h"
 #include "geometry/sphere.h"
+#include "light/area.h"
 #include "scene/scene.h"
 #include "test_geometry_util.h"
+#include "texture/checkerboard.h"
+#include "texture/constant.h"
 
 using namespace snell;
 using snell::test::next_2d;
@@ -236,4 +242,66 @@ TEST(GeometrySphere, SamplingFromInsideCoversAllDirections) {
     }
     const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
     EXPECT_NEAR(mean, 4 * kPi, 5 * se);
+}
+
+// The uv of a sphere's points costs two atan2 and is read only by textures: a sphere whose BSDF
+// and emitter read none leaves it at (0, 0) and fills every other field as before; a textured
+// BSDF or emitter, or no material at all, keeps it.
+TEST(GeometrySphere, UvIsFilledWhereItsMaterialReadsIt) {
+    const auto make = [](std::shared_ptr<BSDF> bsdf) {
+        auto s = std::make_shared<Sphere>(Vec3(0.3, -0.2, 0.5), 1.7);
+        if (bsdf) s->set_bsdf(std::move(bsdf));
+        return s;
+    };
+    const auto bare = make(nullptr);
+    const auto glass = make(std::make_shared<DielectricBSDF>(Spectrum::constant(1.5), Spectrum::constant(1.0)));
+    const auto rough =
+        make(std::make_shared<RoughDielectricBSDF>(MicrofacetDistribution(MicrofacetDistribution::Type::Beckmann, 0.1),
+                                                   Spectrum::constant(1.5), Spectrum::constant(1.0)));
+    const auto white = make(std::make_shared<DiffuseBSDF>(Spectrum::constant(0.5)));
+    const TextureRef checks = std::make_shared<CheckerboardTexture>(
+        ConstantTexture::make(0.2), ConstantTexture::make(0.8), Transform::scale(Vec3(8, 8, 1)));
+    const auto textured = make(std::make_shared<DiffuseBSDF>(SpectrumParam(checks)));
+    const auto rough_textured = make(std::make_shared<RoughDielectricBSDF>(
+        MicrofacetParam(MicrofacetDistribution(MicrofacetDistribution::Type::Beckmann, 0.1), checks, checks),
+        Spectrum::constant(1.5), Spectrum::constant(1.0)));
+    EXPECT_TRUE(bare->reads_uv());
+    EXPECT_FALSE(glass->reads_uv());
+    EXPECT_FALSE(rough->reads_uv());
+    EXPECT_FALSE(white->reads_uv());
+    EXPECT_TRUE(textured->reads_uv());
+    EXPECT_TRUE(rough_textured->reads_uv());
+    // An emitter: untextured radiance reads no uv, textured radiance does.
+    const auto lamp = make(nullptr);
+    const AreaLight plain(Spectrum::constant(2.0), lamp);
+    lamp->set_emitter(&plain);
+    EXPECT_FALSE(lamp->reads_uv());
+    const auto lamp_textured = make(std::make_shared<DielectricBSDF>(Spectrum::constant(1.5), Spectrum::constant(1.0)));
+    const AreaLight patterned(checks, lamp_textured);
+    lamp_textured->set_emitter(&patterned);
+    EXPECT_TRUE(lamp_textured->reads_uv());
+
+    for (double u : {0.05, 0.61})
+        for (double v : {0.1, 0.8}) {
+            const SurfaceInteraction full = at(*bare, u, v);
+            for (const Sphere* s : {glass.get(), textured.get()}) {
+                const SurfaceInteraction si = at(*s, u, v);
+                EXPECT_EQ(si.p, full.p);
+                EXPECT_EQ(si.n, full.n);
+                EXPECT_EQ(si.ng, full.ng);
+                EXPECT_EQ(si.dpdu, full.dpdu);
+                EXPECT_EQ(si.dpdv, full.dpdv);
+                EXPECT_EQ(si.dndu, full.dndu);
+                EXPECT_EQ(si.dndv, full.dndv);
+                EXPECT_EQ(si.shading.s, full.shading.s);
+                EXPECT_EQ(si.shading.t, full.shading.t);
+                if (s->reads_uv()) {
+                    EXPECT_EQ(si.uv.x, full.uv.x);
+                    EXPECT_EQ(si.uv.y, full.uv.y);
+                } else {
+                    EXPECT_EQ(si.uv.x, 0.0);
+                    EXPECT_EQ(si.uv.y, 0.0);
+                }
+            }
+        }
 }
