@@ -1,8 +1,5 @@
 #include "geometry/shape.h"
 
-#include "bsdf/bsdf.h"
-#include "light/light.h"
-
 namespace snell {
 
 // Default: uniform area sampling, converted to solid angle at `ref` with the Jacobian
@@ -17,14 +14,6 @@ std::optional<ShapeSample> Shape::sample_from(const Vec3& ref, const Vec2& u) co
     s.pdf *= d2 / cos_p;
     if (!std::isfinite(s.pdf)) return std::nullopt;
     return s;
-}
-
-void Shape::update_reads_uv() {
-    if (!m_bsdf && !m_emitter) {
-        m_reads_uv = true;
-        return;
-    }
-    m_reads_uv = (m_bsdf && m_bsdf->reads_uv()) || (m_emitter && m_emitter->reads_uv());
 }
 
 double Shape::pdf_from(const Vec3& ref, const Vec3& p, const Vec3& n) const {

@@ -116,28 +116,20 @@ public:
     const BSDF* bsdf() const { return m_bsdf.get(); }
     const std::shared_ptr<BSDF>& bsdf_ptr() const { return m_bsdf; }
     const Light* emitter() const { return m_emitter; }
-    void set_bsdf(std::shared_ptr<BSDF> b) {
-        m_bsdf = std::move(b);
-        update_reads_uv();
-    }
-    void set_emitter(const Light* l) {
-        m_emitter = l;
-        update_reads_uv();
-    }
+    void set_bsdf(std::shared_ptr<BSDF> b) { m_bsdf = std::move(b); }
+    void set_emitter(const Light* l) { m_emitter = l; }
     /// Whether anything evaluated at the shape's points reads their uv: its BSDF's or its
-    /// emitter's textures. Shapes whose uv costs work (Sphere: two atan2, about 7 % of a
-    /// render of the gallery's balls, whose walks project onto them at every iteration) skip it
-    /// where nothing does, and leave uv at (0, 0). A bare shape (no BSDF, no emitter) keeps it.
+    /// emitter's textures. Shapes whose uv costs work (Sphere: two atan2, 3-11 % of a render of
+    /// the gallery's balls, whose walks project onto them at every iteration) skip it where
+    /// nothing does, and leave uv at (0, 0). True unless Scene::build() finds that nothing does.
     bool reads_uv() const { return m_reads_uv; }
+    void set_reads_uv(bool reads) { m_reads_uv = reads; }
     unsigned geom_id() const { return m_geom_id; }
 
 protected:
     std::shared_ptr<BSDF> m_bsdf;
     const Light* m_emitter = nullptr;
     unsigned m_geom_id = RTC_INVALID_GEOMETRY_ID;
-
-private:
-    void update_reads_uv();
     bool m_reads_uv = true;
 };
 

@@ -9,6 +9,7 @@
 #include "bsdf/bsdf.h"
 #include "geometry/embree_context.h"
 #include "light/directional.h"
+#include "light/light.h"
 #include "scene/caster_sampling.h"
 
 namespace snell {
@@ -86,6 +87,10 @@ void Scene::add_light(std::shared_ptr<Light> light) { m_lights.push_back(std::mo
 void Scene::build() {
     m_bounds = Bounds3();
     for (const auto& s : m_shapes) {
+        // Its uv only where a texture of its BSDF or emitter reads it; a bare shape keeps it.
+        const BSDF* bsdf = s->bsdf();
+        const Light* emitter = s->emitter();
+        s->set_reads_uv((!bsdf && !emitter) || (bsdf && bsdf->reads_uv()) || (emitter && emitter->reads_uv()));
         const unsigned id = s->attach(m_device, m_scene);
         if (id >= m_by_geom_id.size()) m_by_geom_id.resize(id + 1, nullptr);
         m_by_geom_id[id] = s.get();

@@ -244,13 +244,15 @@ TEST(GeometrySphere, SamplingFromInsideCoversAllDirections) {
     EXPECT_NEAR(mean, 4 * kPi, 5 * se);
 }
 
-// The uv of a sphere's points costs two atan2 and is read only by textures: a sphere whose BSDF
-// and emitter read none leaves it at (0, 0) and fills every other field as before; a textured
-// BSDF or emitter, or no material at all, keeps it.
+// The uv of a sphere's points costs two atan2 and is read only by textures: Scene::build() lets a
+// sphere whose BSDF and emitter read none leave it at (0, 0), every other field as before; a
+// textured BSDF or emitter, or no material at all, keeps it.
 TEST(GeometrySphere, UvIsFilledWhereItsMaterialReadsIt) {
-    const auto make = [](std::shared_ptr<BSDF> bsdf) {
+    Scene scene;
+    const auto make = [&](std::shared_ptr<BSDF> bsdf) {
         auto s = std::make_shared<Sphere>(Vec3(0.3, -0.2, 0.5), 1.7);
         if (bsdf) s->set_bsdf(std::move(bsdf));
+        scene.add_shape(s);
         return s;
     };
     const auto bare = make(nullptr);
@@ -265,20 +267,22 @@ TEST(GeometrySphere, UvIsFilledWhereItsMaterialReadsIt) {
     const auto rough_textured = make(std::make_shared<RoughDielectricBSDF>(
         MicrofacetParam(MicrofacetDistribution(MicrofacetDistribution::Type::Beckmann, 0.1), checks, checks),
         Spectrum::constant(1.5), Spectrum::constant(1.0)));
+    // Emitters: an untextured radiance reads no uv, a textured one does.
+    const auto lamp = make(nullptr);
+    const AreaLight plain(Spectrum::constant(2.0), lamp);
+    lamp->set_emitter(&plain);
+    const auto lamp_textured = make(std::make_shared<DielectricBSDF>(Spectrum::constant(1.5), Spectrum::constant(1.0)));
+    const AreaLight patterned(checks, lamp_textured);
+    lamp_textured->set_emitter(&patterned);
+    EXPECT_TRUE(glass->reads_uv()) << "true until the scene is built";
+    scene.build();
     EXPECT_TRUE(bare->reads_uv());
     EXPECT_FALSE(glass->reads_uv());
     EXPECT_FALSE(rough->reads_uv());
     EXPECT_FALSE(white->reads_uv());
     EXPECT_TRUE(textured->reads_uv());
     EXPECT_TRUE(rough_textured->reads_uv());
-    // An emitter: untextured radiance reads no uv, textured radiance does.
-    const auto lamp = make(nullptr);
-    const AreaLight plain(Spectrum::constant(2.0), lamp);
-    lamp->set_emitter(&plain);
     EXPECT_FALSE(lamp->reads_uv());
-    const auto lamp_textured = make(std::make_shared<DielectricBSDF>(Spectrum::constant(1.5), Spectrum::constant(1.0)));
-    const AreaLight patterned(checks, lamp_textured);
-    lamp_textured->set_emitter(&patterned);
     EXPECT_TRUE(lamp_textured->reads_uv());
 
     for (double u : {0.05, 0.61})
