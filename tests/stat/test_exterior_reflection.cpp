@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "bsdf/fresnel.h"
+#include "integrators/mis.h"
+#include "integrators/mnee/mnee_path.h"
 #include "manifold/caster_choice.h"
 #include "manifold/exterior_reflection.h"
 #include "manifold/manifold_technique.h"
@@ -140,7 +142,8 @@ void density_replays_the_connection(const std::string& glass, bool rough) {
     const SampledWavelengths wl = SampledWavelengths::single(550);
     IndependentSampler smp(5);
     smp.start_pixel_sample(0, 0, 0);
-    int found = 0, on_small = 0, off_mirror = 0;
+    int found = 0, on_small = 0, off_mirror = 0, nee_weighs = 0;
+    double max_w_nee = 0;
     for (int n = 0; n < 4000; ++n) {
         const Vec2 u = smp.next_2d();
         const SurfaceInteraction xb = droplet_receiver(scene, -1.5 + 3.5 * u.x, -2.5 + 3.5 * u.y);
@@ -164,6 +167,13 @@ void density_replays_the_connection(const std::string& glass, bool rough) {
             const double p_nee = std::abs(dot(xb.n, o_b)) / kPi * std::abs(dot(r.y.ng, o_b)) / d2 * r.pmf *
                                  r.light->pdf_point(r.y.p, r.lp.p, r.lp.n);
             EXPECT_NEAR(r.pdf_nee, p_nee, 1e-6 * p_nee);
+            // The connection weighs both other techniques: with the weights NEE from y and BSDF
+            // sampling give the path (their densities checked here and by density()), they sum to 1.
+            const double w_nee = power_heuristic(r.pdf_nee, {r.density, r.pdf_bsdf});
+            const double w_bsdf = power_heuristic(r.pdf_bsdf, {r.density, r.pdf_nee});
+            EXPECT_NEAR(reflected_connection_weight(r) + w_nee + w_bsdf, 1.0, 1e-12);
+            nee_weighs += w_nee > 1e-9;
+            max_w_nee = std::max(max_w_nee, w_nee);
         }
         const double d = technique.density(xb, *xb.bsdf(), MediumStack(), r.y, *r.light, r.pmf, r.lp.p, r.lp.n, 550);
         EXPECT_NEAR(d, r.density, 1e-6 * r.density);
@@ -173,10 +183,13 @@ void density_replays_the_connection(const std::string& glass, bool rough) {
         EXPECT_EQ(technique.density(xb, *xb.bsdf(), inside, r.y, *r.light, r.pmf, r.lp.p, r.lp.n, 550), 0.0);
     }
     std::cout << "[reflected] " << (rough ? "rough" : "smooth") << ": " << found << " connections, " << on_small
-              << " off the small sphere, " << off_mirror << " off the mirror direction\n";
+              << " off the small sphere, " << off_mirror << " off the mirror direction";
+    if (rough) std::cout << ", NEE from y weighs " << nee_weighs << " of them (its weight up to " << max_w_nee << ")";
+    std::cout << "\n";
     EXPECT_GT(found, 400);
     EXPECT_GT(on_small, 50);
     if (rough) EXPECT_GT(off_mirror, found * 9 / 10);
+    if (rough) EXPECT_GT(nee_weighs, found / 10) << "too few paths where NEE's weight shows";
 }
 
 }  // namespace

@@ -160,14 +160,17 @@ ManifoldQuery MneePath::query_at(const SurfaceInteraction& si, const BSDF& bsdf,
     return query;
 }
 
+double reflected_connection_weight(const ReflectedConnection& r) {
+    return power_heuristic(r.density, {r.pdf_bsdf, r.pdf_nee});
+}
+
 void MneePath::connect_reflected(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& sctx,
                                  Sampler& sampler) {
     const ReflectedConnection r = m_reflection.connect(query_at(si, bsdf, sctx), sampler);
     if (!r.found) return;
     // BSDF sampling's copies of the path keep their MIS weight in the biased mode too
     // (emitter_weight drops no path the connection can produce).
-    const double w = power_heuristic(r.density, {r.pdf_bsdf, r.pdf_nee});
-    m_out.add(Technique::MneeReflected, m_walk.tp.beta * r.value * w);
+    m_out.add(Technique::MneeReflected, m_walk.tp.beta * r.value * reflected_connection_weight(r));
 }
 
 SampledSpectrum MneePath::connect_at_interface(const SurfaceInteraction& si, const BSDF& bsdf, const BSDFContext& sctx,

@@ -14,6 +14,11 @@
 
 namespace snell {
 
+/// The reflected connection's MIS weight (power heuristic) against the two other techniques that
+/// make its paths: BSDF sampling from x_b and, at rough glass, NEE from y. The three weights of a
+/// path sum to 1 (ExteriorReflection.DensityReplaysTheConnectionAtRoughGlass checks it).
+double reflected_connection_weight(const ReflectedConnection& r);
+
 class MneePath {
 public:
     /// `q`: the connection probability of this sample's region (ConnectionAllocation; < 0:
