@@ -15,10 +15,16 @@ Vec3 frame_s_derivative(const Vec3& n, const Vec3& s, double q_len, const Vec3& 
 ManifoldVertex ManifoldVertex::from_interaction(const SurfaceInteraction& si, double eta) {
     ManifoldVertex v;
     v.si = si;
+    v.derive_from_si(eta);
+    return v;
+}
+
+void ManifoldVertex::derive_from_si(double eta_) {
+    ManifoldVertex& v = *this;
     v.p = si.p;
     v.n = si.n;
     v.ng = si.ng;
-    v.eta = eta;
+    v.eta = eta_;
     v.shape = si.shape;
     v.bsdf = si.bsdf();
 
@@ -32,6 +38,7 @@ ManifoldVertex ManifoldVertex::from_interaction(const SurfaceInteraction& si, do
     v.dp_dt = cross(si.ng, v.dp_ds);
 
     // Shape operator along the basis.
+    v.dn_ds = v.dn_dt = Vec3();
     if (si.shape) {
         v.dn_ds = si.shape->normal_derivative(si, v.dp_ds);
         v.dn_dt = si.shape->normal_derivative(si, v.dp_dt);
@@ -51,7 +58,6 @@ ManifoldVertex ManifoldVertex::from_interaction(const SurfaceInteraction& si, do
     v.ds_dt = frame_s_derivative(v.n, v.s, ql, a, v.dn_dt);
     v.dt_ds = cross(v.dn_ds, v.s) + cross(v.n, v.ds_ds);
     v.dt_dt = cross(v.dn_dt, v.s) + cross(v.n, v.ds_dt);
-    return v;
 }
 
 double half_vector_orientation(const ManifoldVertex& v, const Vec3& wi, const Vec3& wo) {

@@ -40,6 +40,10 @@ struct ManifoldVertex {
 
     /// Builds the vertex from a surface hit; `eta` is the interface's relative IOR.
     static ManifoldVertex from_interaction(const SurfaceInteraction& si, double eta);
+    /// The same in place, from the hit already in `si`: every field but the chain's own
+    /// (h_target, unit_slope, has_unit_slope, reflect) is written. A walk's projection builds
+    /// its vertex this way at every iteration, without copying the hit record or the vertex.
+    void derive_from_si(double eta);
     /// Displaced (unprojected) position for tangent offsets (a, b).
     Vec3 offset(const Vec2& ab) const { return p + dp_ds * ab.x + dp_dt * ab.y; }
 };

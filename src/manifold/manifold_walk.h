@@ -78,6 +78,8 @@ bool build_constraints(const Vec3& x_b, const std::vector<ManifoldVertex>& chain
 double constraint_error(const Vec3& x_b, const std::vector<ManifoldVertex>& chain, const Vec3& x_c);
 
 /// Projects a displaced vertex back onto its shape, keeping its BSDF data (eta, h_target).
+/// `*out`, which must not be `from`, is built in place; where the projection fails it is left
+/// half written.
 bool project_vertex(const Scene* scene, const ManifoldVertex& from, const Vec3& prev_p, const Vec3& displaced,
                     Projection mode, ManifoldVertex* out);
 
