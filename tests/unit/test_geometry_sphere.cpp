@@ -300,6 +300,8 @@ TEST(GeometrySphere, UvIsFilledWhereItsMaterialReadsIt) {
                 EXPECT_EQ(si.shading.s, full.shading.s);
                 EXPECT_EQ(si.shading.t, full.shading.t);
                 if (s->reads_uv()) {
+                    EXPECT_NEAR(si.uv.x, u, 1e-12);
+                    EXPECT_NEAR(si.uv.y, v, 1e-12);
                     EXPECT_EQ(si.uv.x, full.uv.x);
                     EXPECT_EQ(si.uv.y, full.uv.y);
                 } else {
