@@ -53,10 +53,10 @@ public:
     /// For infinite lights p and n are ignored. 0 for delta lights.
     virtual double pdf_li(const LightSampleContext& ref, const Vec3& p, const Vec3& n, const Vec3& wi) const = 0;
 
-    /// Area lights: radiance leaving point p (normal n, surface coordinates uv, which a
-    /// textured radiance reads) in unit direction w (away from the light).
     /// Whether le() reads uv (a textured radiance). Default true (Shape::reads_uv).
     virtual bool reads_uv() const { return true; }
+    /// Area lights: radiance leaving point p (normal n, surface coordinates uv, which a
+    /// textured radiance reads) in unit direction w (away from the light).
     virtual SampledSpectrum le(const Vec3& /*p*/, const Vec3& /*n*/, const Vec2& /*uv*/, const Vec3& /*w*/,
                                const SampledWavelengths& /*wl*/) const {
         return {};
