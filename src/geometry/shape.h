@@ -119,9 +119,9 @@ public:
     void set_bsdf(std::shared_ptr<BSDF> b) { m_bsdf = std::move(b); }
     void set_emitter(const Light* l) { m_emitter = l; }
     /// Whether anything evaluated at the shape's points reads their uv: its BSDF's or its
-    /// emitter's textures. Shapes whose uv costs work (Sphere: two atan2, 3-11 % of a render of
-    /// the gallery's balls, whose walks project onto them at every iteration) skip it where
-    /// nothing does, and leave uv at (0, 0). True unless Scene::build() finds that nothing does.
+    /// emitter's textures. Shapes whose uv costs work (Sphere: two atan2, at every projection of
+    /// a walk onto it; docs/experiments.md, twenty-seventh measurement) skip it where nothing
+    /// does, and leave uv at (0, 0). True unless Scene::build() finds that nothing does.
     bool reads_uv() const { return m_reads_uv; }
     void set_reads_uv(bool reads) { m_reads_uv = reads; }
     unsigned geom_id() const { return m_geom_id; }
